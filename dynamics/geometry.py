@@ -1,0 +1,215 @@
+"""Bearing and cage geometry in SI units, with the derived quantities of MODEL.md §2.
+
+One internal geometry serves every stage. It is built either from the paper's Table-1
+form (groove curvature-centre circle diameters and groove radii) or from catalogue data
+(pitch diameter, conformities, diametral clearance); both resolve to the same fields.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+
+@dataclass(frozen=True)
+class Material:
+    """Isotropic linear-elastic material."""
+
+    youngs_modulus: float = field(metadata={"unit": "Pa", "gt": 0.0})
+    poisson_ratio: float = field(metadata={"unit": "-", "gt": -1.0, "lt": 0.5})
+    density: float = field(metadata={"unit": "kg/m^3", "gt": 0.0})
+
+    @property
+    def plane_strain_modulus(self) -> float:
+        """E/(1-nu^2) [Pa]: one body's share of the Hertz effective modulus."""
+        return self.youngs_modulus / (1.0 - self.poisson_ratio**2)
+
+
+def effective_modulus(a: Material, b: Material) -> float:
+    """Hertz effective modulus E' = 2 / ((1-nu_a^2)/E_a + (1-nu_b^2)/E_b) [Pa].
+
+    For equal materials this is E/(1-nu^2) (MODEL.md §6.2).
+    """
+    return 2.0 / (1.0 / a.plane_strain_modulus + 1.0 / b.plane_strain_modulus)
+
+
+@dataclass(frozen=True)
+class BearingGeometry:
+    """Ball-bearing geometry (MODEL.md §2), SI units.
+
+    `inner_groove_center_diameter` (d_i) and `outer_groove_center_diameter` (d_o) are the
+    diameters of the circles on which the groove curvature centres lie; `*_groove_radius`
+    are r_i, r_o. Shoulder, bore, outside diameters and width are optional: only the stages
+    that use them (ellipse truncation, FE geometry, renders) require them.
+    """
+
+    ball_diameter: float
+    ball_count: int
+    inner_groove_center_diameter: float
+    outer_groove_center_diameter: float
+    inner_groove_radius: float
+    outer_groove_radius: float
+    inner_shoulder_diameter: float | None = None
+    outer_shoulder_diameter: float | None = None
+    inner_bore_diameter: float | None = None
+    outer_outside_diameter: float | None = None
+    width: float | None = None
+
+    @classmethod
+    def from_catalogue(
+        cls,
+        ball_diameter: float,
+        ball_count: int,
+        pitch_diameter: float,
+        inner_conformity: float,
+        outer_conformity: float,
+        diametral_clearance: float,
+        **optional: float | None,
+    ) -> "BearingGeometry":
+        """Build from catalogue data: d_m, f_i = r_i/D, f_o = r_o/D, P_d (unmounted).
+
+        Groove bottoms sit at d_m -/+ (D + P_d/2); the curvature centres lie one groove
+        radius inside the groove from its bottom.
+        """
+        D = ball_diameter
+        r_i = inner_conformity * D
+        r_o = outer_conformity * D
+        inner_bottom = pitch_diameter - D - 0.5 * diametral_clearance
+        outer_bottom = pitch_diameter + D + 0.5 * diametral_clearance
+        return cls(
+            ball_diameter=D,
+            ball_count=ball_count,
+            inner_groove_center_diameter=inner_bottom + 2.0 * r_i,
+            outer_groove_center_diameter=outer_bottom - 2.0 * r_o,
+            inner_groove_radius=r_i,
+            outer_groove_radius=r_o,
+            **optional,
+        )
+
+    # --- derived quantities (MODEL.md §2) -------------------------------------------
+    @property
+    def inner_groove_bottom_diameter(self) -> float:
+        """d_i - 2 r_i [m]."""
+        return self.inner_groove_center_diameter - 2.0 * self.inner_groove_radius
+
+    @property
+    def outer_groove_bottom_diameter(self) -> float:
+        """d_o + 2 r_o [m]."""
+        return self.outer_groove_center_diameter + 2.0 * self.outer_groove_radius
+
+    @property
+    def pitch_diameter(self) -> float:
+        """d_m: mean of the groove-bottom diameters [m]."""
+        return 0.5 * (self.inner_groove_bottom_diameter + self.outer_groove_bottom_diameter)
+
+    @property
+    def curvature_center_distance(self) -> float:
+        """A = r_i + r_o - D: distance between groove curvature centres at first contact [m]."""
+        return self.inner_groove_radius + self.outer_groove_radius - self.ball_diameter
+
+    @property
+    def curvature_center_radial_offset(self) -> float:
+        """(d_i - d_o)/2 [m]: radial offset of the curvature-centre circles, centred rings."""
+        return 0.5 * (self.inner_groove_center_diameter - self.outer_groove_center_diameter)
+
+    @property
+    def diametral_clearance(self) -> float:
+        """P_d = outer bottom - inner bottom - 2D [m] (negative: preload)."""
+        return (
+            self.outer_groove_bottom_diameter
+            - self.inner_groove_bottom_diameter
+            - 2.0 * self.ball_diameter
+        )
+
+    @property
+    def free_contact_angle(self) -> float:
+        """alpha_0 = acos(1 - P_d/(2A)) [rad]; 0 for zero or negative clearance."""
+        cos_a = 1.0 - self.diametral_clearance / (2.0 * self.curvature_center_distance)
+        return math.acos(min(1.0, max(-1.0, cos_a)))
+
+    @property
+    def inner_conformity(self) -> float:
+        """f_i = r_i / D."""
+        return self.inner_groove_radius / self.ball_diameter
+
+    @property
+    def outer_conformity(self) -> float:
+        """f_o = r_o / D."""
+        return self.outer_groove_radius / self.ball_diameter
+
+    def ball_mass(self, ball: Material) -> float:
+        """m_b = rho pi D^3 / 6 [kg]."""
+        return ball.density * math.pi * self.ball_diameter**3 / 6.0
+
+    def ball_inertia(self, ball: Material) -> float:
+        """J_b = m_b D^2 / 10 [kg m^2] (solid sphere)."""
+        return self.ball_mass(ball) * self.ball_diameter**2 / 10.0
+
+
+@dataclass(frozen=True)
+class CageGeometry:
+    """Ball-guided/land-guided cage with cylindrical radial pockets (MODEL.md §2, §7, §8)."""
+
+    mean_diameter: float
+    pocket_diameter: float
+    radial_thickness: float
+    width: float
+    guidance: str = "outer"  # "outer" | "inner": which race's lands guide the cage
+
+    @property
+    def outside_diameter(self) -> float:
+        return self.mean_diameter + self.radial_thickness
+
+    @property
+    def bore_diameter(self) -> float:
+        return self.mean_diameter - self.radial_thickness
+
+    def guide_land_diameter(self, bearing: BearingGeometry) -> float:
+        """Diameter of the land the cage runs on [m] (requires the shoulder diameter)."""
+        d = bearing.outer_shoulder_diameter if self.guidance == "outer" else bearing.inner_shoulder_diameter
+        if d is None:
+            side = "outer" if self.guidance == "outer" else "inner"
+            raise ValueError(
+                f"bearing.{side}_shoulder_diameter is required for a {side}-race-guided cage [m]"
+            )
+        return d
+
+    def guide_clearance(self, bearing: BearingGeometry) -> float:
+        """Radial guide clearance C [m] between cage and guiding land."""
+        land = self.guide_land_diameter(bearing)
+        if self.guidance == "outer":
+            return 0.5 * (land - self.outside_diameter)
+        return 0.5 * (self.bore_diameter - land)
+
+    def guide_land_length(self, bearing: BearingGeometry) -> float:
+        """Journal length L [m]: axial overlap of the cage with the two guiding lands.
+
+        The groove (radius r about the curvature centre, at radius d/2 from the axis)
+        meets the land cylinder at axial distance z_l from the groove plane; the cage
+        (width w_c, centred) overlaps each land by w_c/2 - z_l.
+        """
+        land_r = 0.5 * self.guide_land_diameter(bearing)
+        if self.guidance == "outer":
+            rc, r = 0.5 * bearing.outer_groove_center_diameter, bearing.outer_groove_radius
+        else:
+            rc, r = 0.5 * bearing.inner_groove_center_diameter, bearing.inner_groove_radius
+        dr = land_r - rc
+        z_land = math.sqrt(max(r * r - dr * dr, 0.0))
+        return max(0.0, 2.0 * (0.5 * self.width - z_land))
+
+    def mass(self, cage: Material, bearing: BearingGeometry) -> float:
+        """Ring mass less the Z cylindrical pockets (through the radial thickness) [kg]."""
+        ring = math.pi * self.mean_diameter * self.radial_thickness * self.width
+        pockets = bearing.ball_count * math.pi * 0.25 * self.pocket_diameter**2 * self.radial_thickness
+        return cage.density * (ring - pockets)
+
+    def inertia(self, cage: Material, bearing: BearingGeometry) -> tuple[float, float]:
+        """(J_axial, J_diametral) [kg m^2] of a thin ring of the cage's mass.
+
+        Thick-ring formula: J_z = m (r_o^2 + r_i^2)/2, J_x = m (3(r_o^2 + r_i^2) + w^2)/12.
+        """
+        m = self.mass(cage, bearing)
+        ro, ri = 0.5 * self.outside_diameter, 0.5 * self.bore_diameter
+        jz = 0.5 * m * (ro * ro + ri * ri)
+        jx = m * (3.0 * (ro * ro + ri * ri) + self.width**2) / 12.0
+        return jz, jx

@@ -43,17 +43,60 @@ class BearingGeometry:
     that use them (ellipse truncation, FE geometry, renders) require them.
     """
 
-    ball_diameter: float
-    ball_count: int
-    inner_groove_center_diameter: float
-    outer_groove_center_diameter: float
-    inner_groove_radius: float
-    outer_groove_radius: float
-    inner_shoulder_diameter: float | None = None
-    outer_shoulder_diameter: float | None = None
-    inner_bore_diameter: float | None = None
-    outer_outside_diameter: float | None = None
-    width: float | None = None
+    ball_diameter: float = field(metadata={"unit": "m", "gt": 0.0})
+    ball_count: int = field(metadata={"unit": "-", "ge": 3})
+    inner_groove_center_diameter: float = field(metadata={"unit": "m", "gt": 0.0})
+    outer_groove_center_diameter: float = field(metadata={"unit": "m", "gt": 0.0})
+    inner_groove_radius: float = field(metadata={"unit": "m", "gt": 0.0})
+    outer_groove_radius: float = field(metadata={"unit": "m", "gt": 0.0})
+    inner_shoulder_diameter: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0})
+    outer_shoulder_diameter: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0})
+    inner_bore_diameter: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0})
+    outer_outside_diameter: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0})
+    width: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0})
+
+    def __post_init__(self) -> None:
+        """Reject geometry that cannot be built; messages name the scene keys."""
+        D = self.ball_diameter
+        for name in ("inner_groove_radius", "outer_groove_radius"):
+            r = getattr(self, name)
+            if r <= 0.5 * D:
+                raise ValueError(
+                    f"{name} = {r:g} m must exceed the ball radius D/2 = {0.5 * D:g} m "
+                    "(a groove tighter than the ball cannot hold it)"
+                )
+        if self.inner_groove_bottom_diameter <= 0.0:
+            raise ValueError(
+                f"inner groove bottom diameter d_i - 2 r_i = {self.inner_groove_bottom_diameter:g} m "
+                "must be positive: check inner_groove_center_diameter and inner_groove_radius"
+            )
+        play = self.diametral_clearance
+        if play < -0.1 * D:
+            raise ValueError(
+                f"diametral clearance {play:g} m is a preload of more than 10 % of the ball "
+                "diameter: check the groove diameters (form 1) or diametral_clearance (form 2)"
+            )
+        # Z balls fit on the pitch circle only if the chord between neighbours exceeds D.
+        chord = self.pitch_diameter * math.sin(math.pi / self.ball_count)
+        if chord <= D:
+            raise ValueError(
+                f"ball_count = {self.ball_count} balls of diameter {D:g} m do not fit around "
+                f"the pitch circle of diameter {self.pitch_diameter:g} m "
+                f"(neighbour spacing {chord:g} m <= D); at most "
+                f"{int(math.pi / math.asin(min(1.0, D / self.pitch_diameter)))} fit"
+            )
+        if self.inner_shoulder_diameter is not None and self.inner_bore_diameter is not None:
+            if self.inner_bore_diameter >= self.inner_shoulder_diameter:
+                raise ValueError(
+                    f"inner_bore_diameter = {self.inner_bore_diameter:g} m must be smaller than "
+                    f"inner_shoulder_diameter = {self.inner_shoulder_diameter:g} m"
+                )
+        if self.outer_shoulder_diameter is not None and self.outer_outside_diameter is not None:
+            if self.outer_outside_diameter <= self.outer_shoulder_diameter:
+                raise ValueError(
+                    f"outer_outside_diameter = {self.outer_outside_diameter:g} m must exceed "
+                    f"outer_shoulder_diameter = {self.outer_shoulder_diameter:g} m"
+                )
 
     @classmethod
     def from_catalogue(
@@ -150,11 +193,48 @@ class BearingGeometry:
 class CageGeometry:
     """Ball-guided/land-guided cage with cylindrical radial pockets (MODEL.md §2, §7, §8)."""
 
-    mean_diameter: float
-    pocket_diameter: float
-    radial_thickness: float
-    width: float
-    guidance: str = "outer"  # "outer" | "inner": which race's lands guide the cage
+    mean_diameter: float = field(metadata={"unit": "m", "gt": 0.0})
+    pocket_diameter: float = field(metadata={"unit": "m", "gt": 0.0})
+    radial_thickness: float = field(metadata={"unit": "m", "gt": 0.0})
+    width: float = field(metadata={"unit": "m", "gt": 0.0})
+    guidance: str = field(default="outer", metadata={"choices": ("outer", "inner"),
+                                                     "doc": "which race's lands guide the cage"})
+
+    def __post_init__(self) -> None:
+        if self.radial_thickness >= self.mean_diameter:
+            raise ValueError(
+                f"radial_thickness = {self.radial_thickness:g} m must be smaller than "
+                f"mean_diameter = {self.mean_diameter:g} m"
+            )
+
+    def check_fits(self, bearing: BearingGeometry) -> None:
+        """Cross-checks against the bearing; messages name the scene keys."""
+        D = bearing.ball_diameter
+        if self.pocket_diameter <= D:
+            raise ValueError(
+                f"cage.pocket_diameter = {self.pocket_diameter:g} m must exceed the ball "
+                f"diameter bearing.ball_diameter = {D:g} m"
+            )
+        spacing = self.mean_diameter * math.sin(math.pi / bearing.ball_count)
+        if self.pocket_diameter >= spacing:
+            raise ValueError(
+                f"cage.pocket_diameter = {self.pocket_diameter:g} m leaves no bar between "
+                f"pockets: the pocket spacing on the cage mean circle is {spacing:g} m"
+            )
+        if self.guidance == "outer" and bearing.outer_shoulder_diameter is not None:
+            if self.outside_diameter >= bearing.outer_shoulder_diameter:
+                raise ValueError(
+                    f"cage outside diameter mean_diameter + radial_thickness = "
+                    f"{self.outside_diameter:g} m must be smaller than the guiding land "
+                    f"bearing.outer_shoulder_diameter = {bearing.outer_shoulder_diameter:g} m"
+                )
+        if self.guidance == "inner" and bearing.inner_shoulder_diameter is not None:
+            if self.bore_diameter <= bearing.inner_shoulder_diameter:
+                raise ValueError(
+                    f"cage bore mean_diameter - radial_thickness = {self.bore_diameter:g} m "
+                    f"must exceed the guiding land bearing.inner_shoulder_diameter = "
+                    f"{bearing.inner_shoulder_diameter:g} m"
+                )
 
     @property
     def outside_diameter(self) -> float:

@@ -1,0 +1,123 @@
+"""The staged pipeline: identify -> quasistatic -> simulate -> report.
+
+Each stage is a function of the scene that reads and writes artefacts in the run
+directory. Its cache key hashes exactly the scene inputs it depends on plus the keys of
+the stages it reads from, so an unchanged stage is skipped and a changed input is never
+served from a stale cache. Stages a scene does not need are left out entirely.
+"""
+
+from __future__ import annotations
+
+import logging
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Callable
+
+from .artefacts import atomic_write_json, input_key, is_fresh, read_manifest, staged_directory
+from .provenance import package_version
+from .scene import Scene
+
+log = logging.getLogger("bearingsim")
+
+
+class StageNotAvailable(RuntimeError):
+    """A stage that a later issue provides; raised instead of pretending to compute."""
+
+
+@dataclass(frozen=True)
+class Stage:
+    name: str
+    depends: tuple[str, ...]
+    needed: Callable[[Scene], bool]
+    inputs: Callable[[Scene], dict]
+    compute: Callable[["StageContext"], dict]
+    summary: str
+
+
+@dataclass
+class StageContext:
+    """What a stage's compute function gets: the scene, where to write, what it reads."""
+
+    scene: Scene
+    out_dir: Path  # temporary directory, swapped in on success
+    run_dir: Path
+    upstream: dict[str, Path] = field(default_factory=dict)  # stage name -> finished dir
+    progress: Callable[[str, float], None] = lambda text, fraction: None
+
+
+@dataclass
+class StageOutcome:
+    name: str
+    status: str  # "computed" | "cached" | "not needed"
+    key: str | None = None
+    wall_time: float = 0.0
+    info: dict = field(default_factory=dict)
+
+
+def stage_key(stage: Stage, scene: Scene, upstream_keys: dict[str, str]) -> str:
+    inputs = {"scene": stage.inputs(scene), "upstream": upstream_keys}
+    return input_key(stage.name, inputs, package_version())
+
+
+def run_stages(
+    scene: Scene,
+    run_dir: Path,
+    stages: list[Stage],
+    targets: list[str],
+    force: set[str] = frozenset(),
+    progress: Callable[[str, str, float], None] | None = None,
+) -> list[StageOutcome]:
+    """Run `targets` (stage names, in order) and whatever they need, caching by input key."""
+    by_name = {s.name: s for s in stages}
+    order = _closure(by_name, targets)
+    keys: dict[str, str] = {}
+    outcomes = []
+    for name in order:
+        stage = by_name[name]
+        if not stage.needed(scene):
+            log.info("stage %s: not needed by this scene", name)
+            outcomes.append(StageOutcome(name, "not needed"))
+            continue
+        up = {d: keys[d] for d in stage.depends if d in keys}
+        key = stage_key(stage, scene, up)
+        keys[name] = key
+        stage_dir = run_dir / name
+        if name not in force and is_fresh(stage_dir, key):
+            log.info("stage %s: up to date (key %s), skipped", name, key[:12])
+            outcomes.append(StageOutcome(name, "cached", key, info=read_manifest(stage_dir).get("info", {})))
+            continue
+        outcomes.append(_compute(stage, scene, run_dir, key, up, progress))
+    return outcomes
+
+
+def _closure(by_name: dict[str, Stage], targets: list[str]) -> list[str]:
+    """Targets plus their dependencies, in pipeline order."""
+    wanted: set[str] = set()
+
+    def visit(n: str) -> None:
+        if n not in wanted:
+            wanted.add(n)
+            for d in by_name[n].depends:
+                visit(d)
+
+    for t in targets:
+        visit(t)
+    return [n for n in by_name if n in wanted]
+
+
+def _compute(stage, scene, run_dir, key, up, progress) -> StageOutcome:
+    log.info("stage %s: computing (key %s)", stage.name, key[:12])
+    t0 = time.perf_counter()
+    report = (lambda text, f: progress(stage.name, text, f)) if progress else (lambda text, f: None)
+    with staged_directory(run_dir / stage.name) as tmp:
+        ctx = StageContext(scene, tmp, run_dir, {d: run_dir / d for d in up}, report)
+        info = stage.compute(ctx) or {}
+        wall = time.perf_counter() - t0
+        atomic_write_json(tmp / "stage.json", {
+            "stage": stage.name, "status": "done", "key": key, "upstream": up,
+            "inputs": stage.inputs(scene), "wall_time_s": wall,
+            "finished": time.strftime("%Y-%m-%dT%H:%M:%S%z"), "info": info,
+        })
+    log.info("stage %s: done in %.2f s", stage.name, wall)
+    return StageOutcome(stage.name, "computed", key, wall, info)

@@ -1,0 +1,229 @@
+"""Scene files: load TOML, apply `--set` overrides, validate, resolve (SCENE.md).
+
+A :class:`Scene` is the validated, resolved description of one physical case and how to
+compute it. Nothing downstream sees raw TOML.
+"""
+
+from __future__ import annotations
+
+import copy
+import dataclasses
+import tomllib
+from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+from dynamics.geometry import BearingGeometry, CageGeometry, Material
+
+from .scene_sections import (
+    CatalogueBearing,
+    Hinge,
+    Load,
+    Materials,
+    Output,
+    Physics,
+    SolverSettings,
+    Speed,
+)
+from .schema import SceneError, build, convert
+
+FORM1_KEYS = ("inner_groove_center_diameter", "outer_groove_center_diameter",
+              "inner_groove_radius", "outer_groove_radius")
+FORM2_KEYS = ("pitch_diameter", "inner_conformity", "outer_conformity", "diametral_clearance")
+TOP_LEVEL = ("name", "description", "bearing", "cage", "materials", "lubricant", "load",
+             "speed", "hinge", "fe", "solver", "physics", "output")
+
+
+@dataclass(frozen=True)
+class LubricantSpec:
+    """`[lubricant]`: a built-in set by name, or explicit parameters, at a temperature."""
+
+    temperature_degC: float
+    name: str | None
+    lubricant: Any  # dynamics.lubricant.Lubricant, resolved
+
+
+@dataclass(frozen=True)
+class Scene:
+    name: str
+    description: str
+    bearing: BearingGeometry
+    cage: CageGeometry | None
+    materials: Materials
+    lubricant: LubricantSpec | None
+    load: Load
+    speed: Speed
+    hinge: Hinge
+    fe: Any | None  # fe_model.config.FEConfig when hinge.source == "fe"
+    solver: SolverSettings
+    physics: Physics
+    output: Output
+    raw: dict  # the validated TOML table after overrides (for saving and hashing)
+
+
+# --- built-in scenes -------------------------------------------------------------------
+def builtin_scene_names() -> list[str]:
+    files = resources.files("pipeline") / "scenes"
+    return sorted(p.name[:-5] for p in files.iterdir() if p.name.endswith(".toml"))
+
+
+def read_scene_table(scene: str | Path) -> tuple[dict, str]:
+    """Read a scene path or built-in name into a TOML table; returns (table, origin)."""
+    path = Path(scene)
+    if path.suffix == ".toml" or path.exists():
+        if not path.is_file():
+            raise SceneError("", f"scene file {str(path)!r} does not exist")
+        text, origin = path.read_text(encoding="utf-8"), str(path)
+    else:
+        names = builtin_scene_names()
+        if str(scene) not in names:
+            raise SceneError("", f"{str(scene)!r} is neither a scene file nor a built-in scene; "
+                                 f"built-in scenes: {', '.join(names)}")
+        text = (resources.files("pipeline") / "scenes" / f"{scene}.toml").read_text(encoding="utf-8")
+        origin = f"built-in:{scene}"
+    try:
+        return tomllib.loads(text), origin
+    except tomllib.TOMLDecodeError as exc:
+        raise SceneError("", f"{origin} is not valid TOML: {exc}") from exc
+
+
+# --- overrides -------------------------------------------------------------------------
+def parse_override(text: str) -> tuple[list[str], Any]:
+    """`load.moment=250` -> (["load", "moment"], 250.0). Values are TOML literals; a bare
+    word that is not valid TOML is taken as a string (`name=foo`)."""
+    if "=" not in text:
+        raise SceneError("", f"--set expects KEY=VALUE (e.g. load.moment=250), got {text!r}")
+    key, value_text = (s.strip() for s in text.split("=", 1))
+    if not key or any(not part for part in key.split(".")):
+        raise SceneError("", f"--set: bad key {key!r} in {text!r}")
+    try:
+        value = tomllib.loads(f"v = {value_text}")["v"]
+    except tomllib.TOMLDecodeError:
+        value = value_text
+    return key.split("."), value
+
+
+def apply_overrides(table: dict, overrides: list[str]) -> dict:
+    table = copy.deepcopy(table)
+    for text in overrides:
+        path, value = parse_override(text)
+        node = table
+        for part in path[:-1]:
+            nxt = node.setdefault(part, {})
+            if not isinstance(nxt, dict):
+                raise SceneError(".".join(path), f"--set: {part!r} is a value, not a table")
+            node = nxt
+        node[path[-1]] = value
+    return table
+
+
+# --- resolution ------------------------------------------------------------------------
+def resolve_bearing(table: Any) -> BearingGeometry:
+    if not isinstance(table, dict):
+        raise SceneError("bearing", f"expected a table, got {table!r}")
+    has1 = [k for k in FORM1_KEYS if k in table]
+    has2 = [k for k in FORM2_KEYS if k in table]
+    if has1 and has2:
+        raise SceneError("bearing", f"give geometry form 1 ({', '.join(FORM1_KEYS)}) OR form 2 "
+                                    f"({', '.join(FORM2_KEYS)}), never both: found {has1 + has2}")
+    if has2:
+        cat = build(CatalogueBearing, table, "bearing")
+        values = dataclasses.asdict(cat)
+        try:
+            return BearingGeometry.from_catalogue(**values)
+        except ValueError as exc:
+            raise SceneError("bearing", str(exc)) from exc
+    return build(BearingGeometry, table, "bearing")
+
+
+def resolve_materials(table: Any, need_cage: bool) -> Materials:
+    if not isinstance(table, dict):
+        raise SceneError("materials", f"expected a table, got {table!r}")
+    allowed = {"ball", "race", "cage"}
+    unknown = sorted(set(table) - allowed)
+    if unknown:
+        raise SceneError(f"materials.{unknown[0]}", "unknown key; allowed keys here: ball, cage, race")
+    if need_cage and "cage" not in table:
+        raise SceneError("materials.cage", "required when the scene has a [cage] table")
+    for key in ("ball", "race"):
+        if key not in table:
+            raise SceneError(f"materials.{key}", "required table is missing")
+    return Materials(
+        ball=build(Material, table["ball"], "materials.ball"),
+        race=build(Material, table["race"], "materials.race"),
+        cage=build(Material, table["cage"], "materials.cage") if "cage" in table else None,
+    )
+
+
+def resolve_lubricant(table: Any) -> LubricantSpec | None:
+    if table is None:
+        return None
+    if not isinstance(table, dict):
+        raise SceneError("lubricant", f"expected a table, got {table!r}")
+    from dynamics import lubricant as lub  # light: numpy + data file
+
+    table = dict(table)
+    temp = convert("lubricant.temperature_degC", table.pop("temperature_degC", 40.0), float,
+                   {"unit": "degC", "gt": -273.15, "lt": 400.0})
+    name = table.pop("name", None)
+    if name is not None:
+        names = lub.builtin_lubricant_names()
+        if name not in names:
+            raise SceneError("lubricant.name", f"{name!r} is not a built-in lubricant; "
+                                               f"choose one of {', '.join(names)} or give the parameters")
+        base = dataclasses.asdict(lub.load_builtin_lubricant(name))
+        base.update(table)  # explicit keys refine the built-in set
+        table = base
+    return LubricantSpec(temp, name, build(lub.Lubricant, table, "lubricant"))
+
+
+def resolve_fe(table: Any, hinge: Hinge) -> Any | None:
+    if hinge.source != "fe":
+        return None
+    from fe_model.config import FEConfig
+
+    return build(FEConfig, table if table is not None else {}, "fe")
+
+
+def resolve(table: dict, origin: str = "<table>") -> Scene:
+    """Validate a raw scene table into a :class:`Scene`; raises SceneError."""
+    unknown = sorted(set(table) - set(TOP_LEVEL))
+    if unknown:
+        raise SceneError(unknown[0], f"unknown key or table in {origin}; allowed: {', '.join(TOP_LEVEL)}")
+    for key in ("name", "bearing", "materials", "load", "speed"):
+        if key not in table:
+            raise SceneError(key, f"required {'key' if key == 'name' else 'table'} is missing in {origin}")
+    name = convert("name", table["name"], str, {})
+    if not name or any(c in name for c in "/\\") or name.startswith("."):
+        raise SceneError("name", f"{name!r} cannot name a run directory (no slashes, not empty)")
+    bearing = resolve_bearing(table["bearing"])
+    cage = build(CageGeometry, table["cage"], "cage") if "cage" in table else None
+    if cage is not None:
+        try:
+            cage.check_fits(bearing)
+        except ValueError as exc:
+            raise SceneError("cage", str(exc)) from exc
+    hinge = build(Hinge, table.get("hinge", {}), "hinge")
+    return Scene(
+        name=name,
+        description=convert("description", table.get("description", ""), str, {}),
+        bearing=bearing,
+        cage=cage,
+        materials=resolve_materials(table["materials"], need_cage=cage is not None),
+        lubricant=resolve_lubricant(table.get("lubricant")),
+        load=build(Load, table["load"], "load"),
+        speed=build(Speed, table["speed"], "speed"),
+        hinge=hinge,
+        fe=resolve_fe(table.get("fe"), hinge),
+        solver=build(SolverSettings, table.get("solver", {}), "solver"),
+        physics=build(Physics, table.get("physics", {}), "physics"),
+        output=build(Output, table.get("output", {}), "output"),
+        raw=table,
+    )
+
+
+def load_scene(scene: str | Path, overrides: list[str] | None = None) -> Scene:
+    """Load a scene file or built-in scene name, apply `--set` overrides and validate."""
+    table, origin = read_scene_table(scene)
+    return resolve(apply_overrides(table, list(overrides or [])), origin)

@@ -1,0 +1,112 @@
+"""Human-readable tables: the resolved scene (`check`) and the quasi-static result."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+from rich.console import Console
+from rich.table import Table
+
+from .scene import Scene
+
+
+def _unit(f: dataclasses.Field) -> str:
+    unit = f.metadata.get("unit", "")
+    return "" if unit == "-" else unit
+
+
+def _fmt(value) -> str:
+    if isinstance(value, float):
+        return f"{value:.6g}"
+    if isinstance(value, tuple):
+        return "[" + ", ".join(_fmt(v) for v in value) + "]"
+    return str(value)
+
+
+def _section(table: Table, title: str, obj) -> None:
+    table.add_row(f"[bold]\\[{title}][/]", "", "")
+    for f in dataclasses.fields(obj):
+        value = getattr(obj, f.name)
+        if dataclasses.is_dataclass(value):
+            _section(table, f"{title}.{f.name}", value)
+        else:
+            table.add_row(f"  {f.name}", _fmt(value) if value is not None else "—", _unit(f))
+
+
+def derived_geometry(scene: Scene) -> list[tuple[str, float, str]]:
+    """Derived quantities of MODEL.md §2 in engineering units (mm, deg, g, kg)."""
+    b, m = scene.bearing, scene.materials
+    rows = [
+        ("pitch diameter d_m", b.pitch_diameter * 1e3, "mm"),
+        ("inner groove bottom diameter d_i - 2 r_i", b.inner_groove_bottom_diameter * 1e3, "mm"),
+        ("outer groove bottom diameter d_o + 2 r_o", b.outer_groove_bottom_diameter * 1e3, "mm"),
+        ("curvature-centre distance A = r_i + r_o - D", b.curvature_center_distance * 1e3, "mm"),
+        ("curvature-centre radial offset (d_i - d_o)/2", b.curvature_center_radial_offset * 1e3, "mm"),
+        ("free contact angle alpha_0", math.degrees(b.free_contact_angle), "deg"),
+        ("diametral clearance P_d", b.diametral_clearance * 1e3, "mm"),
+        ("inner conformity f_i = r_i/D", b.inner_conformity, ""),
+        ("outer conformity f_o = r_o/D", b.outer_conformity, ""),
+        ("ball mass", b.ball_mass(m.ball) * 1e3, "g"),
+    ]
+    c = scene.cage
+    if c is not None and m.cage is not None:
+        rows.append(("cage mass (pockets removed)", c.mass(m.cage, b), "kg"))
+        try:
+            rows += [
+                ("cage radial guide clearance C", c.guide_clearance(b) * 1e3, "mm"),
+                ("cage guide land length L (both lands)", c.guide_land_length(b) * 1e3, "mm"),
+            ]
+        except ValueError:
+            pass
+    rows += [
+        ("inner-race speed Omega_i", scene.speed.inner, "rad/s"),
+    ]
+    return rows
+
+
+def print_scene(scene: Scene, console: Console) -> None:
+    console.print(f"[bold]{scene.name}[/] — {scene.description}")
+    table = Table("key", "value", "unit", box=None, pad_edge=False)
+    for name in ("bearing", "cage", "materials", "load", "speed", "hinge", "solver", "physics", "output"):
+        obj = getattr(scene, name)
+        if obj is not None:
+            _section(table, name, obj)
+    if scene.lubricant is not None:
+        table.add_row("[bold]\\[lubricant][/]", "", "")
+        table.add_row("  name", scene.lubricant.name or "(explicit)", "")
+        table.add_row("  temperature_degC", _fmt(scene.lubricant.temperature_degC), "degC")
+        for f in dataclasses.fields(scene.lubricant.lubricant):
+            table.add_row(f"  {f.name}", _fmt(getattr(scene.lubricant.lubricant, f.name)), _unit(f))
+    if scene.fe is not None:
+        _section(table, "fe", scene.fe)
+    console.print(table)
+    derived = Table("derived geometry", "value", "unit", box=None, pad_edge=False)
+    for label, value, unit in derived_geometry(scene):
+        derived.add_row(label, f"{value:.6g}", unit)
+    console.print(derived)
+    skipped = []
+    if scene.hinge.source != "fe":
+        skipped.append("FE identification (hinge not identified)")
+    if scene.cage is None:
+        skipped.append("cage and its contacts (no \\[cage])")
+    if scene.lubricant is None:
+        skipped.append("EHD film and traction (no \\[lubricant]: dry contacts)")
+    if skipped:
+        console.print("not computed for this scene: " + "; ".join(skipped))
+
+
+def print_quasistatic(result: dict, console: Console) -> None:
+    """Per-ball table plus inner-race displacement and tilt."""
+    table = Table("ball", "azimuth [deg]", "Q_i [N]", "Q_o [N]", "alpha_i [deg]", "alpha_o [deg]",
+                  title="quasi-static load distribution", box=None)
+    for k, b in enumerate(result["balls"]):
+        table.add_row(str(k), f"{math.degrees(b['azimuth']):.1f}", f"{b['inner_load']:.1f}",
+                      f"{b['outer_load']:.1f}", f"{math.degrees(b['inner_contact_angle']):.2f}",
+                      f"{math.degrees(b['outer_contact_angle']):.2f}")
+    console.print(table)
+    ir = result["inner_race"]
+    d = ", ".join(f"{v * 1e6:.3f}" for v in ir["displacement"])
+    t = ", ".join(f"{v * 1e3:.4f}" for v in ir["tilt"])
+    console.print(f"inner race displacement [µm]: ({d})   tilt [mrad]: ({t})   "
+                  f"converged: {result.get('converged')}")

@@ -1,0 +1,145 @@
+"""Build frozen dataclasses from TOML tables, validating as we go.
+
+Each dataclass field may carry metadata: ``unit`` (str), bounds ``gt``/``ge``/``lt``/``le``,
+``choices`` (allowed values) and ``doc``. A bad value raises :class:`SceneError` naming the
+dotted key, the value, what is allowed and the unit — before anything is computed.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import types
+import typing
+from typing import Any
+
+
+class SceneError(ValueError):
+    """A scene value is missing, unknown, of the wrong type or out of range."""
+
+    def __init__(self, key: str, message: str):
+        self.key = key
+        super().__init__(f"{key}: {message}" if key else message)
+
+
+def describe_bounds(meta: dict) -> str:
+    parts = []
+    for name, sym in (("gt", ">"), ("ge", ">="), ("lt", "<"), ("le", "<=")):
+        if name in meta:
+            parts.append(f"{sym} {meta[name]:g}")
+    return " and ".join(parts)
+
+
+def unit_suffix(meta: dict) -> str:
+    unit = meta.get("unit")
+    return f" [{unit}]" if unit and unit != "-" else ""
+
+
+def check_number(key: str, value: Any, meta: dict, *, integer: bool = False) -> float | int:
+    """Type, finiteness and range check of one scalar."""
+    unit = unit_suffix(meta)
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        kind = "an integer" if integer else "a number"
+        raise SceneError(key, f"expected {kind}{unit}, got {value!r} ({type(value).__name__})")
+    if integer and not isinstance(value, int):
+        raise SceneError(key, f"expected an integer{unit}, got {value!r}")
+    if isinstance(value, float) and not math.isfinite(value):
+        raise SceneError(key, f"must be a finite number{unit}, got {value!r}")
+    bounds = describe_bounds(meta)
+    ok = (
+        ("gt" not in meta or value > meta["gt"])
+        and ("ge" not in meta or value >= meta["ge"])
+        and ("lt" not in meta or value < meta["lt"])
+        and ("le" not in meta or value <= meta["le"])
+    )
+    if not ok:
+        raise SceneError(key, f"{value!r} is out of range: allowed {bounds}{unit}")
+    return value if integer else float(value)
+
+
+def _strip_optional(tp: Any) -> tuple[Any, bool]:
+    """`float | None` -> (float, True)."""
+    origin = typing.get_origin(tp)
+    if origin in (typing.Union, types.UnionType):
+        args = [a for a in typing.get_args(tp) if a is not type(None)]
+        if len(args) == 1 and len(typing.get_args(tp)) == 2:
+            return args[0], True
+    return tp, False
+
+
+def convert(key: str, value: Any, tp: Any, meta: dict) -> Any:
+    """Convert a TOML value to the annotated type, validating it."""
+    tp, optional = _strip_optional(tp)
+    if value is None and optional:
+        return None
+    if "choices" in meta and value not in meta["choices"]:
+        allowed = ", ".join(repr(c) for c in meta["choices"])
+        raise SceneError(key, f"{value!r} is not allowed: choose one of {allowed}")
+    if tp is bool:
+        if not isinstance(value, bool):
+            raise SceneError(key, f"expected true or false, got {value!r}")
+        return value
+    if tp is int:
+        return check_number(key, value, meta, integer=True)
+    if tp is float:
+        return check_number(key, value, meta)
+    if tp is str:
+        if not isinstance(value, str):
+            raise SceneError(key, f"expected a string, got {value!r} ({type(value).__name__})")
+        return value
+    if dataclasses.is_dataclass(tp):
+        return build(tp, value, key)
+    origin = typing.get_origin(tp)
+    if origin is tuple:
+        return _convert_tuple(key, value, tp, meta)
+    raise TypeError(f"schema: unsupported field type {tp!r} for {key}")
+
+
+def _convert_tuple(key: str, value: Any, tp: Any, meta: dict) -> tuple:
+    args = typing.get_args(tp)
+    if not isinstance(value, (list, tuple)):
+        raise SceneError(key, f"expected a list, got {value!r}{unit_suffix(meta)}")
+    if len(args) == 2 and args[1] is Ellipsis:
+        item_types = [args[0]] * len(value)
+    else:
+        if len(value) != len(args):
+            raise SceneError(key, f"expected a list of {len(args)} values{unit_suffix(meta)}, got {len(value)}")
+        item_types = list(args)
+    n = meta.get("length")
+    if n is not None and len(value) not in (n if isinstance(n, tuple) else (n,)):
+        raise SceneError(key, f"expected a list of {n} values{unit_suffix(meta)}, got {len(value)}")
+    return tuple(convert(f"{key}[{i}]", v, t, meta) for i, (v, t) in enumerate(zip(value, item_types)))
+
+
+def build(cls: type, table: Any, path: str) -> Any:
+    """Instantiate dataclass `cls` from TOML `table` found at dotted `path`."""
+    if not isinstance(table, dict):
+        raise SceneError(path, f"expected a table, got {table!r}")
+    hints = typing.get_type_hints(cls)
+    fields = {f.name: f for f in dataclasses.fields(cls) if f.init}
+    unknown = sorted(set(table) - set(fields))
+    if unknown:
+        allowed = ", ".join(sorted(fields))
+        raise SceneError(f"{path}.{unknown[0]}" if path else unknown[0],
+                         f"unknown key; allowed keys here: {allowed}")
+    kwargs = {}
+    for name, f in fields.items():
+        key = f"{path}.{name}" if path else name
+        if name in table:
+            kwargs[name] = convert(key, table[name], hints[name], dict(f.metadata))
+        elif f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING:
+            unit = unit_suffix(dict(f.metadata))
+            raise SceneError(key, f"required key is missing{unit}")
+    try:
+        return cls(**kwargs)
+    except SceneError:
+        raise
+    except (ValueError, TypeError) as exc:  # __post_init__ cross-checks
+        raise SceneError(path, str(exc)) from exc
+
+
+def field_unit(cls: type, name: str) -> str:
+    for f in dataclasses.fields(cls):
+        if f.name == name:
+            return f.metadata.get("unit", "")
+    return ""

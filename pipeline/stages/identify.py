@@ -1,0 +1,62 @@
+"""Stage `identify`: FE identification of the inner-race hinge stiffness (MODEL.md §3).
+
+Only scenes with `hinge.source = "fe"` need it; its key hashes the `[fe]` table and the
+ring dimensions the FE geometry is built from, nothing else.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+from ..runner import Stage, StageContext
+from ..scene import Scene
+from ..schema import SceneError
+
+HINGE_FILE = "hinge.toml"
+RING_KEYS = ("inner_bore_diameter", "inner_shoulder_diameter", "outer_outside_diameter", "width")
+
+
+def ring_seat(scene: Scene):
+    """The bearing dimensions the FE geometry needs, as fe_model's plain-number type."""
+    from fe_model import RingSeat
+
+    b = scene.bearing
+    missing = [k for k in RING_KEYS if getattr(b, k) is None]
+    if missing:
+        raise SceneError(f"bearing.{missing[0]}",
+                         f"required by the FE identification stage (hinge.source = 'fe') [m]; "
+                         f"give {', '.join('bearing.' + m for m in missing)} or set hinge.source = 'given'")
+    return RingSeat.from_bearing_dimensions(
+        inner_bore_diameter=b.inner_bore_diameter,
+        inner_outer_diameter=b.inner_shoulder_diameter,
+        outer_outside_diameter=b.outer_outside_diameter,
+        width=b.width,
+        pitch_diameter=b.pitch_diameter,
+    )
+
+
+def identify_inputs(scene: Scene) -> dict:
+    b = scene.bearing
+    return {"fe": dataclasses.asdict(scene.fe) if scene.fe is not None else None,
+            "ring": {k: getattr(b, k) for k in RING_KEYS},
+            "pitch_diameter": b.pitch_diameter}
+
+
+def compute(ctx: StageContext) -> dict:
+    from fe_model import identify_hinge
+
+    from ..system_libraries import require_libraries
+
+    require_libraries("gmsh")
+    result = identify_hinge(ctx.scene.fe, ring_seat(ctx.scene), ctx.out_dir, progress=ctx.progress)
+    return result.summary()
+
+
+STAGE = Stage(
+    name="identify",
+    depends=(),
+    needed=lambda scene: scene.hinge.source == "fe",
+    inputs=identify_inputs,
+    compute=compute,
+    summary="FE hinge identification (gmsh + scikit-fem + least squares)",
+)

@@ -1,0 +1,53 @@
+"""The `bearingsim` command line: outputs, exit codes, and that light commands stay light."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+from typer.testing import CliRunner
+
+from pipeline.cli import app
+
+runner = CliRunner()
+
+
+def test_check_prints_derived_geometry_of_reference_bearing():
+    """Issue 2 'done when': pitch ≈ 158.003 mm, alpha_0 ≈ 25.43°, P_d = 0.118 mm (MODEL.md §2)."""
+    result = runner.invoke(app, ["check", "helicopter-b"])
+    assert result.exit_code == 0, result.output
+    out = result.output
+    assert "158.003" in out and "25.43" in out and "0.118" in out
+    assert "[m]" not in out  # units are a column, not bracketed in values
+    assert "N.m" in out and "rad/s" in out
+
+
+def test_scenes_lists_builtins():
+    result = runner.invoke(app, ["scenes"])
+    assert result.exit_code == 0
+    for name in ("helicopter-a", "helicopter-b", "helicopter-b-given-hinge"):
+        assert name in result.output
+
+
+def test_bad_scene_exits_2_naming_the_key():
+    result = runner.invoke(app, ["check", "helicopter-b", "--set", "bearing.ball_count=0"])
+    assert result.exit_code == 2
+    assert "bearing.ball_count" in result.output
+
+
+def test_unimplemented_commands_say_so_and_fail(tmp_path):
+    result = runner.invoke(app, ["render", str(tmp_path)])
+    assert result.exit_code == 3 and "not implemented" in result.output
+
+
+def test_light_commands_do_not_import_heavy_libraries():
+    """STYLE.md rule 6: scene checking must not pay for gmsh, pyvista or matplotlib."""
+    code = (
+        "import sys; from typer.testing import CliRunner; from pipeline.cli import app;"
+        "r = CliRunner().invoke(app, ['check', 'helicopter-b-given-hinge']);"
+        "assert r.exit_code == 0, r.output;"
+        "heavy = [m for m in ('gmsh', 'pyvista', 'vtk', 'matplotlib', 'skfem') if m in sys.modules];"
+        "print(heavy); sys.exit(1 if heavy else 0)"
+    )
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert proc.returncode == 0, proc.stdout + proc.stderr

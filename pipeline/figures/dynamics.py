@@ -1,0 +1,131 @@
+"""Figures of a dynamic run (MODEL.md §11), drawn from saved time series only.
+
+Each function takes plain arrays and writes one PNG atomically (matplotlib, Agg).
+"""
+
+from __future__ import annotations
+
+import io
+import math
+from pathlib import Path
+
+import numpy as np
+
+from ..artefacts import atomic_write_bytes
+
+
+def _pyplot():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def _save(fig, path: Path) -> None:
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=110)
+    _pyplot().close(fig)
+    atomic_write_bytes(Path(path), buf.getvalue())
+
+
+def cage_orbit(xy: np.ndarray, clearance: float, path: Path, title: str = "") -> None:
+    """Cage-centre orbit [µm] with the guide-clearance circle (ε = 1)."""
+    plt = _pyplot()
+    fig, ax = plt.subplots(figsize=(6.2, 6.0), constrained_layout=True)
+    th = np.linspace(0, 2 * math.pi, 361)
+    c = clearance * 1e6
+    ax.plot(c * np.cos(th), c * np.sin(th), "k--", lw=1, label=f"guide clearance C = {c:.0f} µm")
+    n = len(xy)
+    ax.plot(xy[: n // 2, 0] * 1e6, xy[: n // 2, 1] * 1e6, color="0.7", lw=0.5, label="first half")
+    ax.plot(xy[n // 2:, 0] * 1e6, xy[n // 2:, 1] * 1e6, color="C0", lw=0.6, label="second half")
+    ax.set_aspect("equal")
+    lim = 1.15 * max(c, np.abs(xy).max() * 1e6)
+    ax.set_xlim(-lim, lim)
+    ax.set_ylim(-lim, lim)
+    ax.set_xlabel("cage centre x [µm]")
+    ax.set_ylabel("cage centre y [µm]")
+    ax.legend(loc="upper right", fontsize=8)
+    ax.grid(alpha=0.3)
+    ax.set_title(f"Cage centre orbit {title}")
+    _save(fig, path)
+
+
+def cage_speed(t: np.ndarray, speed: np.ndarray, path: Path, kinematic: float | None = None,
+               title: str = "") -> None:
+    """Cage rotation speed [rev/min] with its relative variation over the last half."""
+    plt = _pyplot()
+    rpm = speed * 60.0 / (2 * math.pi)
+    late = t >= t[0] + 0.5 * (t[-1] - t[0])
+    mean = rpm[late].mean()
+    var = (rpm[late].max() - rpm[late].min()) / mean if mean else float("nan")
+    fig, ax = plt.subplots(figsize=(8, 4), constrained_layout=True)
+    ax.plot(t, rpm, lw=0.7, label="cage speed")
+    ax.axhline(mean, color="C1", lw=1, label=f"mean (last half) {mean:.1f} rpm, variation {100 * var:.2f} % p-p")
+    if kinematic is not None:
+        ax.axhline(kinematic * 60 / (2 * math.pi), color="k", ls=":", lw=1, label="epicyclic (pure rolling)")
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("cage speed [rev/min]")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    ax.set_title(f"Cage speed {title}")
+    _save(fig, path)
+
+
+def phase_portraits(t, positions: dict[str, np.ndarray], velocities: dict[str, np.ndarray],
+                    path: Path, title: str = "") -> None:
+    """Phase portraits (x, y, z) of each body: position [µm] vs velocity [mm/s]."""
+    plt = _pyplot()
+    names = list(positions)
+    fig, axes = plt.subplots(len(names), 3, figsize=(11, 3.3 * len(names)), constrained_layout=True,
+                             squeeze=False)
+    for row, name in enumerate(names):
+        for col, axis in enumerate("xyz"):
+            ax = axes[row, col]
+            ax.plot(positions[name][:, col] * 1e6, velocities[name][:, col] * 1e3, lw=0.4)
+            ax.set_xlabel(f"{axis} [µm]")
+            ax.set_ylabel(f"d{axis}/dt [mm/s]")
+            ax.set_title(f"{name}: {axis}", fontsize=9)
+            ax.grid(alpha=0.3)
+    fig.suptitle(f"Phase portraits {title}")
+    _save(fig, path)
+
+
+def cage_race_force(t, force_norm, metal_force, eps, path: Path, title: str = "") -> None:
+    """Cage–guiding-race force [N] and eccentricity ratio against time."""
+    plt = _pyplot()
+    fig, (a1, a2) = plt.subplots(2, 1, sharex=True, figsize=(8, 5.5), constrained_layout=True)
+    a1.plot(t, force_norm, lw=0.6, label="total |F|")
+    a1.plot(t, metal_force, lw=0.6, label="metal-to-metal normal force")
+    a1.set_ylabel("force [N]")
+    a1.legend(fontsize=8)
+    a1.grid(alpha=0.3)
+    a2.plot(t, eps, lw=0.6)
+    a2.axhline(1.0, color="k", ls="--", lw=0.8)
+    a2.set_ylabel("eccentricity ratio ε")
+    a2.set_xlabel("time [s]")
+    a2.grid(alpha=0.3)
+    fig.suptitle(f"Cage–race contact {title}")
+    _save(fig, path)
+
+
+def pocket_impacts(times, orbital_position, peak_force, path: Path, title: str = "") -> None:
+    """Ball–pocket impacts: peak force against time and against orbital position."""
+    plt = _pyplot()
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4), constrained_layout=True)
+    if len(times):
+        a1.scatter(times, peak_force, s=4)
+        a2.scatter(np.degrees(np.mod(orbital_position, 2 * math.pi)), peak_force, s=4)
+    else:
+        for ax in (a1, a2):
+            ax.text(0.5, 0.5, "no impacts", ha="center", va="center", transform=ax.transAxes)
+    a1.set_xlabel("time [s]")
+    a2.set_xlabel("orbital position of the ball [deg]")
+    a2.set_xlim(0, 360)
+    a2.set_xticks(range(0, 361, 45))
+    for ax in (a1, a2):
+        ax.set_ylabel("impact peak force [N]")
+        ax.grid(alpha=0.3)
+    fig.suptitle(f"Ball–pocket impacts ({len(times)}) {title}")
+    _save(fig, path)

@@ -36,22 +36,13 @@ TOP_LEVEL = ("name", "description", "bearing", "cage", "materials", "lubricant",
 
 
 @dataclass(frozen=True)
-class LubricantSpec:
-    """`[lubricant]`: a built-in set by name, or explicit parameters, at a temperature."""
-
-    temperature_degC: float
-    name: str | None
-    lubricant: Any  # dynamics.lubricant.Lubricant, resolved
-
-
-@dataclass(frozen=True)
 class Scene:
     name: str
     description: str
     bearing: BearingGeometry
     cage: CageGeometry | None
     materials: Materials
-    lubricant: LubricantSpec | None
+    lubricant: Any | None  # dynamics.lubricant.Lubricant (at its operating temperature)
     load: Load
     speed: Speed
     hinge: Hinge
@@ -156,26 +147,26 @@ def resolve_materials(table: Any, need_cage: bool) -> Materials:
     )
 
 
-def resolve_lubricant(table: Any) -> LubricantSpec | None:
+def resolve_lubricant(table: Any):
+    """`[lubricant]`: a built-in set by `name` (its keys may be refined, e.g.
+    `temperature_degC`), or a complete explicit parameter set."""
     if table is None:
         return None
     if not isinstance(table, dict):
         raise SceneError("lubricant", f"expected a table, got {table!r}")
-    from dynamics import lubricant as lub  # light: numpy + data file
+    from dynamics import lubricant as lub  # light: numpy + a data file
 
     table = dict(table)
-    temp = convert("lubricant.temperature_degC", table.pop("temperature_degC", 40.0), float,
-                   {"unit": "degC", "gt": -273.15, "lt": 400.0})
-    name = table.pop("name", None)
-    if name is not None:
-        names = lub.builtin_lubricant_names()
-        if name not in names:
-            raise SceneError("lubricant.name", f"{name!r} is not a built-in lubricant; "
-                                               f"choose one of {', '.join(names)} or give the parameters")
+    name = table.get("name")
+    names = lub.builtin_lubricant_names()
+    if name in names:
         base = dataclasses.asdict(lub.load_builtin_lubricant(name))
         base.update(table)  # explicit keys refine the built-in set
         table = base
-    return LubricantSpec(temp, name, build(lub.Lubricant, table, "lubricant"))
+    elif "viscosity_model" not in table:
+        raise SceneError("lubricant.name", f"{name!r} is not a built-in lubricant; choose one of "
+                                           f"{', '.join(names)} or give the parameters explicitly")
+    return build(lub.Lubricant, table, "lubricant")
 
 
 def resolve_fe(table: Any, hinge: Hinge) -> Any | None:

@@ -59,9 +59,12 @@ def derived_geometry(scene: Scene) -> list[tuple[str, float, str]]:
             ]
         except ValueError:
             pass
-    rows += [
-        ("inner-race speed Omega_i", scene.speed.inner, "rad/s"),
-    ]
+    rows.append(("inner-race speed Omega_i", scene.speed.inner, "rad/s"))
+    if scene.lubricant is not None:
+        rows += [
+            ("lubricant viscosity eta_0 at temperature", scene.lubricant.eta0 * 1e3, "mPa.s"),
+            ("pressure-viscosity coefficient alpha*", scene.lubricant.alpha_star, "1/Pa"),
+        ]
     return rows
 
 
@@ -73,11 +76,7 @@ def print_scene(scene: Scene, console: Console) -> None:
         if obj is not None:
             _section(table, name, obj)
     if scene.lubricant is not None:
-        table.add_row("[bold]\\[lubricant][/]", "", "")
-        table.add_row("  name", scene.lubricant.name or "(explicit)", "")
-        table.add_row("  temperature_degC", _fmt(scene.lubricant.temperature_degC), "degC")
-        for f in dataclasses.fields(scene.lubricant.lubricant):
-            table.add_row(f"  {f.name}", _fmt(getattr(scene.lubricant.lubricant, f.name)), _unit(f))
+        _section(table, "lubricant", scene.lubricant)
     if scene.fe is not None:
         _section(table, "fe", scene.fe)
     console.print(table)

@@ -5,6 +5,8 @@ from __future__ import annotations
 import subprocess
 import sys
 
+import pytest
+
 from typer.testing import CliRunner
 
 from pipeline.cli import app
@@ -17,9 +19,16 @@ def test_check_prints_derived_geometry_of_reference_bearing():
     result = runner.invoke(app, ["check", "helicopter-b"])
     assert result.exit_code == 0, result.output
     out = result.output
-    assert "158.003" in out and "25.43" in out and "0.118" in out
-    assert "[m]" not in out  # units are a column, not bracketed in values
-    assert "N.m" in out and "rad/s" in out
+
+    def row(label: str) -> tuple[float, str]:
+        line = next(ln for ln in out.splitlines() if ln.startswith(label))
+        value, unit = line[len(label):].split()[-2:]
+        return float(value), unit
+
+    assert row("pitch diameter d_m") == (pytest.approx(158.003, abs=5e-4), "mm")
+    assert row("free contact angle alpha_0") == (pytest.approx(25.43, abs=0.005), "deg")
+    assert row("diametral clearance P_d") == (pytest.approx(0.118, abs=5e-7), "mm")
+    assert "N.m" in out and "rad/s" in out  # every section shows its units
 
 
 def test_scenes_lists_builtins():

@@ -1,0 +1,88 @@
+"""EHD film thickness (MODEL.md §6.3): NVM asymptotes and agreement with Hamrock-Dowson."""
+
+import math
+
+import numpy as np
+import pytest
+
+from dynamics import film
+from dynamics.lubricant import load_builtin_lubricant
+from tests.lubrication_points import E_EFF, curvature_radii, rolling_speed
+
+# Regimes of the Moes diagram (Nijenbanning, Venner & Moes, Wear 176 (1994), Fig. 1 and the
+# asymptotes quoted in MODEL.md §6.3): each (M, L) pair is deep in one regime, chosen so the
+# other asymptotes are at least ~50x away in the blending formula.
+REGIMES = {
+    "RI": (0.01, 0.0),     # rigid-isoviscous: small load parameter, no piezoviscosity
+    "EI": (1e6, 0.0),      # elastic-isoviscous: large M, L = 0
+    "RP": (0.5, 1e12),     # rigid-piezoviscous: small M, huge L (H_RP << H_EP, >> H_RI)
+    "EP": (1e8, 1e4),      # elastic-piezoviscous: large M and L, H_EP << H_RP
+}
+
+
+@pytest.mark.parametrize("regime", list(REGIMES))
+@pytest.mark.parametrize("lam", [0.05, 0.3, 1.0])
+def test_nvm_recovers_each_asymptote_in_its_regime(regime, lam):
+    M, L = REGIMES[regime]
+    H_RI, H_EI, H_RP, H_EP = film.nvm_asymptotes(M, L, lam)
+    asymptote = {"RI": H_RI, "EI": H_EI, "RP": H_RP, "EP": H_EP}[regime]
+    assert film.nvm_central_dimensionless(M, L, lam) == pytest.approx(asymptote, rel=0.01)
+
+
+def test_nvm_ep_regime_has_the_moes_exponents():
+    # H_EP ~ M^-1/12 L^3/4 (MODEL.md §6.3) -> dimensional h_c ~ u_s^0.75 F^-1/12 deep in EP
+    M0, L0, lam = 1e8, 1e4, 0.1
+    H0 = film.nvm_central_dimensionless(M0, L0, lam)
+    s = 2.0  # doubling u_s: M -> M s^-3/4, L -> L s^1/4, h -> H sqrt(s)
+    H1 = film.nvm_central_dimensionless(M0 * s**-0.75, L0 * s**0.25, lam)
+    assert math.log(H1 * math.sqrt(s) / H0) / math.log(s) == pytest.approx(0.75, abs=0.01)
+
+
+def test_nvm_within_25_percent_of_hamrock_dowson_for_reference_bearing():
+    # MODEL.md §6.3 acceptance: NVM central film within +-25 % of Hamrock & Dowson (1977)
+    lub = load_builtin_lubricant("nato-o156")
+    eta0, alpha = lub.eta0, lub.alpha_star
+    worst = 0.0
+    for race in ("inner", "outer"):
+        for angle in (25.0, 30.0, 35.0):
+            Rx, Ry = curvature_radii(race, angle)
+            for F in (100.0, 300.0, 1000.0, 3000.0, 6000.0):
+                for speed in (0.1, 0.5, 1.0, 2.0):
+                    u_s = 2.0 * rolling_speed(angle, speed)
+                    h_nvm = film.film_central_nvm(F, Rx, Ry, E_EFF, eta0, alpha, u_s)
+                    h_c, h_min = film.film_hamrock_dowson(F, Rx, Ry, E_EFF, eta0, alpha, u_s)
+                    assert 0.0 < h_min < h_c
+                    worst = max(worst, abs(h_nvm / h_c - 1.0))
+    assert worst < 0.25
+    print(f"max |NVM/HD - 1| over the reference bearing: {worst:.3f}")
+
+
+def test_hamrock_dowson_exponents_and_limits():
+    # the 1977 fit: h_c ~ u^0.67 alpha^0.53 F^-0.067; no load or no speed -> no film
+    args = dict(Rx=0.007, Ry=0.2, E_eff=E_EFF, eta0=0.005, alpha_p=1e-8)
+    base = film.film_hamrock_dowson(F=1000.0, u_s=20.0, **args)[0]
+    assert film.film_hamrock_dowson(F=1000.0, u_s=40.0, **args)[0] / base == pytest.approx(2**0.67, rel=1e-12)
+    assert film.film_hamrock_dowson(F=8000.0, u_s=20.0, **args)[0] / base == pytest.approx(8**-0.067, rel=1e-12)
+    assert film.film_hamrock_dowson(F=0.0, u_s=20.0, **args) == (0.0, 0.0)
+    assert film.film_central_nvm(1000.0, 0.007, 0.2, E_EFF, 0.005, 1e-8, 0.0) == 0.0
+
+
+def test_h00_choice_does_not_matter_for_reference_contacts():
+    # M >~ 100 for the reference bearing: the H_00 cap is inactive (module docstring claim)
+    M, L, lam = 200.0, 6.5, 0.02
+    H_RI, H_EI, H_RP, H_EP = film.nvm_asymptotes(M, L, lam)
+    for H00 in (0.9 / lam, 3.6 / lam):
+        capped = (H_EI**-4 + H00**-4) ** -0.25
+        assert capped == pytest.approx(H_EI, rel=1e-3)
+
+
+def test_film_kernels_equal_py_func_on_random_inputs():
+    rng = np.random.default_rng(7)
+    for _ in range(40):
+        args = (rng.uniform(50, 8000), rng.uniform(0.003, 0.012), rng.uniform(0.05, 1.0), E_EFF,
+                rng.uniform(1e-3, 0.05), rng.uniform(5e-9, 3e-8), rng.uniform(0.5, 60))
+        assert film.film_central_nvm(*args) == pytest.approx(film.film_central_nvm.py_func(*args), rel=1e-12)
+        hc, hm = film.film_hamrock_dowson(*args)
+        hc2, hm2 = film.film_hamrock_dowson.py_func(*args)
+        assert (hc, hm) == (pytest.approx(hc2, rel=1e-12), pytest.approx(hm2, rel=1e-12))
+        assert film.film_central(film.FILM_NVM, *args) == pytest.approx(film.film_central_nvm(*args), rel=1e-15)

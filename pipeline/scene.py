@@ -196,19 +196,36 @@ def resolve(table: dict, origin: str = "<table>") -> Scene:
         except ValueError as exc:
             raise SceneError("cage", str(exc)) from exc
     hinge = build(Hinge, table.get("hinge", {}), "hinge")
+    lubricant = resolve_lubricant(table.get("lubricant"))
+    physics_table = dict(table.get("physics", {})) if isinstance(table.get("physics", {}), dict) else table.get("physics")
+    if lubricant is None and isinstance(physics_table, dict):
+        # SCENE.md: without [lubricant], contacts are dry; defaults fall back to the dry laws
+        physics_table.setdefault("traction", "coulomb")
+        physics_table.setdefault("cage_race", "dry")
+        physics_table.setdefault("ehd_film", False)
+    physics = build(Physics, physics_table, "physics")
+    if physics.traction == "eyring" and lubricant is None:
+        raise SceneError("physics.traction", "'eyring' needs a [lubricant] table; give one, or set "
+                                             "physics.traction = 'coulomb' (dry) or 'none'")
+    if physics.traction == "eyring" and not physics.ehd_film:
+        raise SceneError("physics.ehd_film", "false, but Eyring traction needs the EHD film "
+                                             "thickness; set it true or physics.traction = 'coulomb'")
+    if physics.cage_race in ("hybrid", "hydrodynamic") and cage is not None and lubricant is None:
+        raise SceneError("physics.cage_race", f"{physics.cage_race!r} needs a [lubricant] table "
+                                              "(film viscosity); give one or set it to 'dry'")
     return Scene(
         name=name,
         description=convert("description", table.get("description", ""), str, {}),
         bearing=bearing,
         cage=cage,
         materials=resolve_materials(table["materials"], need_cage=cage is not None),
-        lubricant=resolve_lubricant(table.get("lubricant")),
+        lubricant=lubricant,
         load=build(Load, table["load"], "load"),
         speed=build(Speed, table["speed"], "speed"),
         hinge=hinge,
         fe=resolve_fe(table.get("fe"), hinge),
         solver=build(SolverSettings, table.get("solver", {}), "solver"),
-        physics=build(Physics, table.get("physics", {}), "physics"),
+        physics=physics,
         output=build(Output, table.get("output", {}), "output"),
         raw=table,
     )

@@ -107,5 +107,5 @@ def print_quasistatic(result: dict, console: Console) -> None:
     ir = result["inner_race"]
     d = ", ".join(f"{v * 1e6:.3f}" for v in ir["displacement"])
     t = ", ".join(f"{v * 1e3:.4f}" for v in ir["tilt"])
-    console.print(f"inner race displacement [µm]: ({d})   tilt [mrad]: ({t})   "
+    console.print(f"inner race displacement \\[µm]: ({d})   tilt \\[mrad]: ({t})   "
                   f"converged: {result.get('converged')}")

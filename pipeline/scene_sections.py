@@ -127,13 +127,27 @@ class SolverSettings:
 
 @dataclass(frozen=True)
 class Physics:
-    """Switches: what a scene does not need is not computed."""
+    """Switches and contact parameters: what a scene does not need is not computed."""
 
     ehd_film: bool = True
     traction: str = field(default="eyring", metadata={"choices": ("eyring", "coulomb", "none")})
     cage_race: str = field(default="hybrid", metadata={"choices": ("hybrid", "hydrodynamic", "dry", "none")})
     centrifugal: bool = True
     gyroscopic: bool = True
+    film_formula: str = field(default="nvm", metadata={
+        "choices": ("nvm", "hamrock-dowson"), "doc": "central film: Nijenbanning-Venner-Moes or Hamrock-Dowson"})
+    min_film: float = field(default=5e-8, metadata={
+        "unit": "m", "gt": 0.0, "doc": "floor of the film used by traction (mixed lubrication is not modelled)"})
+    dry_friction: float = field(default=0.1, metadata={
+        "unit": "-", "ge": 0.0, "le": 1.0, "doc": "ball-race Coulomb coefficient (traction = 'coulomb')"})
+    contact_damping_ratio: float = field(default=0.05, metadata={
+        "unit": "-", "ge": 0.0, "le": 1.0, "doc": "ball-race normal damping, fraction of critical for a ball on its Hertz stiffness"})
+    pocket_friction: float = field(default=0.1, metadata={"unit": "-", "ge": 0.0, "le": 1.0})
+    pocket_restitution: float = field(default=0.7, metadata={"unit": "-", "gt": 0.0, "le": 1.0})
+    cage_race_friction: float = field(default=0.1, metadata={
+        "unit": "-", "ge": 0.0, "le": 1.0, "doc": "metal-to-metal friction at the guide land"})
+    cage_race_boundary: float = field(default=0.05, metadata={
+        "unit": "-", "gt": 0.0, "lt": 1.0, "doc": "epsilon_0: boundary-layer width of the hybrid model / C"})
 
 
 @dataclass(frozen=True)

@@ -18,6 +18,7 @@ def scene():
     table, _ = read_scene_table("helicopter-b-given-hinge")
     table = copy.deepcopy(table)
     table.pop("lubricant", None)
+    table["physics"].update(traction="coulomb", cage_race="dry")  # a dry scene
     return resolve(table)
 
 

@@ -24,6 +24,7 @@ def table_b() -> dict:
     table, _ = read_scene_table("helicopter-b-given-hinge")
     table = copy.deepcopy(table)
     table.pop("lubricant", None)
+    table["physics"].update(traction="coulomb", cage_race="dry")  # a dry scene
     return table
 
 
@@ -76,6 +77,8 @@ def test_harris_209_free_contact_angle():
     s = load_scene("deep-groove-209")
     assert math.degrees(s.bearing.free_contact_angle) == pytest.approx(9.86, abs=0.01)
     assert s.cage is None and s.lubricant is None and s.hinge.source == "none"
+    # SCENE.md: without [lubricant] the contacts are dry
+    assert (s.physics.traction, s.physics.cage_race, s.physics.ehd_film) == ("coulomb", "dry", False)
 
 
 def test_overrides_apply_and_validate(table_b):
@@ -115,6 +118,8 @@ BAD_INPUTS = [
     ("cage without material", lambda t: t["materials"].pop("cage"), ["materials.cage", "required"]),
     ("given hinge without values", lambda t: t["hinge"].pop("bending"), ["hinge", "bending"]),
     ("hinge vector length", lambda t: t["hinge"].update(translational=[1e9, 1e9]), ["translational", "3 values"]),
+    ("eyring without lubricant", lambda t: t["physics"].update(traction="eyring"), ["physics.traction", "[lubricant]"]),
+    ("film needed by cage model", lambda t: t["physics"].update(cage_race="hybrid"), ["physics.cage_race", "[lubricant]"]),
     ("boolean wrong type", lambda t: t["physics"].update(centrifugal="yes"), ["physics.centrifugal", "true or false"]),
     ("cage wider than land", lambda t: t["cage"].update(radial_thickness=0.0082), ["outer_shoulder_diameter", "cage outside diameter"]),
 ]

@@ -1,0 +1,154 @@
+"""One HHT-α step with Newton iterations (MODEL.md §9; Hilber, Hughes & Taylor, Earthq. Eng.
+Struct. Dyn. 5 (1977) 283–292, in the paper's sign convention alpha in [0, 1/3]).
+
+    M(q_{n+1}) a_{n+1} - (1 - alpha) g(t_{n+1}, q_{n+1}, v_{n+1}) - alpha g_n = 0
+    dq      = h v_n + h^2 (1/2 - beta) a_n + h^2 beta a_{n+1},   q_{n+1} = q_n (+) dq
+    v_{n+1} = v_n + h (1 - gamma) a_n + h gamma a_{n+1}
+    gamma = 1/2 + alpha,  beta = (1 + alpha)^2 / 4
+
+`(+)` is additive except on CRV triples (multiplicative, `crv.update_configuration`).
+g_n is the force of the previous accepted step (not re-evaluated). After the Newton
+correction test passes, q and v are updated to the final a_{n+1}; g_{n+1} is kept from the
+last evaluation (it differs by less than the Newton tolerance).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from .crv import update_configuration
+from .newton import IterationMatrix
+from .results import Result, SolverStats
+from .settings import HHTSettings, JacobianReuse
+from .step_control import scaled_difference_norm
+
+
+@numba.njit(cache=True)
+def newmark_kinematics(q_n, v_n, a_n, a1, h, beta, gamma, rotation_slots, dq, q1, v1):
+    """Newmark increment dq, q_{n+1} = q_n (+) dq and v_{n+1} (module docstring), in place."""
+    c_a = h * h * (0.5 - beta)
+    c_b = h * h * beta
+    c_v0 = h * (1.0 - gamma)
+    c_v1 = h * gamma
+    for i in range(q_n.shape[0]):
+        dq[i] = h * v_n[i] + c_a * a_n[i] + c_b * a1[i]
+        v1[i] = v_n[i] + c_v0 * a_n[i] + c_v1 * a1[i]
+    update_configuration(q_n, dq, rotation_slots, q1)
+
+
+@numba.njit(cache=True)
+def hht_residual(ma, g1, g_n, alpha, r):
+    """r = M a_{n+1} - (1 - alpha) g_{n+1} - alpha g_n [N, N m]; returns max |r| (inf if NaN)."""
+    big = 0.0
+    for i in range(ma.shape[0]):
+        r[i] = ma[i] - (1.0 - alpha) * g1[i] - alpha * g_n[i]
+        ar = abs(r[i])
+        if not ar <= big:  # also catches NaN
+            big = ar if math.isfinite(ar) else math.inf
+        if big == math.inf:
+            return big
+    return big
+
+
+@numba.njit(cache=True)
+def subtract_inplace(x, dx):
+    for i in range(x.shape[0]):
+        x[i] -= dx[i]
+
+
+class HHTState:
+    """State at one time: q (config), v, a, g = g(t, q, v) and the increment dq that led here."""
+
+    __slots__ = ("q", "v", "a", "g", "dq")
+
+    def __init__(self, n: int) -> None:
+        self.q, self.v, self.a = np.zeros(n), np.zeros(n), np.zeros(n)
+        self.g, self.dq = np.zeros(n), np.zeros(n)
+
+    def copy_from(self, other: "HHTState") -> None:
+        for name in self.__slots__:
+            getattr(self, name)[:] = getattr(other, name)
+
+
+class HHTStepper:
+    """Attempts steps of HHT-α on a problem following `problem.MultibodyProblem`."""
+
+    def __init__(self, problem, settings: HHTSettings, solver, stats: SolverStats) -> None:
+        n = problem.n_dof
+        self.problem, self.settings, self.stats = problem, settings, stats
+        self.matrix = IterationMatrix(problem, solver, settings, stats)
+        self.rotation_slots = np.ascontiguousarray(problem.rotation_slots, dtype=np.int64)
+        self.weights = np.ascontiguousarray(problem.error_weights, dtype=float)
+        self.y1 = HHTState(n)
+        self._ma, self._r, self._da = np.zeros(n), np.zeros(n), np.zeros(n)
+        self._zeros = np.zeros(n)
+
+    def step(self, t: float, h: float, y: HHTState) -> tuple[HHTState, float, Result]:
+        """Try a step from (t, y) of size h: returns (y1, error norm, result).
+
+        y1 is a workspace reused by the next call: copy it or swap it in before stepping
+        again. The error norm is `step_control.scaled_difference_norm` of (S.§9) e.
+        """
+        s, y1 = self.settings, self.y1
+        alpha, beta, gamma = s.alpha, s.beta, s.gamma
+        t1 = t + h
+        y1.a[:] = y.a  # predictor a_{n+1} = a_n
+        fresh = False
+        if self.matrix.needs_factor_at_step_start(h):
+            newmark_kinematics(y.q, y.v, y.a, y1.a, h, beta, gamma, self.rotation_slots,
+                               y1.dq, y1.q, y1.v)
+            if not self.matrix.factor(t1, y1.q, y1.v, y1.a, h):
+                return y1, math.inf, Result.SINGULAR_MATRIX
+            fresh = True
+        result = self._newton(t1, h, y, fresh)
+        if result is not Result.SUCCESSFUL:
+            self.matrix.stale = True
+            return y1, math.inf, result
+        err = scaled_difference_norm(y1.a, y.a, (beta - 1.0 / 6.0) * h * h, y.q, y1.q,
+                                     self.weights, s.atol, s.rtol)
+        return y1, err, Result.SUCCESSFUL
+
+    def _newton(self, t1: float, h: float, y: HHTState, fresh: bool) -> Result:
+        """Newton on a_{n+1}; `fresh` says the factored matrix was built in this step."""
+        s, y1, st = self.settings, self.y1, self.stats
+        ma, r, da = self._ma, self._r, self._da
+        alpha, beta, gamma = s.alpha, s.beta, s.gamma
+        full_newton = s.reuse_jacobian is JacobianReuse.NEWTON
+        rebuild = False
+        corr_prev = math.inf
+        # Corrections below the round-off of q cannot shrink further: count them as converged.
+        floor = 100.0 * scaled_difference_norm(y.q, self._zeros, 2.2e-16, y.q, y.q,
+                                               self.weights, s.atol, s.rtol)
+        for k in range(s.max_newton_iter):
+            newmark_kinematics(y.q, y.v, y.a, y1.a, h, beta, gamma, self.rotation_slots,
+                               y1.dq, y1.q, y1.v)
+            self.problem.evaluate(t1, y1.q, y1.v, y1.a, ma, y1.g)
+            st.residual_evaluations += 1
+            r_max = hht_residual(ma, y1.g, y.g, alpha, r)
+            if r_max == math.inf:
+                return Result.NAN_RESIDUAL
+            if k > 0 and r_max <= s.residual_tol:
+                return Result.SUCCESSFUL
+            if rebuild:
+                if not self.matrix.factor(t1, y1.q, y1.v, y1.a, h):
+                    return Result.SINGULAR_MATRIX
+                fresh, rebuild = True, False
+            self.matrix.solve(r, da)
+            subtract_inplace(y1.a, da)
+            st.newton_iterations += 1
+            corr = scaled_difference_norm(da, self._zeros, beta * h * h, y.q, y1.q,
+                                          self.weights, s.atol, s.rtol)
+            if corr <= s.newton_tol or corr <= floor:
+                newmark_kinematics(y.q, y.v, y.a, y1.a, h, beta, gamma, self.rotation_slots,
+                                   y1.dq, y1.q, y1.v)
+                return Result.SUCCESSFUL
+            rate = corr / corr_prev
+            if rate >= 1.0 and fresh and not full_newton:
+                return Result.NEWTON_DIVERGED
+            # An old matrix that converges slowly (or diverges) is rebuilt at the next iterate.
+            rebuild = full_newton or (not fresh and rate > s.refactor_rate)
+            corr_prev = corr
+        return Result.NEWTON_MAX_ITER

@@ -1,0 +1,128 @@
+"""Viscoelastic hinge joint between a fixed frame A and a body B, MODEL.md §5 (S.15–S.20).
+
+Strains (S.15–S.16), with mu_i = R_A e_i the triad of A and xi_3 = R_B e_3 the axis of B:
+
+    u = R_A^T (x_B - x_A),   psi = (-mu_2^T xi_3, mu_1^T xi_3) = -P xi_3,   P = [mu_2^T; -mu_1^T]
+    u_dot = R_A^T x_B_dot,   psi_dot = P R_B (e_3 x Omega_B) = B_psi Omega_B,  B_psi = P R_B e_3~
+
+(the same as S.16: (mu_2~ xi_3)^T omega = mu_2^T (xi_3 x omega)). Energy (S.17)
+V = u^T H_u u / 2 + psi^T H_psi psi / 2; viscous forces from (S.18) with G = c_G H.
+Generalised forces (S.19–S.20) in the integrator's coordinates (force on x_B, *material*
+moment on B — the `T_B^T R_B^T` of S.19 maps the spatial moment onto CRV rates; with
+material rotation increments it is just `R_B^T`):
+
+    f   = -R_A (H_u u + G_u u_dot)                          [N]
+    tau = -B_psi^T (H_psi psi + G_psi psi_dot)              [N m]
+
+Rotation about the axis e_3 of B is free (B_psi e_3 = 0): it carries the prescribed spin.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numba
+import numpy as np
+
+from .crv import skew
+
+
+@numba.njit(cache=True)
+def _hinge_psi_terms(R_A, R_B, Omega_B):
+    """P (2x3), psi (2) [rad], B_psi (2x3) and psi_dot (2) [rad/s] of S.15–S.16."""
+    P = np.empty((2, 3))
+    P[0, :] = R_A[:, 1]
+    P[1, :] = -R_A[:, 0]
+    psi = -(P @ np.ascontiguousarray(R_B[:, 2]))
+    e3t = np.zeros((3, 3))
+    e3t[0, 1] = -1.0
+    e3t[1, 0] = 1.0
+    B_psi = P @ R_B @ e3t
+    return P, psi, B_psi, B_psi @ Omega_B
+
+
+@numba.njit(cache=True)
+def hinge_forces(x_B, R_B, x_B_dot, Omega_B, x_A, R_A, H_u, H_psi, G_u, G_psi):
+    """Viscoelastic hinge generalised force g (6) and residual tangents K, C (6x6).
+
+    g = (f [N], tau [N m]) of (S.19)+(S.20) on (x_B, material rotation of B).
+    K = -dg/d(x_B, Theta_B), C = -dg/d(x_B_dot, Omega_B), with material perturbations
+    R_B -> R_B exp(dTheta~). H_u, G_u: 3x3 [N/m], [N s/m]; H_psi, G_psi: 2 [N m/rad],
+    [N m s/rad].
+    """
+    u = R_A.T @ (x_B - x_A)
+    u_dot = R_A.T @ x_B_dot
+    P, psi, B_psi, psi_dot = _hinge_psi_terms(R_A, R_B, Omega_B)
+    f_psi = H_psi * psi + G_psi * psi_dot
+    g = np.zeros(6)
+    g[:3] = -(R_A @ (H_u @ u + G_u @ u_dot))
+    g[3:] = -(B_psi.T @ f_psi)
+    K = np.zeros((6, 6))
+    C = np.zeros((6, 6))
+    K[:3, :3] = R_A @ H_u @ R_A.T
+    C[:3, :3] = R_A @ G_u @ R_A.T
+    # tau = e3~ R^T P^T f_psi; d/dTheta of R^T w is (R^T w)~, of psi is B_psi, of psi_dot is
+    # -P R (e3~ Omega)~.
+    e3t = np.zeros((3, 3))
+    e3t[0, 1] = -1.0
+    e3t[1, 0] = 1.0
+    RtPt = R_B.T @ P.T
+    dpsi_dot = -(P @ R_B @ skew(e3t @ Omega_B))
+    df = np.empty((2, 3))
+    for i in range(2):
+        df[i, :] = H_psi[i] * B_psi[i, :] + G_psi[i] * dpsi_dot[i, :]
+    K[3:, 3:] = -(e3t @ (skew(RtPt @ f_psi) + RtPt @ df))
+    for i in range(2):
+        C[3:, 3:] += G_psi[i] * np.outer(B_psi[i, :], B_psi[i, :])
+    return g, K, C
+
+
+@numba.njit(cache=True)
+def hinge_energy(x_B, R_B, x_A, R_A, H_u, H_psi):
+    """Strain energy V = u^T H_u u / 2 + psi^T H_psi psi / 2 [J] (S.17)."""
+    u = R_A.T @ (x_B - x_A)
+    psi = np.empty(2)
+    psi[0] = -(R_A[0, 1] * R_B[0, 2] + R_A[1, 1] * R_B[1, 2] + R_A[2, 1] * R_B[2, 2])
+    psi[1] = R_A[0, 0] * R_B[0, 2] + R_A[1, 0] * R_B[1, 2] + R_A[2, 0] * R_B[2, 2]
+    return 0.5 * (u @ (H_u @ u)) + 0.5 * (H_psi[0] * psi[0] ** 2 + H_psi[1] * psi[1] ** 2)
+
+
+@numba.njit(cache=True)
+def hinge_strains(x_B, R_B, x_B_dot, Omega_B, x_A, R_A):
+    """(u [m], psi [rad], u_dot [m/s], psi_dot [rad/s]) of S.15–S.16."""
+    P, psi, B_psi, psi_dot = _hinge_psi_terms(R_A, R_B, Omega_B)
+    return R_A.T @ (x_B - x_A), psi, R_A.T @ x_B_dot, psi_dot
+
+
+@dataclass(frozen=True)
+class HingeStiffness:
+    """Hinge parameters (MODEL.md §5): H_u (3x3 SPD), H_psi (2, diagonal), G = c_G H."""
+
+    H_u: np.ndarray = field(metadata={"unit": "N/m"})
+    H_psi: np.ndarray = field(metadata={"unit": "N m/rad"})
+    c_G: float = field(default=1e-6, metadata={"unit": "s", "ge": 0.0})
+
+    def __post_init__(self) -> None:
+        H_u = np.ascontiguousarray(self.H_u, dtype=float)
+        H_psi = np.ascontiguousarray(self.H_psi, dtype=float)
+        if H_u.shape != (3, 3) or not np.allclose(H_u, H_u.T, rtol=1e-12, atol=0.0):
+            raise ValueError(f"hinge H_u must be a symmetric 3x3 matrix [N/m], got {H_u!r}")
+        if np.linalg.eigvalsh(H_u).min() <= 0.0:
+            raise ValueError(
+                f"hinge H_u must be positive definite [N/m]; eigenvalues "
+                f"{np.linalg.eigvalsh(H_u)}. Check the identified stiffness or give it by hand."
+            )
+        if H_psi.shape != (2,) or np.any(H_psi <= 0.0):
+            raise ValueError(f"hinge H_psi must be 2 positive values [N m/rad], got {H_psi!r}")
+        if not self.c_G >= 0.0:
+            raise ValueError(f"hinge damping time c_G must be >= 0 s, got {self.c_G}")
+        object.__setattr__(self, "H_u", H_u)
+        object.__setattr__(self, "H_psi", H_psi)
+
+    @property
+    def G_u(self) -> np.ndarray:
+        return self.c_G * self.H_u
+
+    @property
+    def G_psi(self) -> np.ndarray:
+        return self.c_G * self.H_psi

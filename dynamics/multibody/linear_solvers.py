@@ -1,0 +1,229 @@
+"""Linear solvers for the Newton iteration matrix S = c_m M + c_v C_t + c_q K_t (MODEL.md §9).
+
+Two structures:
+
+* dense: a (n, n) float64 array; `DenseSolver` (LU with partial pivoting, numba).
+* block-arrow: `BlockArrowMatrix` for "many small bodies each coupled only to a few large
+  ones". Unknowns are ordered [small body 0 (m), ..., small body Z-1 (m), border (nb)]:
+
+      [ D_0            E_0     ] [x_0   ]   [b_0   ]
+      [      ...       ...     ] [...   ] = [...   ]
+      [           D_Z-1 E_Z-1  ] [x_Z-1 ]   [b_Z-1 ]
+      [ F_0 ... F_Z-1   B      ] [x_b   ]   [b_b   ]
+
+  D (Z, m, m) small diagonal blocks, E (Z, m, nb) small-row/border-column couplings,
+  F (Z, nb, m) border-row/small-column couplings, B (nb, nb) border block. No symmetry is
+  assumed (gyroscopic and friction tangents are not symmetric). `BlockArrowSolver` factors
+  each D_k, forms the Schur complement S = B - sum_k F_k D_k^-1 E_k, factors it, and solves
+  by forward elimination and back-substitution: O(Z m^2 (m + nb) + nb^3) work.
+
+A solver's `factor(matrix)` returns False when a pivot is zero or not finite (the step is
+then rejected); `solve(rhs, out)` writes the solution into `out`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numba
+import numpy as np
+
+
+@numba.njit(cache=True)
+def lu_factor_inplace(A, piv):
+    """LU factorisation with partial pivoting, in place (L unit lower, U upper).
+
+    Returns False when a pivot is zero or not finite (singular or NaN matrix).
+    """
+    n = A.shape[0]
+    for k in range(n):
+        p = k
+        big = abs(A[k, k])
+        for i in range(k + 1, n):
+            if abs(A[i, k]) > big:
+                big = abs(A[i, k])
+                p = i
+        piv[k] = p
+        if not (big > 0.0) or not np.isfinite(big):
+            return False
+        if p != k:
+            for j in range(n):
+                tmp = A[k, j]
+                A[k, j] = A[p, j]
+                A[p, j] = tmp
+        inv = 1.0 / A[k, k]
+        for i in range(k + 1, n):
+            A[i, k] *= inv
+            lik = A[i, k]
+            if lik != 0.0:
+                for j in range(k + 1, n):
+                    A[i, j] -= lik * A[k, j]
+    return True
+
+
+@numba.njit(cache=True)
+def lu_solve_inplace(LU, piv, b):
+    """Solve (LU) x = b in place in the vector b."""
+    n = LU.shape[0]
+    for k in range(n):
+        p = piv[k]
+        if p != k:
+            tmp = b[k]
+            b[k] = b[p]
+            b[p] = tmp
+    for i in range(n):
+        for j in range(i):
+            b[i] -= LU[i, j] * b[j]
+    for i in range(n - 1, -1, -1):
+        for j in range(i + 1, n):
+            b[i] -= LU[i, j] * b[j]
+        b[i] /= LU[i, i]
+
+
+@numba.njit(cache=True)
+def lu_solve_columns_inplace(LU, piv, B):
+    """Solve (LU) X = B in place in the (n, k) matrix B."""
+    n = LU.shape[0]
+    k_cols = B.shape[1]
+    for k in range(n):
+        p = piv[k]
+        if p != k:
+            for c in range(k_cols):
+                tmp = B[k, c]
+                B[k, c] = B[p, c]
+                B[p, c] = tmp
+    for c in range(k_cols):
+        for i in range(n):
+            for j in range(i):
+                B[i, c] -= LU[i, j] * B[j, c]
+        for i in range(n - 1, -1, -1):
+            for j in range(i + 1, n):
+                B[i, c] -= LU[i, j] * B[j, c]
+            B[i, c] /= LU[i, i]
+
+
+@numba.njit(cache=True)
+def block_arrow_factor(D, E, F, B, LU_D, piv_D, DinvE, S, piv_S):
+    """Factor a block-arrow matrix: LU of each D_k, D_k^-1 E_k, and LU of the Schur
+    complement S = B - sum_k F_k D_k^-1 E_k. Returns False if any pivot vanishes."""
+    Z = D.shape[0]
+    S[:, :] = B
+    for k in range(Z):
+        LU_D[k, :, :] = D[k]
+        if not lu_factor_inplace(LU_D[k], piv_D[k]):
+            return False
+        DinvE[k, :, :] = E[k]
+        lu_solve_columns_inplace(LU_D[k], piv_D[k], DinvE[k])
+        S -= F[k] @ DinvE[k]
+    return lu_factor_inplace(S, piv_S)
+
+
+@numba.njit(cache=True)
+def block_arrow_solve(LU_D, piv_D, DinvE, F, S, piv_S, rhs, x):
+    """Solve with a factored block-arrow matrix; rhs and x are global vectors (Z m + nb)."""
+    Z, m = LU_D.shape[0], LU_D.shape[1]
+    nb = S.shape[0]
+    n_small = Z * m
+    x[:] = rhs
+    xb = x[n_small:]
+    for k in range(Z):
+        yk = x[k * m:(k + 1) * m]
+        lu_solve_inplace(LU_D[k], piv_D[k], yk)
+        xb -= F[k] @ yk
+    lu_solve_inplace(S, piv_S, xb)
+    for k in range(Z):
+        x[k * m:(k + 1) * m] -= DinvE[k] @ xb
+
+
+@dataclass
+class BlockArrowMatrix:
+    """Block-arrow matrix data (see module docstring); fill the arrays in place."""
+
+    D: np.ndarray  # (Z, m, m)
+    E: np.ndarray  # (Z, m, nb)
+    F: np.ndarray  # (Z, nb, m)
+    B: np.ndarray  # (nb, nb)
+
+    @classmethod
+    def zeros(cls, n_small: int, block: int, n_border: int) -> "BlockArrowMatrix":
+        return cls(
+            D=np.zeros((n_small, block, block)),
+            E=np.zeros((n_small, block, n_border)),
+            F=np.zeros((n_small, n_border, block)),
+            B=np.zeros((n_border, n_border)),
+        )
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        n = self.D.shape[0] * self.D.shape[1] + self.B.shape[0]
+        return n, n
+
+    def fill_zero(self) -> None:
+        self.D[...] = 0.0
+        self.E[...] = 0.0
+        self.F[...] = 0.0
+        self.B[...] = 0.0
+
+    def to_dense(self) -> np.ndarray:
+        """Dense (n, n) copy, for tests and small models."""
+        Z, m, nb = self.E.shape
+        A = np.zeros(self.shape)
+        for k in range(Z):
+            s = slice(k * m, (k + 1) * m)
+            A[s, s] = self.D[k]
+            A[s, Z * m:] = self.E[k]
+            A[Z * m:, s] = self.F[k]
+        A[Z * m:, Z * m:] = self.B
+        return A
+
+
+class DenseSolver:
+    """LU with partial pivoting of a dense (n, n) iteration matrix (numba kernels)."""
+
+    def __init__(self) -> None:
+        self._lu = np.zeros((0, 0))
+        self._piv = np.zeros(0, dtype=np.int64)
+
+    def factor(self, matrix: np.ndarray) -> bool:
+        n = matrix.shape[0]
+        if self._lu.shape != (n, n):
+            self._lu = np.empty((n, n))
+            self._piv = np.empty(n, dtype=np.int64)
+        self._lu[...] = matrix
+        return bool(lu_factor_inplace(self._lu, self._piv))
+
+    def solve(self, rhs: np.ndarray, out: np.ndarray) -> None:
+        out[:] = rhs
+        lu_solve_inplace(self._lu, self._piv, out)
+
+
+class BlockArrowSolver:
+    """Schur-complement solver for a `BlockArrowMatrix` with Z blocks of size m, border nb."""
+
+    def __init__(self, n_small: int, block: int, n_border: int) -> None:
+        if n_small < 1 or block < 1 or n_border < 0:
+            raise ValueError(
+                f"block-arrow layout needs n_small >= 1, block >= 1, n_border >= 0; got "
+                f"({n_small}, {block}, {n_border})"
+            )
+        Z, m, nb = n_small, block, n_border
+        self._lu_D = np.zeros((Z, m, m))
+        self._piv_D = np.zeros((Z, m), dtype=np.int64)
+        self._DinvE = np.zeros((Z, m, nb))
+        self._F = np.zeros((Z, nb, m))
+        self._S = np.zeros((nb, nb))
+        self._piv_S = np.zeros(nb, dtype=np.int64)
+
+    def factor(self, matrix: BlockArrowMatrix) -> bool:
+        if matrix.D.shape != self._lu_D.shape or matrix.B.shape != self._S.shape:
+            raise ValueError(
+                f"block-arrow matrix with D {matrix.D.shape}, B {matrix.B.shape} does not "
+                f"match the solver layout D {self._lu_D.shape}, B {self._S.shape}"
+            )
+        self._F[...] = matrix.F  # kept: the model may overwrite its buffers before solve
+        return bool(block_arrow_factor(matrix.D, matrix.E, self._F, matrix.B, self._lu_D,
+                                       self._piv_D, self._DinvE, self._S, self._piv_S))
+
+    def solve(self, rhs: np.ndarray, out: np.ndarray) -> None:
+        block_arrow_solve(self._lu_D, self._piv_D, self._DinvE, self._F, self._S,
+                          self._piv_S, rhs, out)

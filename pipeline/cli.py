@@ -98,10 +98,12 @@ class _StageProgress:
 
     def __enter__(self):
         if not self.quiet:
-            from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+            from rich.progress import (BarColumn, Progress, TextColumn, TimeElapsedColumn,
+                                       TimeRemainingColumn)
 
             self.progress = Progress(TextColumn("{task.fields[stage]:<12}"), BarColumn(),
                                      TextColumn("{task.description}"), TimeElapsedColumn(),
+                                     TextColumn("ETA"), TimeRemainingColumn(),
                                      console=err_console, transient=True)
             self.progress.__enter__()
         return self

@@ -1,11 +1,24 @@
-"""Stage `simulate`: the HHT-alpha multibody run of the bearing (MODEL.md §4–§9)."""
+"""Stage `simulate`: the HHT-alpha multibody run of the bearing (MODEL.md §4–§9).
+
+Reads the hinge (identified or given) and starts from the quasi-static equilibrium;
+writes `timeseries.h5`, `impacts.csv`, `summary.json` and the figures of MODEL.md §11.
+"""
 
 from __future__ import annotations
 
 import dataclasses
+import time
 
-from ..runner import Stage, StageContext, StageNotAvailable
+import numpy as np
+
+from ..artefacts import atomic_write_json
+from ..runner import Stage, StageContext
 from ..scene import Scene
+from .identify import HINGE_FILE
+
+TIMESERIES_FILE = "timeseries.h5"
+IMPACTS_FILE = "impacts.csv"
+SUMMARY_FILE = "summary.json"
 
 
 def simulate_inputs(scene: Scene) -> dict:
@@ -14,11 +27,73 @@ def simulate_inputs(scene: Scene) -> dict:
     return {"scene": raw, "hinge": dataclasses.asdict(scene.hinge)}
 
 
+def hinge_matrices(scene: Scene, identify_dir) -> tuple | None:
+    """(H_u 3x3 [N/m], H_psi (2) [N m/rad], c_G [s]) or None when the inner race is free."""
+    h = scene.hinge
+    if h.source == "none":
+        return None
+    if h.source == "given":
+        return np.array(h.stiffness_matrix()), np.array(h.bending), h.damping_ratio_time
+    from fe_model import read_hinge
+
+    H_u, H_psi, _ = read_hinge(identify_dir / HINGE_FILE)
+    return np.asarray(H_u, float), np.asarray(H_psi, float), h.damping_ratio_time
+
+
+def model_options(scene: Scene):
+    from dynamics.bearing import ModelOptions
+
+    names = {f.name for f in dataclasses.fields(ModelOptions)}
+    return ModelOptions(**{k: v for k, v in dataclasses.asdict(scene.physics).items() if k in names})
+
+
+def hht_settings(scene: Scene):
+    from dynamics.multibody.settings import HHTSettings
+
+    s = scene.solver
+    return HHTSettings(alpha=s.alpha, first_step=s.first_step, min_step=s.min_step,
+                       max_step=s.max_step, rtol=s.rtol, atol=s.atol)
+
+
+def build_model(scene: Scene, identify_dir=None):
+    """(model parameters, quasi-static start) for `scene` — shared with `bench`."""
+    from dynamics.bearing import build_model_params
+    from dynamics.quasistatic_result import initial_state
+
+    from .quasistatic import solve
+
+    start = initial_state(solve(scene))
+    s, m = scene, scene.materials
+    params = build_model_params(
+        s.bearing, s.cage, m.ball, m.race, m.cage, s.lubricant,
+        axial=s.load.axial, radial=s.load.radial, moment=s.load.moment,
+        inner_speed=s.speed.inner, outer_speed=s.speed.outer,
+        hinge=hinge_matrices(s, identify_dir), static_x=start["inner_race_displacement"],
+        static_R=start["inner_race_rotation"], options=model_options(s))
+    return params, start
+
+
 def compute(ctx: StageContext) -> dict:
-    raise StageNotAvailable(
-        "the simulate stage (bearing dynamic model, issue 7) is not implemented yet; "
-        "`bearingsim quasistatic SCENE` and `bearingsim identify SCENE` work today"
-    )
+    from dynamics.bearing import simulate_bearing
+
+    from ..results.simulation_output import write_simulation_results
+
+    scene = ctx.scene
+    ctx.progress("quasi-static start", 0.0)
+    params, start = build_model(scene, ctx.upstream.get("identify"))
+    duration = scene.solver.duration
+    wall0 = time.perf_counter()
+
+    def progress(t: float, t_end: float, h: float) -> None:
+        ctx.progress(f"t = {t * 1e3:7.2f} / {t_end * 1e3:.1f} ms, h = {h:.2e} s", t / t_end)
+
+    run = simulate_bearing(params, start, hht_settings(scene), duration,
+                           scene.output.sample_interval, progress=progress)
+    ctx.progress("writing results", 1.0)
+    summary = write_simulation_results(ctx.out_dir, scene, params, start, run,
+                                       wall_time=time.perf_counter() - wall0)
+    atomic_write_json(ctx.out_dir / SUMMARY_FILE, summary)
+    return {k: summary[k] for k in ("steps", "wall_time", "cage_speed_mean", "cage_metal_contact_fraction")}
 
 
 STAGE = Stage(

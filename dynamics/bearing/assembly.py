@@ -1,0 +1,231 @@
+"""The bearing's residual pieces in one numba kernel: M a, g(t, q, v) and (on request) the
+block-arrow tangents K_t = -dg/dq, C_t = -dg/dv (MODEL.md §4–§9, paper eq. 8).
+
+Per evaluation: 2Z ball–race contacts (race_forces), Z ball–pocket contacts and one
+cage–race journal (cage_forces), the viscoelastic hinge (S.19–S.20), external loads on
+the inner race, gyroscopic terms, and the prescribed inner-race spin (row replaced).
+Every contact force acts equal and opposite on both bodies at the contact point.
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+
+from dynamics.journal import N_JOURNAL_OUT
+from dynamics.multibody.crv import crv_to_matrix
+from dynamics.multibody.hinge import hinge_energy, hinge_forces
+from dynamics.multibody.joints import prescribe_velocity_residual
+from dynamics.multibody.rigid_body import gyroscopic_moment, material_moment_of_spatial_moment
+from dynamics.pocket_contact import N_POCKET_OUT, P_OUT_APPROACH, P_OUT_DFN_DRATE, P_OUT_FRICTION_POWER
+
+from .cage_forces import journal_diag, journal_forces, pocket_diag, pocket_forces
+from .params import (
+    FP_FX, FP_FZ, FP_JB, FP_JCX, FP_JCZ, FP_JIX, FP_JIZ, FP_MB, FP_MC, FP_MI, FP_MY,
+    FP_OMEGA_I, FP_OMEGA_O, IP_CAGE, IP_GYRO, IP_HINGE, IP_JOURNAL, IP_Z,
+)
+from .race_forces import (
+    N_CONTACT_SCRATCH, N_RC, RC_ACTIVE, RC_ALPHA, RC_CN, RC_EX, RC_EY, RC_FB, RC_FILM,
+    RC_FLAG, RC_FR, RC_JT, RC_KP, RC_MB, RC_MR, RC_N, RC_PB, RC_PDISS, RC_PMAX, RC_PR, RC_Q,
+    RC_SRR, RC_VHZ, race_contact,
+)
+from .tangents import add_pair, point_map, slip_map
+
+# global diagnostics (diag[:N_DG]) then per ball (diag[N_DG + DB*k + ...])
+DG_EPS, DG_FX, DG_FY, DG_TORQUE, DG_METAL, DG_FRICTION_POWER, DG_AZIMUTH = 0, 1, 2, 3, 4, 5, 6
+DG_DRIVE, DG_P_DRIVE, DG_P_EXT, DG_P_DISS, DG_V_HERTZ, DG_V_HINGE, DG_FLAGS = 7, 8, 9, 10, 11, 12, 13
+N_DG = 16
+DB_QI, DB_QO, DB_AI, DB_AO, DB_HI, DB_HO, DB_SRRI, DB_SRRO, DB_PMI, DB_PMO = range(10)
+DB_POCKET = 10  # 5: F_n, in contact, approach speed, orbital position, friction power
+DB = 15
+
+
+def diag_size(Z: int) -> int:
+    return N_DG + DB * Z
+
+
+def mass_diagonal(fp, ip, n):
+    """Constant diagonal mass matrix (balls, inner race, cage; material inertias)."""
+    Z = int(ip[IP_Z])
+    m = np.zeros(n)
+    for k in range(Z):
+        m[6 * k:6 * k + 3] = fp[FP_MB]
+        m[6 * k + 3:6 * k + 6] = fp[FP_JB]
+    o = 6 * Z
+    m[o:o + 3] = fp[FP_MI]
+    m[o + 3:o + 6] = (fp[FP_JIX], fp[FP_JIX], fp[FP_JIZ])
+    if ip[IP_CAGE]:
+        m[o + 6:o + 9] = fp[FP_MC]
+        m[o + 9:o + 12] = (fp[FP_JCX], fp[FP_JCX], fp[FP_JCZ])
+    return m
+
+
+@numba.njit(cache=True)
+def _race_term(k, off, res, R_r, want_tangent, Kd, Ke, Kf, Kb, Cd, Ce, Cf, Cb):
+    """Tangents of one ball–race contact (off < 0: fixed race)."""
+    if not want_tangent:
+        return
+    GA = np.zeros((3, 6))
+    for i in range(3):
+        GA[i, i] = 1.0
+    GB = np.empty((3, 6))
+    point_map(res[RC_PR:RC_PR + 3], R_r, GB)
+    Kp = res[RC_KP:RC_KP + 9].copy().reshape(3, 3)
+    Cn = res[RC_CN:RC_CN + 9].copy().reshape(3, 3)
+    add_pair(k, off, Kp, GA, GB, Kd, Ke, Kf, Kb, 1.0)
+    add_pair(k, off, Cn, GA, GB, Cd, Ce, Cf, Cb, 1.0)
+    ex, ey, n = res[RC_EX:RC_EX + 3], res[RC_EY:RC_EY + 3], res[RC_N:RC_N + 3]
+    SA = np.empty((3, 6))
+    SB = np.empty((3, 6))
+    slip_map(ex, ey, n, res[RC_PB:RC_PB + 3], np.eye(3), SA)
+    slip_map(ex, ey, n, res[RC_PR:RC_PR + 3], R_r, SB)
+    Jt = res[RC_JT:RC_JT + 9].copy().reshape(3, 3)
+    add_pair(k, off, Jt, SA, SB, Cd, Ce, Cf, Cb, 1.0)
+
+
+@numba.njit(cache=True)
+def evaluate_bearing(t, q, v, a, fp, ip, tab_i, tab_o, eta_table, tr_f, tr_i,
+                     pp, jp, psi, Hu, Hpsi, Gu, Gpsi, xA, RA, v0, mass, want_tangent,
+                     ma, g, diag, Kd, Ke, Kf, Kb, Cd, Ce, Cf, Cb):
+    """Fill ma = M a, g = g(t, q, v), diag and (want_tangent) K, C blocks. Returns the
+    drive moment [N m] that holds the inner-race spin."""
+    Z = ip[IP_Z]
+    o_i = 6 * Z
+    o_c = o_i + 6 if ip[IP_CAGE] else -1
+    g[:] = 0.0
+    diag[:] = 0.0
+    for i in range(ma.shape[0]):
+        ma[i] = mass[i] * a[i]
+    if want_tangent:
+        Kd[:] = 0.0
+        Ke[:] = 0.0
+        Kf[:] = 0.0
+        Kb[:] = 0.0
+        Cd[:] = 0.0
+        Ce[:] = 0.0
+        Cf[:] = 0.0
+        Cb[:] = 0.0
+    x_i = q[o_i:o_i + 3]
+    R_i = crv_to_matrix(q[o_i + 3:o_i + 6])
+    v_i = v[o_i:o_i + 3]
+    w_i = R_i @ v[o_i + 3:o_i + 6]
+    x_o = np.zeros(3)
+    R_o = np.eye(3)
+    w_o = np.array([0.0, 0.0, fp[FP_OMEGA_O]])
+    F_i = np.zeros(3)
+    M_i = np.zeros(3)
+    F_c = np.zeros(3)
+    M_c = np.zeros(3)
+    if o_c >= 0:
+        x_c = q[o_c:o_c + 3]
+        R_c = crv_to_matrix(q[o_c + 3:o_c + 6])
+        v_c = v[o_c:o_c + 3]
+        w_c = R_c @ v[o_c + 3:o_c + 6]
+    else:
+        x_c, R_c, v_c, w_c = x_o, R_o, x_o, x_o
+    cbuf = np.empty(N_CONTACT_SCRATCH)
+    tbuf = np.empty(12)
+    res = np.empty(N_RC)
+    pres = np.empty(N_POCKET_OUT)
+    for k in range(Z):
+        b = 6 * k
+        x_b, v_b, w_b = q[b:b + 3], v[b:b + 3], v[b + 3:b + 6]
+        d = N_DG + DB * k
+        for outer in (False, True):
+            if outer:
+                hit = race_contact(x_b, v_b, w_b, x_o, R_o, x_o, w_o, True, fp, ip, tab_o, eta_table,
+                                   tr_f, tr_i, cbuf, tbuf, res)
+            else:
+                hit = race_contact(x_b, v_b, w_b, x_i, R_i, v_i, w_i, False, fp, ip, tab_i, eta_table,
+                                   tr_f, tr_i, cbuf, tbuf, res)
+            j = 1 if outer else 0
+            diag[d + DB_AI + j] = res[RC_ALPHA]
+            if not hit:
+                continue
+            for i in range(3):
+                g[b + i] += res[RC_FB + i]
+                g[b + 3 + i] += res[RC_MB + i]
+                if not outer:
+                    F_i[i] += res[RC_FR + i]
+                    M_i[i] += res[RC_MR + i]
+            diag[d + DB_QI + j] = res[RC_Q]
+            diag[d + DB_HI + j] = res[RC_FILM]
+            diag[d + DB_SRRI + j] = res[RC_SRR]
+            diag[d + DB_PMI + j] = res[RC_PMAX]
+            diag[DG_P_DISS] += res[RC_PDISS]
+            diag[DG_V_HERTZ] += res[RC_VHZ]
+            if res[RC_FLAG] != 0.0:
+                diag[DG_FLAGS] += 1.0
+            _race_term(k, -1 if outer else 0, res, R_o if outer else R_i, want_tangent,
+                       Kd, Ke, Kf, Kb, Cd, Ce, Cf, Cb)
+        if o_c >= 0:
+            pocket_forces(k, x_b, v_b, w_b, x_c, R_c, v_c, w_c, psi[k], v0[k], pp, pres, g, b, 6,
+                          F_c, M_c, want_tangent, Kd, Ke, Kf, Kb, Cd, Ce, Cf, Cb)
+            pocket_diag(pres, diag[d + DB_POCKET:d + DB_POCKET + 5])
+            # friction power + hysteresis-damping power (damping force = dF_n/d(delta_dot) delta_dot)
+            diag[DG_P_DISS] += pres[P_OUT_FRICTION_POWER] + pres[P_OUT_DFN_DRATE] * pres[P_OUT_APPROACH] ** 2
+    return _border(t, q, v, fp, ip, Hu, Hpsi, Gu, Gpsi, xA, RA, jp, want_tangent, ma, g, diag,
+                   Kb, Cb, o_i, o_c, x_i, R_i, v_i, w_i, F_i, M_i, x_c, R_c, v_c, w_c, F_c, M_c)
+
+
+@numba.njit(cache=True)
+def _border(t, q, v, fp, ip, Hu, Hpsi, Gu, Gpsi, xA, RA, jp, want_tangent, ma, g, diag, Kb, Cb,
+            o_i, o_c, x_i, R_i, v_i, w_i, F_i, M_i, x_c, R_c, v_c, w_c, F_c, M_c):
+    """Inner race (loads, hinge, gyroscopic, spin) and cage (journal, gyroscopic)."""
+    ext_f = np.array([fp[FP_FX], 0.0, fp[FP_FZ]])
+    ext_m = np.array([0.0, fp[FP_MY], 0.0])
+    Om_i = v[o_i + 3:o_i + 6]
+    tau_ext, K_ext = material_moment_of_spatial_moment(R_i, ext_m)
+    for i in range(3):
+        g[o_i + i] += F_i[i] + ext_f[i]
+    g[o_i + 3:o_i + 6] += R_i.T @ M_i + tau_ext
+    diag[DG_P_EXT] = ext_f @ v_i + ext_m @ w_i
+    J_i = np.array([fp[FP_JIX], fp[FP_JIX], fp[FP_JIZ]])
+    if ip[IP_GYRO]:
+        g_gyr, C_gyr = gyroscopic_moment(np.diag(J_i), Om_i)
+        g[o_i + 3:o_i + 6] += g_gyr
+    if ip[IP_HINGE]:
+        gh, Kh, Ch = hinge_forces(x_i, R_i, v_i, Om_i, xA, RA, Hu, Hpsi, Gu, Gpsi)
+        g[o_i:o_i + 6] += gh
+        diag[DG_V_HINGE] = hinge_energy(x_i, R_i, xA, RA, Hu, Hpsi)
+        diag[DG_P_DISS] += (Ch @ v[o_i:o_i + 6]) @ v[o_i:o_i + 6]
+    if want_tangent:
+        # contact moment M_i is held fixed in space under a material rotation increment
+        Kb[3:6, 3:6] += K_ext - _skew(R_i.T @ M_i)
+        if ip[IP_GYRO]:
+            Cb[3:6, 3:6] += C_gyr
+        if ip[IP_HINGE]:
+            Kb[0:6, 0:6] += Kh
+            Cb[0:6, 0:6] += Ch
+    if o_c >= 0:
+        Om_c = v[o_c + 3:o_c + 6]
+        for i in range(3):
+            g[o_c + i] += F_c[i]
+        g[o_c + 3:o_c + 6] += R_c.T @ M_c
+        if want_tangent:
+            Kb[9:12, 9:12] += -_skew(R_c.T @ M_c)
+        if ip[IP_GYRO]:
+            J_c = np.diag(np.array([fp[FP_JCX], fp[FP_JCX], fp[FP_JCZ]]))
+            g_gyr_c, C_gyr_c = gyroscopic_moment(J_c, Om_c)
+            g[o_c + 3:o_c + 6] += g_gyr_c
+            if want_tangent:
+                Cb[9:12, 9:12] += C_gyr_c
+        if ip[IP_JOURNAL]:
+            jres = np.empty(N_JOURNAL_OUT)
+            power = journal_forces(x_c, v_c, w_c, np.zeros(3), np.zeros(3), fp[FP_OMEGA_O], jp, jres,
+                                   g, o_c, R_c, want_tangent, Kb[6:12, 6:12], Cb[6:12, 6:12])
+            journal_diag(jres, diag[DG_EPS:DG_EPS + 7])
+            diag[DG_P_DISS] -= power
+    drive = prescribe_velocity_residual(o_i + 5, v, fp[FP_OMEGA_I], 1.0, ma, g)
+    diag[DG_DRIVE] = drive
+    diag[DG_P_DRIVE] = drive * fp[FP_OMEGA_I]
+    return drive
+
+
+@numba.njit(cache=True)
+def _skew(a):
+    s = np.zeros((3, 3))
+    s[0, 1], s[0, 2] = -a[2], a[1]
+    s[1, 0], s[1, 2] = a[2], -a[0]
+    s[2, 0], s[2, 1] = -a[1], a[0]
+    return s

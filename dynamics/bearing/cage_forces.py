@@ -1,0 +1,121 @@
+"""Cage contacts of the dynamic model: ball–pocket (§7) and cage–guiding-race hybrid short
+journal (§8), with their tangent contributions. Kernels from dynamics.pocket_contact and
+dynamics.journal; this file only places their results into g, the tangents and diag."""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+
+from dynamics.journal import (
+    J_GUIDANCE, J_OUT_CONTACT_AZIMUTH, J_OUT_DF_DOMEGA_CAGE, J_OUT_DF_DPOS, J_OUT_DF_DVEL,
+    J_OUT_DT_DOMEGA_CAGE, J_OUT_DT_DPOS, J_OUT_DT_DVEL, J_OUT_EPS, J_OUT_FORCE,
+    J_OUT_FRICTION_POWER, J_OUT_METAL_FORCE, J_OUT_TORQUE, cage_race_journal,
+)
+from dynamics.pocket_contact import (
+    P_MU, P_OUT_APPROACH, P_OUT_DFN_DDELTA, P_OUT_DFN_DRATE, P_OUT_FN, P_OUT_FORCE_BALL,
+    P_OUT_FORCE_CAGE, P_OUT_FRICTION_POWER, P_OUT_IN_CONTACT, P_OUT_MOMENT_BALL,
+    P_OUT_MOMENT_CAGE, P_OUT_NORMAL, P_OUT_ORBITAL_POSITION, P_OUT_POINT, P_OUT_SLIDING_SPEED,
+    P_V_REG, _pocket_contact_into,
+)
+
+from .tangents import add_pair, point_map
+
+
+@numba.njit(cache=True)
+def pocket_forces(k, x_b, v_b, w_b, x_c, R_c, v_c, w_c, psi, v0, pp, pres, g, b, cage_off,
+                  F_cage, M_cage, want_tangent, Kd, Ke, Kf, Kb, Cd, Ce, Cf, Cb):
+    """Ball k in its pocket: adds the ball's wrench to g[b:b+6] and the cage's (spatial,
+    about its centre) to F_cage, M_cage; tangents at border offset cage_off."""
+    pres[:] = 0.0
+    _pocket_contact_into(pres, x_b, v_b, w_b, x_c, R_c, v_c, w_c, psi, v0, pp)
+    if pres[P_OUT_IN_CONTACT] <= 0.0:
+        return
+    for i in range(3):
+        g[b + i] += pres[P_OUT_FORCE_BALL + i]
+        g[b + 3 + i] += pres[P_OUT_MOMENT_BALL + i]
+        F_cage[i] += pres[P_OUT_FORCE_CAGE + i]
+        M_cage[i] += pres[P_OUT_MOMENT_CAGE + i]
+    if not want_tangent:
+        return
+    n = pres[P_OUT_NORMAL:P_OUT_NORMAL + 3]
+    p = pres[P_OUT_POINT:P_OUT_POINT + 3]
+    nn = np.outer(n, n)
+    GA = np.empty((3, 6))
+    GB = np.empty((3, 6))
+    I3 = np.eye(3)
+    point_map(p - x_b, I3, GA)
+    point_map(p - x_c, R_c, GB)
+    # normal stiffness along n (contact point on the wall moves with the ball centre)
+    GA0 = np.zeros((3, 6))
+    for i in range(3):
+        GA0[i, i] = 1.0
+    add_pair(k, cage_off, pres[P_OUT_DFN_DDELTA] * nn, GA0, GB, Kd, Ke, Kf, Kb, 1.0)
+    # normal damping and regularised friction act on the relative velocity at p
+    mu, v_reg = pp[P_MU], pp[P_V_REG]
+    c_f = mu * pres[P_OUT_FN] / max(pres[P_OUT_SLIDING_SPEED], v_reg)
+    Jv = pres[P_OUT_DFN_DRATE] * nn + c_f * (I3 - nn)
+    add_pair(k, cage_off, Jv, GA, GB, Cd, Ce, Cf, Cb, 1.0)
+
+
+@numba.njit(cache=True)
+def journal_forces(x_c, v_c, w_c, x_r, v_r, w_race_z, jp, jres, g, cage_off, R_c,
+                   want_tangent, Kb, Cb):
+    """Cage on its guiding land: force and torque about z on the cage (spatial), into the
+    cage rows g[cage_off:cage_off+6]; tangents into Kb, Cb, the cage's own 6x6 blocks.
+    Returns the power of the journal forces on the cage [W] (negative: dissipated)."""
+    off = np.empty(2)
+    vel = np.empty(2)
+    off[0], off[1] = x_c[0] - x_r[0], x_c[1] - x_r[1]
+    vel[0], vel[1] = v_c[0] - v_r[0], v_c[1] - v_r[1]
+    out = cage_race_journal(off, vel, w_c[2], w_race_z, jp)
+    jres[:] = out
+    F = out[J_OUT_FORCE:J_OUT_FORCE + 3]
+    T = out[J_OUT_TORQUE]
+    # torque about the global z axis, mapped to material moments of the cage
+    for i in range(3):
+        g[cage_off + i] += F[i]
+        g[cage_off + 3 + i] += R_c[2, i] * T
+    if want_tangent:
+        o = 0
+        Kb[o, o] -= out[J_OUT_DF_DPOS]
+        Kb[o, o + 1] -= out[J_OUT_DF_DPOS + 1]
+        Kb[o + 1, o] -= out[J_OUT_DF_DPOS + 2]
+        Kb[o + 1, o + 1] -= out[J_OUT_DF_DPOS + 3]
+        Kb[o + 5, o] -= out[J_OUT_DT_DPOS]
+        Kb[o + 5, o + 1] -= out[J_OUT_DT_DPOS + 1]
+        Cb[o, o] -= out[J_OUT_DF_DVEL]
+        Cb[o, o + 1] -= out[J_OUT_DF_DVEL + 1]
+        Cb[o + 1, o] -= out[J_OUT_DF_DVEL + 2]
+        Cb[o + 1, o + 1] -= out[J_OUT_DF_DVEL + 3]
+        Cb[o + 5, o] -= out[J_OUT_DT_DVEL]
+        Cb[o + 5, o + 1] -= out[J_OUT_DT_DVEL + 1]
+        Cb[o, o + 5] -= out[J_OUT_DF_DOMEGA_CAGE]
+        Cb[o + 1, o + 5] -= out[J_OUT_DF_DOMEGA_CAGE + 1]
+        Cb[o + 5, o + 5] -= out[J_OUT_DT_DOMEGA_CAGE]
+    return F[0] * vel[0] + F[1] * vel[1] + T * (w_c[2] - w_race_z)
+
+
+@numba.njit(cache=True)
+def pocket_diag(pres, row):
+    """Per-ball pocket quantities for the saved results and the impact log."""
+    row[0] = pres[P_OUT_FN]
+    row[1] = pres[P_OUT_IN_CONTACT]
+    row[2] = pres[P_OUT_APPROACH]
+    row[3] = pres[P_OUT_ORBITAL_POSITION]
+    row[4] = pres[P_OUT_FRICTION_POWER]
+
+
+@numba.njit(cache=True)
+def journal_diag(jres, diag):
+    diag[0] = jres[J_OUT_EPS]
+    diag[1] = jres[J_OUT_FORCE]
+    diag[2] = jres[J_OUT_FORCE + 1]
+    diag[3] = jres[J_OUT_TORQUE]
+    diag[4] = jres[J_OUT_METAL_FORCE]
+    diag[5] = jres[J_OUT_FRICTION_POWER]
+    diag[6] = jres[J_OUT_CONTACT_AZIMUTH]
+
+
+def guidance_sign(jp) -> float:
+    return float(jp[J_GUIDANCE])

@@ -1,0 +1,139 @@
+"""`BearingModel`: the ball bearing as a `dynamics.multibody` residual problem.
+
+Implements the protocol of dynamics/multibody/problem.py: `evaluate` and `jacobian` call
+one numba kernel (assembly.evaluate_bearing); `on_accepted_step` logs ball–pocket impacts
+and integrates the energy balance from the diagnostics of the converged state.
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+
+from dynamics.multibody.joints import prescribe_velocity_block_arrow
+from dynamics.multibody.linear_solvers import BlockArrowMatrix
+
+from . import layout
+from .assembly import (
+    DB, DB_POCKET, DG_P_DISS, DG_P_DRIVE, DG_P_EXT, N_DG, diag_size, evaluate_bearing, mass_diagonal,
+)
+from .params import BearingModelParams
+
+IMPACT_FIELDS = ("time", "ball", "orbital_position", "peak_force", "impact_speed", "duration")
+
+
+@numba.njit(cache=True)
+def track_impacts(t, diag, Z, state, events):
+    """Update per-pocket impact state from the accepted step's diagnostics.
+
+    state (Z, 6): in contact, peak force, time of peak, orbital position at peak, impact
+    speed (approach speed when contact began), start time. A finished contact becomes a row
+    of `events` (IMPACT_FIELDS); returns the number of rows written.
+    """
+    n = 0
+    for k in range(Z):
+        d = N_DG + DB * k + DB_POCKET
+        force, touching, approach, orbital = diag[d], diag[d + 1], diag[d + 2], diag[d + 3]
+        if touching > 0.0:
+            if state[k, 0] == 0.0:
+                state[k, 0], state[k, 1], state[k, 4], state[k, 5] = 1.0, 0.0, max(approach, 0.0), t
+            if force > state[k, 1]:
+                state[k, 1], state[k, 2], state[k, 3] = force, t, orbital
+        elif state[k, 0] > 0.0:
+            events[n, 0], events[n, 1], events[n, 2] = state[k, 2], k, state[k, 3]
+            events[n, 3], events[n, 4], events[n, 5] = state[k, 1], state[k, 4], t - state[k, 5]
+            n += 1
+            state[k, 0] = 0.0
+    return n
+
+
+class BearingModel:
+    """Races, Z balls and (optionally) the cage; see layout.py for the coordinates."""
+
+    def __init__(self, params: BearingModelParams, impact_force_threshold: float = 0.0):
+        P = self.params = params
+        Z, has_cage = P.ball_count, P.has_cage
+        self.n_dof = layout.n_dof(Z, has_cage)
+        self.rotation_slots = layout.rotation_slots(Z, has_cage)
+        self.nb = layout.border_size(has_cage)
+        w = np.ones(self.n_dof)
+        radius = 0.5 * P.fp[1]  # pitch radius: rotation errors read as arc lengths [m]
+        for k in range(Z):
+            w[6 * k + 3:6 * k + 6] = 0.0  # ball orientation never enters a force
+        for s in self.rotation_slots:
+            w[s:s + 3] = radius
+        w[layout.spin_row(Z)] = 0.0
+        self.error_weights = w
+        self.mass = mass_diagonal(P.fp, P.ip, self.n_dof)
+        self.K = BlockArrowMatrix.zeros(Z, 6, self.nb)
+        self.C = BlockArrowMatrix.zeros(Z, 6, self.nb)
+        self.S = BlockArrowMatrix.zeros(Z, 6, self.nb)
+        self.diag = np.zeros(diag_size(Z))
+        self._ma = np.zeros(self.n_dof)
+        self._g = np.zeros(self.n_dof)
+        self.impact_speeds = np.zeros(Z)
+        self.impact_threshold = impact_force_threshold
+        self._impact_state = np.zeros((Z, 6))
+        self._events = np.zeros((Z, len(IMPACT_FIELDS)))
+        self.impacts: list[np.ndarray] = []
+        self.energy = {"drive": 0.0, "external": 0.0, "dissipated": 0.0}
+        self._last = None  # (t, P_drive, P_ext, P_diss) of the previous accepted step
+
+    # --- protocol --------------------------------------------------------------------
+    def _kernel(self, t, q, v, a, ma, g, want_tangent):
+        P = self.params
+        K, C = self.K, self.C
+        return evaluate_bearing(
+            t, q, v, a, P.fp, P.ip, P.hertz_inner, P.hertz_outer, P.eta_table, P.traction_f, P.traction_i,
+            P.pocket, P.journal, P.pocket_psi, P.hinge_Hu, P.hinge_Hpsi, P.hinge_Gu, P.hinge_Gpsi,
+            P.static_x, P.static_R, self.impact_speeds, self.mass, want_tangent, ma, g, self.diag,
+            K.D, K.E, K.F, K.B, C.D, C.E, C.F, C.B)
+
+    def evaluate(self, t, q, v, a, ma_out, g_out) -> None:
+        self._kernel(t, q, v, a, ma_out, g_out, False)
+
+    def jacobian(self, t, q, v, a, c_m, c_v, c_q):
+        self._kernel(t, q, v, a, self._ma, self._g, True)
+        S, K, C = self.S, self.K, self.C
+        S.D[...] = c_v * C.D + c_q * K.D
+        S.E[...] = c_v * C.E + c_q * K.E
+        S.F[...] = c_v * C.F + c_q * K.F
+        S.B[...] = c_v * C.B + c_q * K.B
+        Z = self.params.ball_count
+        for k in range(Z):
+            S.D[k] += np.diag(c_m * self.mass[6 * k:6 * k + 6])
+        S.B += np.diag(c_m * self.mass[6 * Z:])
+        prescribe_velocity_block_arrow(S, layout.spin_row(Z), c_m, c_v, 1.0)
+        return S
+
+    def on_accepted_step(self, t, q, v, a) -> None:
+        """Impact log and energy balance from the converged state's diagnostics."""
+        d = self.diag
+        if self.params.has_cage:
+            n = track_impacts(t, d, self.params.ball_count, self._impact_state, self._events)
+            for row in self._events[:n]:
+                if row[3] >= self.impact_threshold:
+                    self.impacts.append(row.copy())
+            self._update_impact_speeds()
+        powers = (t, d[DG_P_DRIVE], d[DG_P_EXT], d[DG_P_DISS])
+        if self._last is not None:
+            dt = t - self._last[0]
+            for key, i in (("drive", 1), ("external", 2), ("dissipated", 3)):
+                self.energy[key] += 0.5 * dt * (powers[i] + self._last[i])
+        self._last = powers
+
+    def _update_impact_speeds(self) -> None:
+        """v_0 of the hysteresis law: while a pocket is open, remember the approach speed."""
+        Z = self.params.ball_count
+        base = N_DG + DB_POCKET
+        for k in range(Z):
+            d = base + DB * k
+            if self.diag[d + 1] <= 0.0:
+                self.impact_speeds[k] = max(self.diag[d + 2], 0.0)
+
+    def kinetic_energy(self, v) -> float:
+        """T = sum of m v^2/2 + J Omega^2/2 over all bodies [J] (diagonal mass)."""
+        return 0.5 * float(np.sum(self.mass * v * v))
+
+    def impact_log(self) -> np.ndarray:
+        return np.array(self.impacts).reshape(-1, len(IMPACT_FIELDS))

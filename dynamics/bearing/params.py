@@ -1,0 +1,195 @@
+"""Pack a physical bearing into the plain arrays the force kernel takes (once, outside
+the time loop). Everything here is SI; nothing here runs per step."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from dynamics.geometry import BearingGeometry, CageGeometry, Material, effective_modulus
+from dynamics.hertz import race_hertz_table
+
+from . import layout
+
+# --- float parameter vector fp -----------------------------------------------------------
+FP_D, FP_DM, FP_DI, FP_DO, FP_RI, FP_RO = 0, 1, 2, 3, 4, 5
+FP_MB, FP_JB = 6, 7                        # ball mass [kg], inertia [kg m^2]
+FP_MI, FP_JIX, FP_JIZ = 8, 9, 10          # inner race mass, diametral and polar inertia
+FP_MC, FP_JCX, FP_JCZ = 11, 12, 13        # cage
+FP_OMEGA_I, FP_OMEGA_O = 14, 15           # race speeds about +z [rad/s]
+FP_FX, FP_FZ, FP_MY = 16, 17, 18          # loads on the inner race: radial (x), axial (z), moment (y)
+FP_E_EFF = 19                              # ball-race E' [Pa]
+FP_ETA0, FP_ALPHA_P, FP_TAU0 = 20, 21, 22  # lubricant at its temperature
+FP_MIN_FILM, FP_MU_DRY, FP_ZETA = 23, 24, 25
+FP_V_REG = 26                              # regularisation speed of Coulomb traction [m/s]
+FP_P_STEP, FP_FAR = 27, 28                 # traction table pressure step [Pa], far-pole ratio
+N_FP = 29
+
+# --- integer switches ip ------------------------------------------------------------------
+IP_Z, IP_TRACTION, IP_FILM, IP_CAGE, IP_JOURNAL, IP_HINGE, IP_GYRO = 0, 1, 2, 3, 4, 5, 6
+N_IP = 7
+TRACTION_NONE, TRACTION_COULOMB, TRACTION_EYRING = 0, 1, 2
+FILM_NONE, FILM_NVM, FILM_HD = 0, 1, 2
+
+
+@dataclass(frozen=True)
+class ModelOptions:
+    """Physics switches and contact parameters (the scene's [physics] table, SI)."""
+
+    traction: str = "eyring"          # "eyring" | "coulomb" | "none"
+    film_formula: str = "nvm"         # "nvm" | "hamrock-dowson"; ignored without lubricant
+    cage_race: str = "hybrid"         # "hybrid" | "hydrodynamic" | "dry" | "none"
+    gyroscopic: bool = True
+    min_film: float = 5e-8            # [m]
+    dry_friction: float = 0.1
+    contact_damping_ratio: float = 0.05
+    pocket_friction: float = 0.1
+    pocket_restitution: float = 0.7
+    cage_race_friction: float = 0.1
+    cage_race_boundary: float = 0.05  # epsilon_0
+    coulomb_regularisation: float = 1e-3  # [m/s]
+
+
+@dataclass(frozen=True)
+class BearingModelParams:
+    """Everything the force kernel needs, as contiguous arrays (see FP_*, IP_*)."""
+
+    fp: np.ndarray
+    ip: np.ndarray
+    hertz_inner: np.ndarray
+    hertz_outer: np.ndarray
+    eta_table: np.ndarray
+    traction_f: np.ndarray  # fast-path float data (rule, scratch): traction_adapter
+    traction_i: np.ndarray  # fast-path integer data
+    pocket: np.ndarray
+    journal: np.ndarray
+    hinge_Hu: np.ndarray
+    hinge_Hpsi: np.ndarray
+    hinge_Gu: np.ndarray
+    hinge_Gpsi: np.ndarray
+    static_x: np.ndarray   # x_A, static frame of the hinge [m]
+    static_R: np.ndarray   # R_A
+    pocket_psi: np.ndarray
+    has_cage: bool
+    guide_clearance: float = float("nan")
+    meta: dict = field(default_factory=dict)
+
+    @property
+    def ball_count(self) -> int:
+        return int(self.ip[IP_Z])
+
+    @property
+    def n_dof(self) -> int:
+        return layout.n_dof(self.ball_count, self.has_cage)
+
+
+def inner_race_inertia(bearing: BearingGeometry, race: Material) -> tuple[float, float, float]:
+    """(mass [kg], J_diametral, J_polar [kg m^2]) of the inner ring as a plain annulus
+    between the bore and the shoulder diameter (the groove is neglected)."""
+    missing = [k for k in ("inner_bore_diameter", "inner_shoulder_diameter", "width")
+               if getattr(bearing, k) is None]
+    if missing:
+        raise ValueError(
+            f"the dynamic model needs the inner-ring mass: give bearing.{missing[0]} [m] "
+            f"(missing: {', '.join('bearing.' + m for m in missing)})")
+    ro, ri, w = 0.5 * bearing.inner_shoulder_diameter, 0.5 * bearing.inner_bore_diameter, bearing.width
+    m = race.density * math.pi * (ro * ro - ri * ri) * w
+    jz = 0.5 * m * (ro * ro + ri * ri)
+    jx = m * (3.0 * (ro * ro + ri * ri) + w * w) / 12.0
+    return m, jx, jz
+
+
+def _traction_tables(lubricant):
+    """(eta table, float data, int data, pressure step) of the Eyring fast path."""
+    from dynamics.rheology import viscosity_array
+
+    p = np.linspace(0.0, 5.0e9, 4096)
+    eta = viscosity_array(p, lubricant.model_code, lubricant.rheology_params())
+    return eta, np.zeros(1), np.zeros(1, dtype=np.int64), float(p[1] - p[0])
+
+
+def build_model_params(
+    bearing: BearingGeometry, cage: CageGeometry | None, ball: Material, race: Material,
+    cage_material: Material | None, lubricant, *, axial: float, radial: float, moment: float,
+    inner_speed: float, outer_speed: float, hinge: tuple | None, static_x, static_R,
+    options: ModelOptions = ModelOptions(),
+) -> BearingModelParams:
+    """Pack a bearing. `hinge` = (H_u 3x3 [N/m], H_psi (2) [N m/rad], c_G [s]) or None
+    (inner race free); (static_x, static_R) is the hinge's static frame A (MODEL.md §5)."""
+    Z = bearing.ball_count
+    fp = np.zeros(N_FP)
+    fp[[FP_D, FP_DM, FP_DI, FP_DO, FP_RI, FP_RO]] = (
+        bearing.ball_diameter, bearing.pitch_diameter, bearing.inner_groove_center_diameter,
+        bearing.outer_groove_center_diameter, bearing.inner_groove_radius, bearing.outer_groove_radius)
+    fp[FP_MB], fp[FP_JB] = bearing.ball_mass(ball), bearing.ball_inertia(ball)
+    fp[FP_MI], fp[FP_JIX], fp[FP_JIZ] = inner_race_inertia(bearing, race)
+    fp[FP_OMEGA_I], fp[FP_OMEGA_O] = inner_speed, outer_speed
+    fp[FP_FX], fp[FP_FZ], fp[FP_MY] = radial, axial, moment
+    e_eff = effective_modulus(ball, race)
+    fp[FP_E_EFF] = e_eff
+    fp[FP_MIN_FILM], fp[FP_MU_DRY] = options.min_film, options.dry_friction
+    fp[FP_ZETA], fp[FP_V_REG] = options.contact_damping_ratio, options.coulomb_regularisation
+    ip = np.zeros(N_IP, dtype=np.int64)
+    ip[IP_Z] = Z
+    ip[IP_GYRO] = int(options.gyroscopic)
+    ip[IP_TRACTION] = {"none": TRACTION_NONE, "coulomb": TRACTION_COULOMB, "eyring": TRACTION_EYRING}[options.traction]
+    eta_table, tr_f, tr_i = np.zeros(2), np.zeros(1), np.zeros(1, dtype=np.int64)
+    if lubricant is not None:
+        fp[FP_ETA0], fp[FP_ALPHA_P], fp[FP_TAU0] = lubricant.eta0, lubricant.alpha_star, lubricant.eyring_stress
+        ip[IP_FILM] = FILM_HD if options.film_formula == "hamrock-dowson" else FILM_NVM
+        if options.traction == "eyring":
+            eta_table, tr_f, tr_i, fp[FP_P_STEP] = _traction_tables(lubricant)
+    elif options.traction == "eyring":
+        raise ValueError("Eyring traction needs a lubricant; use traction 'coulomb' for dry contacts")
+    pocket, journal, psi, clearance = np.zeros(1), np.zeros(1), np.zeros(Z), float("nan")
+    if cage is not None:
+        pocket, journal, clearance = _cage_params(bearing, cage, ball, race, cage_material, lubricant, options, fp, ip)
+        from dynamics.pocket_contact import pocket_azimuths
+
+        psi = pocket_azimuths(Z)
+    if hinge is not None:
+        H_u, H_psi, c_G = np.asarray(hinge[0], float), np.asarray(hinge[1], float), float(hinge[2])
+        ip[IP_HINGE] = 1
+    else:
+        H_u, H_psi, c_G = np.zeros((3, 3)), np.zeros(2), 0.0
+    return BearingModelParams(
+        fp=fp, ip=ip,
+        hertz_inner=race_hertz_table(bearing, e_eff, outer=False),
+        hertz_outer=race_hertz_table(bearing, e_eff, outer=True),
+        eta_table=np.ascontiguousarray(eta_table), traction_f=tr_f, traction_i=tr_i,
+        pocket=pocket, journal=journal,
+        hinge_Hu=np.ascontiguousarray(H_u), hinge_Hpsi=np.ascontiguousarray(H_psi),
+        hinge_Gu=np.ascontiguousarray(c_G * H_u), hinge_Gpsi=np.ascontiguousarray(c_G * H_psi),
+        static_x=np.ascontiguousarray(static_x, dtype=float),
+        static_R=np.ascontiguousarray(static_R, dtype=float),
+        pocket_psi=np.ascontiguousarray(psi), has_cage=cage is not None, guide_clearance=clearance,
+        meta={"effective_modulus": e_eff},
+    )
+
+
+def _cage_params(bearing, cage, ball, race, cage_material, lubricant, options, fp, ip):
+    from dynamics.journal import journal_parameters_for_cage
+    from dynamics.pocket_contact import pocket_parameters_for_cage
+
+    if cage_material is None:
+        raise ValueError("a bearing with a cage needs the cage material (materials.cage)")
+    m_c = cage.mass(cage_material, bearing)
+    jz, jx = cage.inertia(cage_material, bearing)
+    fp[FP_MC], fp[FP_JCX], fp[FP_JCZ] = m_c, jx, jz
+    ip[IP_CAGE] = 1
+    pocket = pocket_parameters_for_cage(bearing, cage, ball, cage_material,
+                                        restitution=options.pocket_restitution,
+                                        friction_coefficient=options.pocket_friction)
+    journal = np.zeros(1)
+    if options.cage_race != "none":
+        viscosity = lubricant.eta0 if lubricant is not None else 0.0
+        if options.cage_race in ("hybrid", "hydrodynamic") and viscosity <= 0.0:
+            raise ValueError(f"cage_race = {options.cage_race!r} needs a lubricant viscosity")
+        journal = journal_parameters_for_cage(
+            bearing, cage, cage_material, race, viscosity=viscosity,
+            friction_coefficient=options.cage_race_friction, eps0=options.cage_race_boundary,
+            mode=options.cage_race)
+        ip[IP_JOURNAL] = 1
+    return pocket, journal, cage.guide_clearance(bearing)

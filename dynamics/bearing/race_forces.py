@@ -1,0 +1,190 @@
+"""One ball–race contact of the dynamic model: geometry (§6.1), Hertz normal load with
+normal damping (S.24, §6.2), EHD film (§6.3), traction (§6.4), and what the Newton matrix
+needs. A numba kernel writing into a caller-owned row `res` (layout RC_*): the time loop
+calls it 2Z times per residual and allocates nothing here.
+
+Tangent ingredients (see assembly.py): the normal force depends on the relative position
+of ball centre and race point p through the 3x3 stiffness K_p (S.34) and on the relative
+normal velocity through c_n n n^T; traction T = (F_x, F_y, M_z) depends on the slip
+s = (du0, dv0, w_s) through J_t = -dT/ds (positive definite-ish).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from dynamics.film import film_central
+from dynamics.hertz import hertz_table_eval
+from dynamics.race_contact import (
+    OUT_ALPHA, OUT_DELTA, OUT_EX, OUT_EY, OUT_LEVER, OUT_N, OUT_P, OUT_SLIDE, OUT_SPIN,
+    OUT_SRR, OUT_U_SUM, ball_race_contact_kernel,
+)
+
+from .traction_adapter import eyring_traction
+from .params import (
+    FP_ALPHA_P, FP_D, FP_DI, FP_DM, FP_DO, FP_E_EFF, FP_ETA0, FP_MB, FP_MIN_FILM,
+    FP_MU_DRY, FP_P_STEP, FP_RI, FP_RO, FP_TAU0, FP_V_REG, FP_ZETA, FILM_HD, FILM_NONE,
+    IP_FILM, IP_TRACTION, TRACTION_COULOMB, TRACTION_EYRING,
+)
+
+RC_FB, RC_MB, RC_FR, RC_MR = 0, 3, 6, 9  # wrenches: ball (about its centre), race (about its centre)
+RC_Q, RC_ALPHA, RC_FILM, RC_SRR, RC_PDISS = 12, 13, 14, 15, 16
+RC_KP, RC_CN, RC_JT = 17, 26, 35          # 3x3 each, row-major
+RC_PB, RC_PR, RC_N, RC_EX, RC_EY = 44, 47, 50, 53, 56
+RC_ACTIVE, RC_PMAX, RC_FLAG, RC_SPIN, RC_USUM, RC_VHZ = 59, 60, 61, 62, 63, 64
+N_RC = 65
+N_CONTACT_SCRATCH = 27
+
+
+@numba.njit(cache=True)
+def _coulomb(F_n, a_x, b_y, du0, dv0, w_s, mu, v_reg, T, J):
+    """Regularised Coulomb traction on the ball: T = -mu F_n s/sqrt(|s|^2 + v_reg^2) and a
+    spin moment -mu F_n r_s tanh-like(w_s r_s / v_reg), r_s = (3 pi/16) sqrt(a b) (Johnson,
+    Contact Mechanics, §5.8: spin moment of a Hertzian circle is 3 pi mu P a / 16). J = -dT/ds."""
+    g = math.sqrt(du0 * du0 + dv0 * dv0 + v_reg * v_reg)
+    f = mu * F_n / g
+    T[0], T[1] = -f * du0, -f * dv0
+    J[0, 0] = f * (1.0 - du0 * du0 / (g * g))
+    J[1, 1] = f * (1.0 - dv0 * dv0 / (g * g))
+    J[0, 1] = J[1, 0] = -f * du0 * dv0 / (g * g)
+    r_s = 3.0 * math.pi / 16.0 * math.sqrt(a_x * b_y)
+    ws = w_s * r_s
+    gs = math.sqrt(ws * ws + v_reg * v_reg)
+    T[2] = -mu * F_n * r_s * ws / gs
+    J[2, 2] = mu * F_n * r_s * r_s * v_reg * v_reg / (gs * gs * gs)
+    J[0, 2] = J[1, 2] = J[2, 0] = J[2, 1] = 0.0
+
+
+@numba.njit(cache=True)
+def _film(F_n, alpha, is_outer, u_s, fp, method):
+    """Central film thickness [m] (NVM or Hamrock–Dowson), floored at FP_MIN_FILM."""
+    D, d_m = fp[FP_D], fp[FP_DM]
+    c = math.cos(alpha)
+    r = fp[FP_RO] if is_outer else fp[FP_RI]
+    rho_ii1 = -2.0 * c / (d_m + D * c) if is_outer else 2.0 * c / (d_m - D * c)
+    Rx = 1.0 / (2.0 / D + rho_ii1)
+    Ry = 1.0 / (2.0 / D - 1.0 / r)
+    code = 1 if method == FILM_HD else 0
+    h = film_central(code, F_n, Rx, Ry, fp[FP_E_EFF], fp[FP_ETA0], fp[FP_ALPHA_P], max(u_s, 1e-6))
+    return max(h, fp[FP_MIN_FILM])
+
+
+@numba.njit(cache=True)
+def race_contact(x_b, v_b, w_b, x_r, R_r, v_r, w_r, is_outer, fp, ip, table,
+                 eta_table, tr_f, tr_i, cbuf, tbuf, res):
+    """Forces of one ball on one race and their tangent ingredients, into res (N_RC).
+
+    x_b, v_b, w_b: ball centre [m], velocity [m/s], angular velocity [rad/s];
+    x_r, R_r, v_r, w_r: race centre, rotation (race -> global), velocity, spatial angular
+    velocity. Returns True when in contact.
+    """
+    res[:] = 0.0
+    d_g = fp[FP_DO] if is_outer else fp[FP_DI]
+    r_g = fp[FP_RO] if is_outer else fp[FP_RI]
+    ball_race_contact_kernel(x_b, v_b, w_b, x_r, R_r, v_r, w_r, d_g, r_g, fp[FP_D], is_outer, cbuf)
+    delta = cbuf[OUT_DELTA]
+    res[RC_ALPHA] = cbuf[OUT_ALPHA]
+    if delta <= 0.0:
+        return False
+    n = cbuf[OUT_N:OUT_N + 3]
+    p = cbuf[OUT_P:OUT_P + 3]
+    k_h, _, _, c_a, c_b = hertz_table_eval(table, cbuf[OUT_ALPHA])
+    # relative normal velocity: delta grows when the ball moves against n relative to the race
+    vr_p0 = v_r[0] + w_r[1] * (p[2] - x_r[2]) - w_r[2] * (p[1] - x_r[1])
+    vr_p1 = v_r[1] + w_r[2] * (p[0] - x_r[0]) - w_r[0] * (p[2] - x_r[2])
+    vr_p2 = v_r[2] + w_r[0] * (p[1] - x_r[1]) - w_r[1] * (p[0] - x_r[0])
+    delta_dot = -(n[0] * (v_b[0] - vr_p0) + n[1] * (v_b[1] - vr_p1) + n[2] * (v_b[2] - vr_p2))
+    k_n = 1.5 * k_h * math.sqrt(delta)
+    c_n = 2.0 * fp[FP_ZETA] * math.sqrt(k_n * fp[FP_MB])
+    F_el = k_h * delta**1.5
+    F_n = max(F_el + c_n * delta_dot, 0.0)  # no adhesion
+    _contact_stiffness(k_n, F_el, delta, n, x_b, x_r, R_r, d_g, cbuf, res)
+    for i in range(3):
+        for j in range(3):
+            res[RC_CN + 3 * i + j] = c_n * n[i] * n[j] if F_n > 0.0 else 0.0
+    # Hertz semi-axes: the major axis (c_a) lies across the rolling direction
+    f13 = F_el ** (1.0 / 3.0)
+    a_x, b_y = c_b * f13, c_a * f13
+    p_max = 1.5 * F_el / (math.pi * a_x * b_y)
+    du0 = cbuf[OUT_SLIDE] * cbuf[OUT_EX] + cbuf[OUT_SLIDE + 1] * cbuf[OUT_EX + 1] + cbuf[OUT_SLIDE + 2] * cbuf[OUT_EX + 2]
+    dv0 = cbuf[OUT_SLIDE] * cbuf[OUT_EY] + cbuf[OUT_SLIDE + 1] * cbuf[OUT_EY + 1] + cbuf[OUT_SLIDE + 2] * cbuf[OUT_EY + 2]
+    w_s = cbuf[OUT_SPIN]
+    T = np.zeros(3)
+    Jt = np.zeros((3, 3))
+    mode = ip[IP_TRACTION]
+    h = 0.0
+    if ip[IP_FILM] != FILM_NONE:
+        h = _film(F_el, cbuf[OUT_ALPHA], is_outer, cbuf[OUT_U_SUM], fp, ip[IP_FILM])
+    if mode == TRACTION_EYRING:
+        flag = eyring_traction(a_x, b_y, p_max, h, fp[FP_TAU0], du0, dv0, w_s, eta_table,
+                               fp[FP_P_STEP], tr_f, tr_i, tbuf)
+        res[RC_FLAG] = flag
+        for i in range(3):
+            T[i] = tbuf[i]
+            for j in range(3):
+                Jt[i, j] = -tbuf[3 + 3 * i + j]
+    elif mode == TRACTION_COULOMB:
+        _coulomb(F_n, a_x, b_y, du0, dv0, w_s, fp[FP_MU_DRY], fp[FP_V_REG], T, Jt)
+    _wrenches(res, n, p, x_b, x_r, cbuf, F_n, T)
+    for i in range(3):
+        res[RC_N + i] = n[i]
+        res[RC_EX + i] = cbuf[OUT_EX + i]
+        res[RC_EY + i] = cbuf[OUT_EY + i]
+        for j in range(3):
+            res[RC_JT + 3 * i + j] = Jt[i, j]
+    res[RC_Q] = F_n
+    res[RC_FILM] = h
+    res[RC_SRR] = cbuf[OUT_SRR]
+    res[RC_SPIN] = w_s
+    res[RC_USUM] = cbuf[OUT_U_SUM]
+    res[RC_PMAX] = p_max
+    res[RC_VHZ] = 0.4 * F_el * delta  # Hertz elastic energy 2/5 k_h delta^(5/2) [J]
+    res[RC_PDISS] = -(T[0] * du0 + T[1] * dv0 + T[2] * w_s) + max(F_n - F_el, 0.0) * delta_dot
+    res[RC_ACTIVE] = 1.0
+    return True
+
+
+@numba.njit(cache=True)
+def _contact_stiffness(k_n, F_n, delta, n, x_b, x_r, R_r, d_g, cbuf, res):
+    """K_p = -dF_ball/dx_b (3x3) of the Hertz force F_n n (S.34), with the normal's rotation
+    resolved by direction: across the groove (e_y) the curvature centre C stays put and n
+    turns by dx/s; along the circumference (e_g) C follows the ball's azimuth, so n turns by
+    (1 - d/(2 rho)) dx/s. s = |C - x_b|, rho = distance of the ball centre from the race
+    axis, d = groove curvature-centre diameter. (S.34 neglects dk_h/dalpha; so does this.)"""
+    s = cbuf[OUT_LEVER]
+    axis = R_r[:, 2]
+    rel = x_b - x_r
+    radial = rel - (rel @ axis) * axis
+    rho = math.sqrt(radial @ radial)
+    e_g = np.cross(axis, radial) / rho
+    ey = cbuf[OUT_EY:OUT_EY + 3]
+    k_y = F_n / s
+    k_g = F_n * (1.0 - 0.5 * d_g / rho) / s
+    for i in range(3):
+        for j in range(3):
+            res[RC_KP + 3 * i + j] = k_n * n[i] * n[j] + k_y * ey[i] * ey[j] + k_g * e_g[i] * e_g[j]
+
+
+@numba.njit(cache=True)
+def _wrenches(res, n, p, x_b, x_r, cbuf, F_n, T):
+    """Force on the ball f = F_n n + F_x e_x + F_y e_y at p, its moment about the ball centre
+    plus the spin moment M_z n; the race gets the opposite force at p (moment about x_r)."""
+    ex = cbuf[OUT_EX:OUT_EX + 3]
+    ey = cbuf[OUT_EY:OUT_EY + 3]
+    f = np.empty(3)
+    for i in range(3):
+        f[i] = F_n * n[i] + T[0] * ex[i] + T[1] * ey[i]
+        res[RC_PB + i] = p[i] - x_b[i]
+        res[RC_PR + i] = p[i] - x_r[i]
+    rb = res[RC_PB:RC_PB + 3]
+    rr = res[RC_PR:RC_PR + 3]
+    mb = np.cross(rb, f)
+    mr = np.cross(rr, f)
+    for i in range(3):
+        res[RC_FB + i] = f[i]
+        res[RC_MB + i] = mb[i] + T[2] * n[i]
+        res[RC_FR + i] = -f[i]
+        res[RC_MR + i] = -mr[i] - T[2] * n[i]

@@ -1,0 +1,76 @@
+"""Assembly of approximate tangents in block-arrow form (MODEL.md §9).
+
+Every contact term has the same shape: a generalised force T (k components) acting through
+maps G_A (k x 6) on the ball and G_B (k x 6) on a border body, and depending on the
+relative motion s = G_A W_A - G_B W_B, where W are the bodies' generalised velocities (or
+position increments). With J = -dT/ds the residual tangents are
+
+    ball-ball  G_A^T J G_A      ball-border  -G_A^T J G_B
+    border-ball -G_B^T J G_A    border-border G_B^T J G_B
+
+Body maps: a ball's W = (v, omega) (spatial); a border body's W = (v, Omega) with Omega
+material, so its rotation columns are multiplied by its rotation matrix R.
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+
+
+@numba.njit(cache=True)
+def point_map(r, R, out):
+    """out (3x6) = [I, -r~ R]: velocity of the material point at offset r [m] of a body
+    with material angular velocity (R = I for spatial)."""
+    out[:, :] = 0.0
+    for i in range(3):
+        out[i, i] = 1.0
+    # -r~ = [[0, r2, -r1], [-r2, 0, r0], [r1, -r0, 0]]
+    m = np.zeros((3, 3))
+    m[0, 1], m[0, 2] = r[2], -r[1]
+    m[1, 0], m[1, 2] = -r[2], r[0]
+    m[2, 0], m[2, 1] = r[1], -r[0]
+    out[:, 3:] = m @ R
+
+
+@numba.njit(cache=True)
+def slip_map(ex, ey, n, r, R, out):
+    """out (3x6): rows d(du0, dv0, w_s)/dW of a body at contact offset r: e_x^T [I, -r~R],
+    e_y^T [I, -r~R], [0, n^T R]."""
+    pm = np.empty((3, 6))
+    point_map(r, R, pm)
+    for j in range(6):
+        out[0, j] = ex[0] * pm[0, j] + ex[1] * pm[1, j] + ex[2] * pm[2, j]
+        out[1, j] = ey[0] * pm[0, j] + ey[1] * pm[1, j] + ey[2] * pm[2, j]
+        out[2, j] = 0.0
+    for j in range(3):
+        out[2, 3 + j] = n[0] * R[0, j] + n[1] * R[1, j] + n[2] * R[2, j]
+
+
+@numba.njit(cache=True)
+def add_pair(k, off, J, GA, GB, D, E, F, B, scale):
+    """Add scale x (the four blocks above) for ball k and the border body at offset `off`
+    (off < 0: the other body is fixed, only the ball block is added)."""
+    AJ = GA.T @ J
+    D[k] += scale * (AJ @ GA)
+    if off < 0:
+        return
+    nb = GB.shape[1]
+    E[k, :, off:off + nb] -= scale * (AJ @ GB)
+    BJ = GB.T @ J
+    F[k, off:off + nb, :] -= scale * (BJ @ GA)
+    B[off:off + nb, off:off + nb] += scale * (BJ @ GB)
+
+
+@numba.njit(cache=True)
+def add_border_pair(offA, offB, J, GA, GB, B, scale):
+    """The same pattern between two border bodies (e.g. cage and inner race)."""
+    na, nb = GA.shape[1], GB.shape[1]
+    AJ = GA.T @ J
+    B[offA:offA + na, offA:offA + na] += scale * (AJ @ GA)
+    if offB < 0:
+        return
+    B[offA:offA + na, offB:offB + nb] -= scale * (AJ @ GB)
+    BJ = GB.T @ J
+    B[offB:offB + nb, offA:offA + na] -= scale * (BJ @ GA)
+    B[offB:offB + nb, offB:offB + nb] += scale * (BJ @ GB)

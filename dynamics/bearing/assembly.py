@@ -27,7 +27,7 @@ from .params import (
 from .race_forces import (
     N_CONTACT_SCRATCH, N_RC, RC_ACTIVE, RC_ALPHA, RC_CN, RC_EX, RC_EY, RC_FB, RC_FILM,
     RC_FLAG, RC_FR, RC_JT, RC_KP, RC_MB, RC_MR, RC_N, RC_PB, RC_PDISS, RC_PMAX, RC_PR, RC_Q,
-    RC_SRR, RC_VHZ, race_contact,
+    RC_SRR, RC_VHZ, RC_LOAD_SLOPE, RC_WTB, RC_WTR, race_contact,
 )
 from .tangents import add_pair, point_map, slip_map
 
@@ -81,6 +81,33 @@ def _race_term(k, off, res, R_r, want_tangent, Kd, Ke, Kf, Kb, Cd, Ce, Cf, Cb):
     slip_map(ex, ey, n, res[RC_PR:RC_PR + 3], R_r, SB)
     Jt = res[RC_JT:RC_JT + 9].copy().reshape(3, 3)
     add_pair(k, off, Jt, SA, SB, Cd, Ce, Cf, Cb, 1.0)
+    _load_coupling(k, off, res, GB, R_r, Kd, Ke, Kf, Kb)
+
+
+@numba.njit(cache=True)
+def _load_coupling(k, off, res, GB, R_r, Kd, Ke, Kf, Kb):
+    """Traction scales with the normal load: d(wrench)/d(delta) = slope x wrench, with
+    d delta/dx_b = -n and d delta/dW_race = n^T G_B (the race point map)."""
+    slope = res[RC_LOAD_SLOPE]
+    if slope == 0.0:
+        return
+    n = res[RC_N:RC_N + 3]
+    wb = res[RC_WTB:RC_WTB + 6]
+    for i in range(6):
+        for j in range(3):
+            Kd[k, i, j] += slope * wb[i] * n[j]
+    if off < 0:
+        return
+    nG = n @ GB  # (6,): d delta / d W_race
+    wr = np.empty(6)
+    wr[:3] = res[RC_WTR:RC_WTR + 3]
+    wr[3:] = R_r.T @ res[RC_WTR + 3:RC_WTR + 6]  # material moment rows
+    for i in range(6):
+        for j in range(6):
+            Ke[k, i, off + j] -= slope * wb[i] * nG[j]
+            Kb[off + i, off + j] -= slope * wr[i] * nG[j]
+        for j in range(3):
+            Kf[k, off + i, j] += slope * wr[i] * n[j]
 
 
 @numba.njit(cache=True)

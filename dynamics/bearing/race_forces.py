@@ -14,8 +14,6 @@ from __future__ import annotations
 import math
 
 import numba
-import numpy as np
-
 from dynamics.film import film_central
 from dynamics.hertz import hertz_table_eval
 from dynamics.race_contact import (
@@ -35,27 +33,34 @@ RC_Q, RC_ALPHA, RC_FILM, RC_SRR, RC_PDISS = 12, 13, 14, 15, 16
 RC_KP, RC_CN, RC_JT = 17, 26, 35          # 3x3 each, row-major
 RC_PB, RC_PR, RC_N, RC_EX, RC_EY = 44, 47, 50, 53, 56
 RC_ACTIVE, RC_PMAX, RC_FLAG, RC_SPIN, RC_USUM, RC_VHZ = 59, 60, 61, 62, 63, 64
-N_RC = 65
+RC_LOAD_SLOPE = 65    # d ln|T| / d delta [1/m]: traction's dependence on the normal approach
+RC_WTB, RC_WTR = 66, 72  # traction part of the ball / race wrenches (6 each, spatial)
+N_RC = 78
+# |T| grows like F_n (Coulomb) or roughly like the contact area, F_n^(2/3) (Eyring plateau)
+LOAD_EXPONENT_COULOMB, LOAD_EXPONENT_EYRING = 1.0, 2.0 / 3.0
 N_CONTACT_SCRATCH = 27
 
 
 @numba.njit(cache=True)
-def _coulomb(F_n, a_x, b_y, du0, dv0, w_s, mu, v_reg, T, J):
+def _coulomb(F_n, a_x, b_y, du0, dv0, w_s, mu, v_reg, out):
     """Regularised Coulomb traction on the ball: T = -mu F_n s/sqrt(|s|^2 + v_reg^2) and a
-    spin moment -mu F_n r_s tanh-like(w_s r_s / v_reg), r_s = (3 pi/16) sqrt(a b) (Johnson,
-    Contact Mechanics, §5.8: spin moment of a Hertzian circle is 3 pi mu P a / 16). J = -dT/ds."""
-    g = math.sqrt(du0 * du0 + dv0 * dv0 + v_reg * v_reg)
+    spin moment -mu F_n r_s w_s r_s/sqrt((w_s r_s)^2 + v_reg^2), r_s = (3 pi/16) sqrt(a b)
+    (Johnson, Contact Mechanics, 1985, §5.8: the spin moment of a Hertzian circle under
+    full sliding is 3 pi mu P a / 16). out[0:3] = T, out[3:12] = dT/ds row-major."""
+    g2 = du0 * du0 + dv0 * dv0 + v_reg * v_reg
+    g = math.sqrt(g2)
     f = mu * F_n / g
-    T[0], T[1] = -f * du0, -f * dv0
-    J[0, 0] = f * (1.0 - du0 * du0 / (g * g))
-    J[1, 1] = f * (1.0 - dv0 * dv0 / (g * g))
-    J[0, 1] = J[1, 0] = -f * du0 * dv0 / (g * g)
+    out[0], out[1] = -f * du0, -f * dv0
+    out[3] = -f * (1.0 - du0 * du0 / g2)
+    out[4] = f * du0 * dv0 / g2
+    out[6] = out[4]
+    out[7] = -f * (1.0 - dv0 * dv0 / g2)
     r_s = 3.0 * math.pi / 16.0 * math.sqrt(a_x * b_y)
     ws = w_s * r_s
     gs = math.sqrt(ws * ws + v_reg * v_reg)
-    T[2] = -mu * F_n * r_s * ws / gs
-    J[2, 2] = mu * F_n * r_s * r_s * v_reg * v_reg / (gs * gs * gs)
-    J[0, 2] = J[1, 2] = J[2, 0] = J[2, 1] = 0.0
+    out[2] = -mu * F_n * r_s * ws / gs
+    out[11] = -mu * F_n * r_s * r_s * v_reg * v_reg / (gs * gs * gs)
+    out[5] = out[8] = out[9] = out[10] = 0.0
 
 
 @numba.njit(cache=True)
@@ -112,29 +117,28 @@ def race_contact(x_b, v_b, w_b, x_r, R_r, v_r, w_r, is_outer, fp, ip, table,
     du0 = cbuf[OUT_SLIDE] * cbuf[OUT_EX] + cbuf[OUT_SLIDE + 1] * cbuf[OUT_EX + 1] + cbuf[OUT_SLIDE + 2] * cbuf[OUT_EX + 2]
     dv0 = cbuf[OUT_SLIDE] * cbuf[OUT_EY] + cbuf[OUT_SLIDE + 1] * cbuf[OUT_EY + 1] + cbuf[OUT_SLIDE + 2] * cbuf[OUT_EY + 2]
     w_s = cbuf[OUT_SPIN]
-    T = np.zeros(3)
-    Jt = np.zeros((3, 3))
     mode = ip[IP_TRACTION]
     h = 0.0
     if ip[IP_FILM] != FILM_NONE:
         h = _film(F_el, cbuf[OUT_ALPHA], is_outer, cbuf[OUT_U_SUM], fp, ip[IP_FILM])
+    # traction T = tbuf[0:3] and dT/ds = tbuf[3:12] (row-major), on the ball
     if mode == TRACTION_EYRING:
-        flag = eyring_traction(a_x, b_y, p_max, h, fp[FP_TAU0], du0, dv0, w_s, eta_table,
-                               fp[FP_P_STEP], tr_f, tr_i, tbuf)
-        res[RC_FLAG] = flag
-        for i in range(3):
-            T[i] = tbuf[i]
-            for j in range(3):
-                Jt[i, j] = -tbuf[3 + 3 * i + j]
+        res[RC_FLAG] = eyring_traction(a_x, b_y, p_max, h, fp[FP_TAU0], du0, dv0, w_s, eta_table,
+                                       fp[FP_P_STEP], tr_f, tr_i, tbuf)
     elif mode == TRACTION_COULOMB:
-        _coulomb(F_n, a_x, b_y, du0, dv0, w_s, fp[FP_MU_DRY], fp[FP_V_REG], T, Jt)
-    _wrenches(res, n, p, x_b, x_r, cbuf, F_n, T)
+        _coulomb(F_n, a_x, b_y, du0, dv0, w_s, fp[FP_MU_DRY], fp[FP_V_REG], tbuf)
+    else:
+        tbuf[:] = 0.0
+    _wrenches(res, n, p, x_b, x_r, cbuf, F_n, tbuf)
+    if F_n > 0.0 and mode != 0:
+        expo = LOAD_EXPONENT_EYRING if mode == TRACTION_EYRING else LOAD_EXPONENT_COULOMB
+        res[RC_LOAD_SLOPE] = expo * k_n / F_n
     for i in range(3):
         res[RC_N + i] = n[i]
         res[RC_EX + i] = cbuf[OUT_EX + i]
         res[RC_EY + i] = cbuf[OUT_EY + i]
-        for j in range(3):
-            res[RC_JT + 3 * i + j] = Jt[i, j]
+    for i in range(9):
+        res[RC_JT + i] = -tbuf[3 + i]
     res[RC_Q] = F_n
     res[RC_FILM] = h
     res[RC_SRR] = cbuf[OUT_SRR]
@@ -142,7 +146,7 @@ def race_contact(x_b, v_b, w_b, x_r, R_r, v_r, w_r, is_outer, fp, ip, table,
     res[RC_USUM] = cbuf[OUT_U_SUM]
     res[RC_PMAX] = p_max
     res[RC_VHZ] = 0.4 * F_el * delta  # Hertz elastic energy 2/5 k_h delta^(5/2) [J]
-    res[RC_PDISS] = -(T[0] * du0 + T[1] * dv0 + T[2] * w_s) + max(F_n - F_el, 0.0) * delta_dot
+    res[RC_PDISS] = -(tbuf[0] * du0 + tbuf[1] * dv0 + tbuf[2] * w_s) + max(F_n - F_el, 0.0) * delta_dot
     res[RC_ACTIVE] = 1.0
     return True
 
@@ -155,14 +159,16 @@ def _contact_stiffness(k_n, F_n, delta, n, x_b, x_r, R_r, d_g, cbuf, res):
     (1 - d/(2 rho)) dx/s. s = |C - x_b|, rho = distance of the ball centre from the race
     axis, d = groove curvature-centre diameter. (S.34 neglects dk_h/dalpha; so does this.)"""
     s = cbuf[OUT_LEVER]
-    axis = R_r[:, 2]
-    rel = x_b - x_r
-    radial = rel - (rel @ axis) * axis
-    rho = math.sqrt(radial @ radial)
-    e_g = np.cross(axis, radial) / rho
+    ax0, ax1, ax2 = R_r[0, 2], R_r[1, 2], R_r[2, 2]
+    r0, r1, r2 = x_b[0] - x_r[0], x_b[1] - x_r[1], x_b[2] - x_r[2]
+    along = r0 * ax0 + r1 * ax1 + r2 * ax2
+    r0, r1, r2 = r0 - along * ax0, r1 - along * ax1, r2 - along * ax2
+    rho = math.sqrt(r0 * r0 + r1 * r1 + r2 * r2)
+    g0, g1, g2 = (ax1 * r2 - ax2 * r1) / rho, (ax2 * r0 - ax0 * r2) / rho, (ax0 * r1 - ax1 * r0) / rho
     ey = cbuf[OUT_EY:OUT_EY + 3]
     k_y = F_n / s
     k_g = F_n * (1.0 - 0.5 * d_g / rho) / s
+    e_g = (g0, g1, g2)
     for i in range(3):
         for j in range(3):
             res[RC_KP + 3 * i + j] = k_n * n[i] * n[j] + k_y * ey[i] * ey[j] + k_g * e_g[i] * e_g[j]
@@ -174,17 +180,27 @@ def _wrenches(res, n, p, x_b, x_r, cbuf, F_n, T):
     plus the spin moment M_z n; the race gets the opposite force at p (moment about x_r)."""
     ex = cbuf[OUT_EX:OUT_EX + 3]
     ey = cbuf[OUT_EY:OUT_EY + 3]
-    f = np.empty(3)
     for i in range(3):
-        f[i] = F_n * n[i] + T[0] * ex[i] + T[1] * ey[i]
+        res[RC_FB + i] = F_n * n[i] + T[0] * ex[i] + T[1] * ey[i]
+        res[RC_FR + i] = -res[RC_FB + i]
         res[RC_PB + i] = p[i] - x_b[i]
         res[RC_PR + i] = p[i] - x_r[i]
-    rb = res[RC_PB:RC_PB + 3]
-    rr = res[RC_PR:RC_PR + 3]
-    mb = np.cross(rb, f)
-    mr = np.cross(rr, f)
-    for i in range(3):
-        res[RC_FB + i] = f[i]
-        res[RC_MB + i] = mb[i] + T[2] * n[i]
-        res[RC_FR + i] = -f[i]
-        res[RC_MR + i] = -mr[i] - T[2] * n[i]
+    f0, f1, f2 = res[RC_FB], res[RC_FB + 1], res[RC_FB + 2]
+    b0, b1, b2 = res[RC_PB], res[RC_PB + 1], res[RC_PB + 2]
+    q0, q1, q2 = res[RC_PR], res[RC_PR + 1], res[RC_PR + 2]
+    res[RC_MB] = b1 * f2 - b2 * f1 + T[2] * n[0]
+    res[RC_MB + 1] = b2 * f0 - b0 * f2 + T[2] * n[1]
+    res[RC_MB + 2] = b0 * f1 - b1 * f0 + T[2] * n[2]
+    res[RC_MR] = -(q1 * f2 - q2 * f1) - T[2] * n[0]
+    res[RC_MR + 1] = -(q2 * f0 - q0 * f2) - T[2] * n[1]
+    res[RC_MR + 2] = -(q0 * f1 - q1 * f0) - T[2] * n[2]
+    # the traction part alone (for the load-coupling tangent)
+    t0, t1, t2 = T[0] * ex[0] + T[1] * ey[0], T[0] * ex[1] + T[1] * ey[1], T[0] * ex[2] + T[1] * ey[2]
+    res[RC_WTB], res[RC_WTB + 1], res[RC_WTB + 2] = t0, t1, t2
+    res[RC_WTB + 3] = b1 * t2 - b2 * t1 + T[2] * n[0]
+    res[RC_WTB + 4] = b2 * t0 - b0 * t2 + T[2] * n[1]
+    res[RC_WTB + 5] = b0 * t1 - b1 * t0 + T[2] * n[2]
+    res[RC_WTR], res[RC_WTR + 1], res[RC_WTR + 2] = -t0, -t1, -t2
+    res[RC_WTR + 3] = -(q1 * t2 - q2 * t1) - T[2] * n[0]
+    res[RC_WTR + 4] = -(q2 * t0 - q0 * t2) - T[2] * n[1]
+    res[RC_WTR + 5] = -(q0 * t1 - q1 * t0) - T[2] * n[2]

@@ -1,14 +1,12 @@
-"""Eyring traction (MODEL.md §6.4): quadrature reference, closed-form limits, fast path."""
+"""Eyring traction (MODEL.md §6.4): quadrature reference and closed-form limits."""
 
 import math
 
 import numpy as np
 import pytest
 
-from dynamics import film, traction
+from dynamics import traction
 from dynamics.lubricant import load_builtin_lubricant
-from dynamics.traction_fast import FLAG_NO_CONTACT, FLAG_OK, FLAG_PRESSURE_CLAMPED, FastTraction, traction_fast
-from tests.lubrication_points import random_operating_points
 
 REF_GRID = (128, 1024)  # converged reference grid (see test_quadrature_converges_with_grid)
 
@@ -16,11 +14,6 @@ REF_GRID = (128, 1024)  # converged reference grid (see test_quadrature_converge
 @pytest.fixture(scope="module")
 def o156():
     return load_builtin_lubricant("nato-o156")
-
-
-@pytest.fixture(scope="module")
-def fast(o156):
-    return FastTraction.build(o156)
 
 
 def _ref(lub, point, grid=REF_GRID):
@@ -123,51 +116,4 @@ def test_grid_kernel_equals_py_func_on_random_inputs(o156):
         assert np.allclose(fast[3], slow[3], rtol=1e-11, atol=0)
 
 
-def test_fast_path_matches_quadrature_over_operating_range(o156, fast):
-    points = random_operating_points(40, seed=5, lubricant=o156, film=film.film_central_nvm)
-    # add the extremes: tiny slip without spin (Newtonian edge) and maximum slip
-    a, b, p_h, h = points[0][:4]
-    points += [(a, b, p_h, h, 1e-5 * 12.5, 0.0, 0.0), (a, b, p_h, h, 0.3 * 12.5, 0.0, 0.0)]
-    worst_f = worst_m = worst_j = 0.0
-    for point in points:
-        Fx, Fy, Mz, J = _ref(o156, point)
-        f, jac, flag = fast.evaluate(*point)
-        assert flag == FLAG_OK
-        worst_f = max(worst_f, math.hypot(f[0] - Fx, f[1] - Fy) / math.hypot(Fx, Fy))
-        if point[6] != 0.0:  # without spin M_z is zero up to round-off
-            worst_m = max(worst_m, abs(f[2] - Mz) / abs(Mz))
-        worst_j = max(worst_j, np.abs(jac - J).max() / np.abs(J).max())
-    print(f"fast vs quadrature: |dF|/|F| {worst_f:.2e}, |dM|/|M| {worst_m:.2e}, J {worst_j:.2e}")
-    assert worst_f < 0.02 and worst_m < 0.02 and worst_j < 0.02
-
-
-def test_fast_kernel_equals_py_func_and_never_nan(o156, fast):
-    rng = np.random.default_rng(13)
-    args = fast.args()
-    cases = [(2e-4, 2e-3, 1.5e9, 2e-7, 0.0, 0.0, 0.0),                       # no slip, no spin
-             (2e-4, 2e-3, 1.5e9, 2e-7, 0.0, 0.0, 100.0),                     # pole at the centre
-             (2e-4, 2e-3, 1.5e9, 2e-7, 100.0 * 2e-3, 0.0, 100.0),            # pole on the edge
-             (2e-4, 2e-3, 1.5e9, 2e-7, 1e-300, 0.0, 1e-300)]
-    cases += [(rng.uniform(1e-4, 4e-4), rng.uniform(1e-3, 3e-3), rng.uniform(3e8, 2.5e9), rng.uniform(5e-8, 5e-7),
-               rng.uniform(-1, 1), rng.uniform(-0.1, 0.1), rng.uniform(-500, 500)) for _ in range(10)]
-    for c in cases:
-        o1, o2 = np.empty(12), np.empty(12)
-        fl1 = traction_fast(*c[:4], o156.eyring_stress, *c[4:], *args[:-1], np.empty_like(args[-1]), o1)
-        fl2 = traction_fast.py_func(*c[:4], o156.eyring_stress, *c[4:], *args[:-1], np.empty_like(args[-1]), o2)
-        assert fl1 == fl2 == FLAG_OK
-        assert np.all(np.isfinite(o1)) and np.allclose(o1, o2, rtol=1e-9, atol=1e-12 * np.abs(o2).max())
-    f, _, flag = fast.evaluate(0.0, 2e-3, 1.5e9, 2e-7, 0.1, 0.0, 0.0)
-    assert flag == FLAG_NO_CONTACT and not f.any()
-    f, _, flag = fast.evaluate(2e-4, 2e-3, 6e9, 2e-7, 0.1, 0.0, 0.0)
-    assert flag == FLAG_PRESSURE_CLAMPED and np.all(np.isfinite(f))
-
-
-def test_fast_jacobian_matches_finite_differences_of_reference(o156, fast):
-    point = [2.5e-4, 2.4e-3, 1.6e9, 2.5e-7, 0.02, -0.01, 60.0]
-    _, J, _ = fast.evaluate(*point)
-    for col, d in enumerate((1e-5, 1e-5, 1e-3)):
-        hi, lo = list(point), list(point)
-        hi[4 + col] += d
-        lo[4 + col] -= d
-        fd = (np.array(_ref(o156, hi)[:3]) - np.array(_ref(o156, lo)[:3])) / (2 * d)
-        assert np.allclose(J[:, col], fd, rtol=0.02, atol=0.02 * np.abs(fd).max())
+# The fast path (dynamics.traction_fast) is tested in tests/test_traction_fast.py.

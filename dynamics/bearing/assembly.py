@@ -21,13 +21,13 @@ from dynamics.pocket_contact import N_POCKET_OUT, P_OUT_APPROACH, P_OUT_DFN_DRAT
 
 from .cage_forces import journal_diag, journal_forces, pocket_diag, pocket_forces
 from .params import (
-    FP_FX, FP_FZ, FP_JB, FP_JCX, FP_JCZ, FP_JIX, FP_JIZ, FP_MB, FP_MC, FP_MI, FP_MY,
+    FP_D, FP_FX, FP_FZ, FP_JB, FP_JCX, FP_JCZ, FP_JIX, FP_JIZ, FP_MB, FP_MC, FP_MI, FP_MY,
     FP_OMEGA_I, FP_OMEGA_O, IP_CAGE, IP_GYRO, IP_HINGE, IP_JOURNAL, IP_Z,
 )
 from .race_forces import (
     N_CONTACT_SCRATCH, N_RC, RC_ACTIVE, RC_ALPHA, RC_CN, RC_EX, RC_EY, RC_FB, RC_FILM,
     RC_FLAG, RC_FR, RC_JT, RC_KP, RC_MB, RC_MR, RC_N, RC_PB, RC_PDISS, RC_PMAX, RC_PR, RC_Q,
-    RC_SRR, RC_VHZ, RC_LOAD_SLOPE, RC_WTB, RC_WTR, race_contact,
+    RC_SRR, RC_VHZ, RC_LOAD_SLOPE, RC_WTB, RC_WTR, RC_DN, race_contact,
 )
 from .tangents import add_pair, point_map, slip_map
 
@@ -61,8 +61,8 @@ def mass_diagonal(fp, ip, n):
 
 
 @numba.njit(cache=True)
-def _race_term(k, off, res, R_r, want_tangent, Kd, Ke, Kf, Kb, Cd, Ce, Cf, Cb):
-    """Tangents of one ball–race contact (off < 0: fixed race)."""
+def _race_term(k, off, res, R_r, Om_r, w_b, w_r, D, want_tangent, Kd, Ke, Kf, Kb, Cd, Ce, Cf, Cb):
+    """Tangents of one ball–race contact (off < 0: fixed race); w_r: race angular velocity."""
     if not want_tangent:
         return
     GA = np.zeros((3, 6))
@@ -82,6 +82,51 @@ def _race_term(k, off, res, R_r, want_tangent, Kd, Ke, Kf, Kb, Cd, Ce, Cf, Cb):
     Jt = res[RC_JT:RC_JT + 9].copy().reshape(3, 3)
     add_pair(k, off, Jt, SA, SB, Cd, Ce, Cf, Cb, 1.0)
     _load_coupling(k, off, res, GB, R_r, Kd, Ke, Kf, Kb)
+    _kinematic_coupling(k, off, res, Jt, SA, SB, w_b, w_r, D, Kd, Ke, Kf, Kb)
+    if off >= 0:
+        _race_spin_coupling(k, off, res, Jt, SA, SB, R_r, Om_r, Ke, Kb)
+
+
+@numba.njit(cache=True)
+def _kinematic_coupling(k, off, res, Jt, SA, SB, w_b, w_r, D, Kd, Ke, Kf, Kb):
+    """Slip depends on positions (dry and lubricated alike): with p = x_b - (D/2) n,
+        d(slip)/dx_b = -w_r~ - (D/2) (w_b - w_r)~ N,   d(w_s)/dx_b = (w_b - w_r)^T N,
+    N = dn/dx_b: the race's rotation carries the contact point, and the turning normal
+    moves it on the spinning ball. The race's translation acts with the opposite sign.
+    K += G^T J_t (ds/dx) in the block pattern (the turning of e_x, e_y is neglected)."""
+    ex, ey, n = res[RC_EX:RC_EX + 3], res[RC_EY:RC_EY + 3], res[RC_N:RC_N + 3]
+    N = res[RC_DN:RC_DN + 9].copy().reshape(3, 3)
+    dw = w_b - w_r
+    ds = -_skew(w_r) - 0.5 * D * (_skew(dw) @ N)
+    Mx = np.empty((3, 3))  # d(du0, dv0, w_s)/dx_b
+    Mx[0, :] = ex @ ds
+    Mx[1, :] = ey @ ds
+    Mx[2, :] = dw @ N
+    JM = Jt @ Mx
+    Kd[k, :, 0:3] += SA.T @ JM
+    if off < 0:
+        return
+    Ke[k, :, off:off + 3] -= SA.T @ JM
+    Kf[k, off:off + 6, 0:3] -= SB.T @ JM
+    Kb[off:off + 6, off:off + 3] += SB.T @ JM
+
+
+@numba.njit(cache=True)
+def _race_spin_coupling(k, off, res, Jt, SA, SB, R_r, Om_r, Ke, Kb):
+    """Tilting a spinning race turns its angular velocity, w_r = R Omega: a material rotation
+    dTheta gives dw_r = -R Omega~ dTheta, so the slip at the contact changes by
+    -dw_r x (p - x_r): d(slip)/dTheta = -r~ R Omega~, d(w_s)/dTheta = n^T R Omega~."""
+    ex, ey, n = res[RC_EX:RC_EX + 3], res[RC_EY:RC_EY + 3], res[RC_N:RC_N + 3]
+    r = res[RC_PR:RC_PR + 3]
+    ROm = R_r @ _skew(Om_r)
+    ds = -(_skew(r) @ ROm)
+    Mt = np.empty((3, 3))
+    Mt[0, :] = ex @ ds
+    Mt[1, :] = ey @ ds
+    Mt[2, :] = n @ ROm
+    JM = Jt @ Mt
+    Ke[k, :, off + 3:off + 6] += SA.T @ JM
+    Kb[off:off + 6, off + 3:off + 6] -= SB.T @ JM
 
 
 @numba.njit(cache=True)
@@ -111,7 +156,7 @@ def _load_coupling(k, off, res, GB, R_r, Kd, Ke, Kf, Kb):
 
 
 @numba.njit(cache=True)
-def evaluate_bearing(t, q, v, a, fp, ip, tab_i, tab_o, eta_table, tr_f, tr_i,
+def evaluate_bearing(t, q, v, a, fp, ip, tab_i, tab_o, eta_table, rule, work, iwork,
                      pp, jp, psi, Hu, Hpsi, Gu, Gpsi, xA, RA, v0, mass, want_tangent,
                      ma, g, diag, Kd, Ke, Kf, Kb, Cd, Ce, Cf, Cb):
     """Fill ma = M a, g = g(t, q, v), diag and (want_tangent) K, C blocks. Returns the
@@ -135,7 +180,8 @@ def evaluate_bearing(t, q, v, a, fp, ip, tab_i, tab_o, eta_table, tr_f, tr_i,
     x_i = q[o_i:o_i + 3]
     R_i = crv_to_matrix(q[o_i + 3:o_i + 6])
     v_i = v[o_i:o_i + 3]
-    w_i = R_i @ v[o_i + 3:o_i + 6]
+    Om_i = v[o_i + 3:o_i + 6]
+    w_i = R_i @ Om_i
     x_o = np.zeros(3)
     R_o = np.eye(3)
     w_o = np.array([0.0, 0.0, fp[FP_OMEGA_O]])
@@ -161,10 +207,10 @@ def evaluate_bearing(t, q, v, a, fp, ip, tab_i, tab_o, eta_table, tr_f, tr_i,
         for outer in (False, True):
             if outer:
                 hit = race_contact(x_b, v_b, w_b, x_o, R_o, x_o, w_o, True, fp, ip, tab_o, eta_table,
-                                   tr_f, tr_i, cbuf, tbuf, res)
+                                   rule, work, iwork, cbuf, tbuf, res)
             else:
                 hit = race_contact(x_b, v_b, w_b, x_i, R_i, v_i, w_i, False, fp, ip, tab_i, eta_table,
-                                   tr_f, tr_i, cbuf, tbuf, res)
+                                   rule, work, iwork, cbuf, tbuf, res)
             j = 1 if outer else 0
             diag[d + DB_AI + j] = res[RC_ALPHA]
             if not hit:
@@ -183,7 +229,8 @@ def evaluate_bearing(t, q, v, a, fp, ip, tab_i, tab_o, eta_table, tr_f, tr_i,
             diag[DG_V_HERTZ] += res[RC_VHZ]
             if res[RC_FLAG] != 0.0:
                 diag[DG_FLAGS] += 1.0
-            _race_term(k, -1 if outer else 0, res, R_o if outer else R_i, want_tangent,
+            _race_term(k, -1 if outer else 0, res, R_o if outer else R_i, Om_i, w_b, w_o if outer else w_i,
+                       fp[FP_D], want_tangent,
                        Kd, Ke, Kf, Kb, Cd, Ce, Cf, Cb)
         if o_c >= 0:
             pocket_forces(k, x_b, v_b, w_b, x_c, R_c, v_c, w_c, psi[k], v0[k], pp, pres, g, b, 6,

@@ -84,7 +84,7 @@ class BearingModel:
         P = self.params
         K, C = self.K, self.C
         return evaluate_bearing(
-            t, q, v, a, P.fp, P.ip, P.hertz_inner, P.hertz_outer, P.eta_table, P.traction_f, P.traction_i,
+            t, q, v, a, P.fp, P.ip, P.hertz_inner, P.hertz_outer, P.eta_table, P.traction_rule, P.traction_work, P.traction_iwork,
             P.pocket, P.journal, P.pocket_psi, P.hinge_Hu, P.hinge_Hpsi, P.hinge_Gu, P.hinge_Gpsi,
             P.static_x, P.static_R, self.impact_speeds, self.mass, want_tangent, ma, g, self.diag,
             K.D, K.E, K.F, K.B, C.D, C.E, C.F, C.B)

@@ -24,8 +24,8 @@ FP_E_EFF = 19                              # ball-race E' [Pa]
 FP_ETA0, FP_ALPHA_P, FP_TAU0 = 20, 21, 22  # lubricant at its temperature
 FP_MIN_FILM, FP_MU_DRY, FP_ZETA = 23, 24, 25
 FP_V_REG = 26                              # regularisation speed of Coulomb traction [m/s]
-FP_P_STEP, FP_FAR = 27, 28                 # traction table pressure step [Pa], far-pole ratio
-N_FP = 29
+FP_P_STEP = 27                             # traction viscosity table pressure step [Pa]
+N_FP = 28
 
 # --- integer switches ip ------------------------------------------------------------------
 IP_Z, IP_TRACTION, IP_FILM, IP_CAGE, IP_JOURNAL, IP_HINGE, IP_GYRO = 0, 1, 2, 3, 4, 5, 6
@@ -61,8 +61,9 @@ class BearingModelParams:
     hertz_inner: np.ndarray
     hertz_outer: np.ndarray
     eta_table: np.ndarray
-    traction_f: np.ndarray  # fast-path float data (rule, scratch): traction_adapter
-    traction_i: np.ndarray  # fast-path integer data
+    traction_rule: np.ndarray   # fast-path quadrature rule (dynamics.traction_nodes)
+    traction_work: np.ndarray   # fast-path scratch (9, n) and (n,) int
+    traction_iwork: np.ndarray
     pocket: np.ndarray
     journal: np.ndarray
     hinge_Hu: np.ndarray
@@ -102,12 +103,12 @@ def inner_race_inertia(bearing: BearingGeometry, race: Material) -> tuple[float,
 
 
 def _traction_tables(lubricant):
-    """(eta table, float data, int data, pressure step) of the Eyring fast path."""
-    from dynamics.rheology import viscosity_array
+    """(eta table, rule, work, iwork, pressure step) of the Eyring fast path."""
+    from dynamics.traction_fast import FastTraction
 
-    p = np.linspace(0.0, 5.0e9, 4096)
-    eta = viscosity_array(p, lubricant.model_code, lubricant.rheology_params())
-    return eta, np.zeros(1), np.zeros(1, dtype=np.int64), float(p[1] - p[0])
+    ft = FastTraction.build(lubricant)
+    work, iwork = ft.workspace()
+    return ft.eta_table, ft.rule, work, iwork, ft.p_step
 
 
 def build_model_params(
@@ -135,12 +136,12 @@ def build_model_params(
     ip[IP_Z] = Z
     ip[IP_GYRO] = int(options.gyroscopic)
     ip[IP_TRACTION] = {"none": TRACTION_NONE, "coulomb": TRACTION_COULOMB, "eyring": TRACTION_EYRING}[options.traction]
-    eta_table, tr_f, tr_i = np.zeros(2), np.zeros(1), np.zeros(1, dtype=np.int64)
+    eta_table, rule, work, iwork = np.zeros(2), np.zeros(1), np.zeros((1, 1)), np.zeros(1, dtype=np.int64)
     if lubricant is not None:
         fp[FP_ETA0], fp[FP_ALPHA_P], fp[FP_TAU0] = lubricant.eta0, lubricant.alpha_star, lubricant.eyring_stress
         ip[IP_FILM] = FILM_HD if options.film_formula == "hamrock-dowson" else FILM_NVM
         if options.traction == "eyring":
-            eta_table, tr_f, tr_i, fp[FP_P_STEP] = _traction_tables(lubricant)
+            eta_table, rule, work, iwork, fp[FP_P_STEP] = _traction_tables(lubricant)
     elif options.traction == "eyring":
         raise ValueError("Eyring traction needs a lubricant; use traction 'coulomb' for dry contacts")
     pocket, journal, psi, clearance = np.zeros(1), np.zeros(1), np.zeros(Z), float("nan")
@@ -158,7 +159,8 @@ def build_model_params(
         fp=fp, ip=ip,
         hertz_inner=race_hertz_table(bearing, e_eff, outer=False),
         hertz_outer=race_hertz_table(bearing, e_eff, outer=True),
-        eta_table=np.ascontiguousarray(eta_table), traction_f=tr_f, traction_i=tr_i,
+        eta_table=np.ascontiguousarray(eta_table), traction_rule=rule, traction_work=work,
+        traction_iwork=iwork,
         pocket=pocket, journal=journal,
         hinge_Hu=np.ascontiguousarray(H_u), hinge_Hpsi=np.ascontiguousarray(H_psi),
         hinge_Gu=np.ascontiguousarray(c_G * H_u), hinge_Gpsi=np.ascontiguousarray(c_G * H_psi),

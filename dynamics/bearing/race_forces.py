@@ -35,7 +35,8 @@ RC_PB, RC_PR, RC_N, RC_EX, RC_EY = 44, 47, 50, 53, 56
 RC_ACTIVE, RC_PMAX, RC_FLAG, RC_SPIN, RC_USUM, RC_VHZ = 59, 60, 61, 62, 63, 64
 RC_LOAD_SLOPE = 65    # d ln|T| / d delta [1/m]: traction's dependence on the normal approach
 RC_WTB, RC_WTR = 66, 72  # traction part of the ball / race wrenches (6 each, spatial)
-N_RC = 78
+RC_DN = 78               # dn/dx_b (3x3): how the contact normal turns as the ball moves
+N_RC = 87
 # |T| grows like F_n (Coulomb) or roughly like the contact area, F_n^(2/3) (Eyring plateau)
 LOAD_EXPONENT_COULOMB, LOAD_EXPONENT_EYRING = 1.0, 2.0 / 3.0
 N_CONTACT_SCRATCH = 27
@@ -79,7 +80,7 @@ def _film(F_n, alpha, is_outer, u_s, fp, method):
 
 @numba.njit(cache=True)
 def race_contact(x_b, v_b, w_b, x_r, R_r, v_r, w_r, is_outer, fp, ip, table,
-                 eta_table, tr_f, tr_i, cbuf, tbuf, res):
+                 eta_table, rule, work, iwork, cbuf, tbuf, res):
     """Forces of one ball on one race and their tangent ingredients, into res (N_RC).
 
     x_b, v_b, w_b: ball centre [m], velocity [m/s], angular velocity [rad/s];
@@ -124,7 +125,7 @@ def race_contact(x_b, v_b, w_b, x_r, R_r, v_r, w_r, is_outer, fp, ip, table,
     # traction T = tbuf[0:3] and dT/ds = tbuf[3:12] (row-major), on the ball
     if mode == TRACTION_EYRING:
         res[RC_FLAG] = eyring_traction(a_x, b_y, p_max, h, fp[FP_TAU0], du0, dv0, w_s, eta_table,
-                                       fp[FP_P_STEP], tr_f, tr_i, tbuf)
+                                       fp[FP_P_STEP], rule, work, iwork, tbuf)
     elif mode == TRACTION_COULOMB:
         _coulomb(F_n, a_x, b_y, du0, dv0, w_s, fp[FP_MU_DRY], fp[FP_V_REG], tbuf)
     else:
@@ -172,6 +173,8 @@ def _contact_stiffness(k_n, F_n, delta, n, x_b, x_r, R_r, d_g, cbuf, res):
     for i in range(3):
         for j in range(3):
             res[RC_KP + 3 * i + j] = k_n * n[i] * n[j] + k_y * ey[i] * ey[j] + k_g * e_g[i] * e_g[j]
+            # dn/dx_b = -(e_y e_y^T + (1 - d/(2 rho)) e_g e_g^T) / s (same geometry as above)
+            res[RC_DN + 3 * i + j] = -(ey[i] * ey[j] + (1.0 - 0.5 * d_g / rho) * e_g[i] * e_g[j]) / s
 
 
 @numba.njit(cache=True)

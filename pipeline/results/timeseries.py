@@ -22,6 +22,7 @@ class Series:
     units: str
     description: str
     dims: tuple[str, ...] = ("time",)
+    store_float32: bool = False  # bulky per-ball series: 7 significant digits are plenty
 
 
 def write_timeseries(path: Path, series: dict[str, Series], attrs: dict | None = None) -> None:
@@ -40,7 +41,11 @@ def write_timeseries(path: Path, series: dict[str, Series], attrs: dict | None =
                 data = np.asarray(s.data)
                 if data.ndim != len(s.dims):
                     raise ValueError(f"{name}: data has {data.ndim} dimensions but dims are {s.dims}")
-                ds = h5.create_dataset(name, data=data, compression="gzip" if data.size > 4096 else None)
+                if s.store_float32:
+                    data = data.astype(np.float32)
+                big = data.size > 4096
+                ds = h5.create_dataset(name, data=data, compression="gzip" if big else None,
+                                       compression_opts=4 if big else None, shuffle=big)
                 ds.attrs["units"] = s.units
                 ds.attrs["description"] = s.description
                 ds.attrs["dims"] = ",".join(s.dims)

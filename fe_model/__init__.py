@@ -1,0 +1,31 @@
+"""Stage 1 (MODEL.md §3): FE identification of the inner-race hinge stiffness.
+
+Public API: FEConfig, RingSeat, identify_hinge, HingeIdentification, read_hinge,
+convergence_study, fit_hinge, HingeFit, richardson. Never imports dynamics or pipeline.
+Attributes load lazily: reading `FEConfig` (scene validation) must not pay for scipy,
+scikit-fem or gmsh.
+"""
+
+from __future__ import annotations
+
+import importlib
+
+_ATTRS = {
+    "FEConfig": "fe_model.config",
+    "HingeFit": "fe_model.hinge_fit",
+    "fit_hinge": "fe_model.hinge_fit",
+    "HingeIdentification": "fe_model.identify",
+    "identify_hinge": "fe_model.identify",
+    "read_hinge": "fe_model.artefacts",
+    "convergence_study": "fe_model.convergence",
+    "richardson": "fe_model.convergence",
+    "RingSeat": "meshes.housing",
+}
+
+__all__ = sorted(_ATTRS)
+
+
+def __getattr__(name: str):
+    if name in _ATTRS:
+        return getattr(importlib.import_module(_ATTRS[name]), name)
+    raise AttributeError(f"module 'fe_model' has no attribute {name!r}")

@@ -195,7 +195,14 @@ def resolve(table: dict, origin: str = "<table>") -> Scene:
             cage.check_fits(bearing)
         except ValueError as exc:
             raise SceneError("cage", str(exc)) from exc
-    hinge = build(Hinge, table.get("hinge", {}), "hinge")
+    hinge_table = table.get("hinge", {})
+    if isinstance(hinge_table, dict) and _is_matrix(hinge_table.get("translational")):
+        # a 3x3 H_u as nested lists (as hinge.toml writes it): flatten row-major
+        rows = hinge_table["translational"]
+        if len(rows) != 3 or any(len(r) != 3 for r in rows):
+            raise SceneError("hinge.translational", "a matrix must be 3x3 [N/m]")
+        hinge_table = {**hinge_table, "translational": [x for r in rows for x in r]}
+    hinge = build(Hinge, hinge_table, "hinge")
     lubricant = resolve_lubricant(table.get("lubricant"))
     physics_table = dict(table.get("physics", {})) if isinstance(table.get("physics", {}), dict) else table.get("physics")
     if lubricant is None and isinstance(physics_table, dict):
@@ -229,6 +236,10 @@ def resolve(table: dict, origin: str = "<table>") -> Scene:
         output=build(Output, table.get("output", {}), "output"),
         raw=table,
     )
+
+
+def _is_matrix(value: Any) -> bool:
+    return isinstance(value, list) and bool(value) and all(isinstance(r, list) for r in value)
 
 
 def load_scene(scene: str | Path, overrides: list[str] | None = None) -> Scene:

@@ -69,7 +69,7 @@ class Hinge:
 
     source: str = field(default="none", metadata={"choices": ("fe", "given", "none")})
     translational: tuple[float, ...] | None = field(
-        default=None, metadata={"unit": "N/m", "gt": 0.0, "doc": "diagonal of H_u (3) or H_u row-major (9)"}
+        default=None, metadata={"unit": "N/m", "doc": "diagonal of H_u (3), or H_u as 3x3 / row-major (9)"}
     )
     bending: tuple[float, ...] | None = field(
         default=None, metadata={"unit": "N.m/rad", "gt": 0.0, "length": 2, "doc": "H_psi about x, y"}
@@ -87,6 +87,12 @@ class Hinge:
                     f"translational: expected 3 values (diagonal of H_u) or 9 (3x3 row-major) "
                     f"[N/m], got {len(self.translational)}"
                 )
+            import numpy as np
+
+            H = np.array(self.stiffness_matrix())
+            if not np.allclose(H, H.T, rtol=1e-9, atol=0.0) or np.linalg.eigvalsh(H).min() <= 0.0:
+                raise ValueError(f"translational: H_u must be symmetric positive definite [N/m], "
+                                 f"got {H.tolist()}")
         elif self.translational is not None or self.bending is not None:
             raise ValueError(
                 f"translational/bending are only read when source = 'given' (source is "

@@ -26,12 +26,11 @@ def ring_seat(scene: Scene):
         raise SceneError(f"bearing.{missing[0]}",
                          f"required by the FE identification stage (hinge.source = 'fe') [m]; "
                          f"give {', '.join('bearing.' + m for m in missing)} or set hinge.source = 'given'")
-    return RingSeat.from_bearing_dimensions(
+    return RingSeat(
         inner_bore_diameter=b.inner_bore_diameter,
-        inner_outer_diameter=b.inner_shoulder_diameter,
+        inner_outer_diameter=b.inner_shoulder_diameter,  # the ring's outside diameter in the FE model
         outer_outside_diameter=b.outer_outside_diameter,
         width=b.width,
-        pitch_diameter=b.pitch_diameter,
     )
 
 
@@ -48,8 +47,19 @@ def compute(ctx: StageContext) -> dict:
     from ..system_libraries import require_libraries
 
     require_libraries("gmsh")
-    result = identify_hinge(ctx.scene.fe, ring_seat(ctx.scene), ctx.out_dir, progress=ctx.progress)
-    return result.summary()
+    ring = ring_seat(ctx.scene)
+    try:
+        ctx.scene.fe.validate(ring)
+    except ValueError as exc:
+        raise SceneError("fe", str(exc)) from exc
+    result = identify_hinge(ctx.scene.fe, ring, ctx.out_dir, progress=ctx.progress)
+    return {
+        "H_u_N_per_m": result.H_u.tolist(), "H_psi_Nm_per_rad": result.H_psi.tolist(),
+        "fit_relative_residual": float(result.residual),
+        "condition_number": float(result.condition_number),
+        "mesh": {k: (float(v) if isinstance(v, float) else v) for k, v in result.mesh_stats.items()},
+        "timings_s": {k: float(v) for k, v in result.timings.items()},
+    }
 
 
 STAGE = Stage(

@@ -1,0 +1,121 @@
+"""Stage-1 artefacts: hinge.toml (values with units, fit quality, mesh statistics) and
+one .vtu per load case (displacement, von Mises stress). Written atomically."""
+
+from __future__ import annotations
+
+import os
+import pathlib
+import tempfile
+import tomllib
+
+import numpy as np
+
+HEADER = """\
+# Viscoelastic hinge identified by FE (bearingsim stage 1, MODEL.md §3, fit S.2).
+# [hinge] uses the scene's [hinge] key names and can be pasted there with source = "given".
+# translational: H_u [N/m], 3x3 symmetric; bending: H_psi [N*m/rad] about x and y.
+"""
+
+
+def atomic_write_bytes(path: pathlib.Path, data: bytes) -> None:
+    """Write to a temp file in the same directory, then rename over `path`."""
+    path = pathlib.Path(path)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=path.name, suffix=".tmp")
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(data)
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+
+
+def write_hinge_toml(path: pathlib.Path, H_u: np.ndarray, H_psi: np.ndarray, meta: dict) -> None:
+    """hinge.toml: [hinge] values and units, then the tables of `meta` (fit, mesh, ...)."""
+    import tomli_w
+
+    doc = {
+        "hinge": {
+            "source": "fe",
+            "translational": np.asarray(H_u, dtype=float).tolist(),
+            "translational_unit": "N/m",
+            "bending": np.asarray(H_psi, dtype=float).tolist(),
+            "bending_unit": "N*m/rad",
+        }
+    }
+    doc.update(_plain(meta))
+    atomic_write_bytes(path, (HEADER + tomli_w.dumps(doc)).encode())
+
+
+def read_hinge(path: pathlib.Path) -> tuple[np.ndarray, np.ndarray, dict]:
+    """(H_u (3, 3) [N/m], H_psi (2,) [N*m/rad], everything else) from a hinge.toml."""
+    with open(path, "rb") as fh:
+        doc = tomllib.load(fh)
+    hinge = doc.get("hinge", {})
+    try:
+        H_u = np.array(hinge["translational"], dtype=float)
+        H_psi = np.array(hinge["bending"], dtype=float)
+    except KeyError as err:
+        raise ValueError(f"{path}: [hinge] lacks {err.args[0]!r}; is this a hinge.toml?") from None
+    if H_u.shape == (3,):
+        H_u = np.diag(H_u)
+    if H_u.shape != (3, 3) or H_psi.shape != (2,):
+        raise ValueError(f"{path}: translational must be 3 or 3x3 and bending 2 values [N/m, N*m/rad]")
+    return H_u, H_psi, {k: v for k, v in doc.items() if k != "hinge"}
+
+
+def _plain(value):
+    """numpy -> TOML-able python (tomli_w knows no numpy types and no None)."""
+    if isinstance(value, dict):
+        return {str(k): _plain(v) for k, v in value.items() if v is not None}
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return _plain(value.tolist())
+    if isinstance(value, np.generic):
+        return value.item()
+    return value
+
+
+def von_mises(model, u: np.ndarray) -> np.ndarray:
+    """Von Mises stress [Pa] at each element centroid from the vector dof array u [m]."""
+    from skfem import Basis
+
+    centroid = (np.full((3, 1), 0.25), np.array([1.0 / 6.0]))
+    basis = Basis(model.mesh, model.basis.elem, quadrature=centroid)
+    U = u.reshape(-1, 3)
+    grad = np.stack([basis.interpolate(U[:, c]).grad[:, :, 0] for c in range(3)])  # (3, 3, E)
+    eps = 0.5 * (grad + grad.transpose(1, 0, 2))
+    tr = np.trace(eps)
+    sigma = 2.0 * model.mu * eps + model.lam * tr * np.eye(3)[:, :, None]
+    dev = sigma - np.trace(sigma) / 3.0 * np.eye(3)[:, :, None]
+    return np.sqrt(1.5 * np.einsum("ije,ije->e", dev, dev))
+
+
+def write_case_vtu(path: pathlib.Path, model, u: np.ndarray, material_id: np.ndarray) -> None:
+    """One load case: quadratic (or linear) tetrahedra, point displacement, cell stress."""
+    import meshio
+
+    mesh = model.mesh
+    U = u.reshape(-1, 3)
+    if model.basis.elem.__class__.__name__ == "ElementTetP2":
+        # skfem's local edge order (01, 12, 02, 03, 13, 23) is VTK's tetra10 order
+        points = np.vstack([mesh.p.T, 0.5 * (mesh.p[:, mesh.edges[0]] + mesh.p[:, mesh.edges[1]]).T])
+        cells = [("tetra10", np.vstack([mesh.t, mesh.nvertices + mesh.t2e]).T)]
+    else:
+        points, cells = mesh.p.T, [("tetra", mesh.t.T)]
+    out = meshio.Mesh(
+        points,
+        cells,
+        point_data={"displacement": U[: points.shape[0]]},
+        cell_data={"von_mises": [von_mises(model, u)], "material": [material_id]},
+    )
+    path = pathlib.Path(path)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=path.name, suffix=".tmp.vtu")
+    os.close(fd)
+    try:
+        out.write(tmp, file_format="vtu", compression=None)  # zlib costs seconds, saves little
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)

@@ -1,0 +1,127 @@
+"""The `[fe]` scene table: geometry, materials, supports, loads and numerics of stage 1.
+
+Field names are exactly the `[fe]` keys; the scene loader checks type and range from
+each field's metadata (unit, gt/ge/lt/le, choices, doc). Cross-field checks that need the
+bearing ring live in `FEConfig.validate`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, fields
+
+from meshes.housing import HousingGeometry, RingSeat
+
+
+def _f(default, unit: str, doc: str, **limits):
+    return field(default=default, metadata={"unit": unit, "doc": doc, **limits})
+
+
+@dataclass(frozen=True)
+class FEConfig:
+    """Stage-1 settings (MODEL.md §3). Defaults suit the reference bearing (§2)."""
+
+    # --- numerics -----------------------------------------------------------------------
+    mesh_size: float = _f(0.020, "m", "characteristic tetrahedron edge length", gt=0.0)
+    edge_refinement: float = _f(
+        0.3, "-", "element size at the circular edges (corners, material junctions) as a "
+        "fraction of mesh_size; 1 = uniform mesh", gt=0.0, le=1.0,
+    )
+    element_order: int = _f(
+        2, "-", "displacement order: 2 (accurate) or 1 (fast preview, ~5 % stiff in bending)",
+        choices=(1, 2),
+    )
+    linear_solver: str = _f(
+        "auto", "-", "sparse solver: pardiso (MKL, SPD), splu (scipy), auto = pardiso if installed",
+        choices=("auto", "pardiso", "splu"),
+    )
+    # --- shaft and supports ---------------------------------------------------------------
+    shaft_inner_diameter: float = _f(0.090, "m", "bore of the hollow steel shaft", ge=0.0)
+    shaft_youngs_modulus: float = _f(208e9, "Pa", "shaft and inner ring (steel)", gt=0.0)
+    shaft_poisson_ratio: float = _f(0.3, "-", "shaft and inner ring (steel)", gt=-1.0, lt=0.5)
+    shaft_density: float = _f(7850.0, "kg/m^3", "shaft and inner ring (steel)", gt=0.0)
+    support_a_position: float = _f(-0.110, "m", "axial position of roller-bearing support a (centre)")
+    support_b_position: float = _f(0.110, "m", "axial position of roller-bearing support b (centre)")
+    support_width: float = _f(0.020, "m", "axial width of each support annulus", gt=0.0)
+    support_radial_thickness: float = _f(0.015, "m", "radial section of each support annulus", gt=0.0)
+    support_radial_stiffness: float = _f(
+        1.0e9, "N/m", "radial stiffness of each support (sets the annulus modulus)", gt=0.0
+    )
+    # --- housing --------------------------------------------------------------------------
+    housing_wall_thickness: float = _f(0.012, "m", "light-alloy housing shell wall", gt=0.0)
+    housing_flange_position: float = _f(0.160, "m", "axial position of the clamped flange face")
+    housing_flange_diameter: float = _f(0.300, "m", "flange outside diameter", gt=0.0)
+    housing_flange_thickness: float = _f(0.012, "m", "flange thickness", gt=0.0)
+    housing_youngs_modulus: float = _f(71e9, "Pa", "housing alloy (aluminium; ~44e9 for magnesium)", gt=0.0)
+    housing_poisson_ratio: float = _f(0.33, "-", "housing alloy", gt=-1.0, lt=0.5)
+    housing_density: float = _f(2810.0, "kg/m^3", "housing alloy (not used by statics)", gt=0.0)
+    # --- perturbation loads (MODEL.md §3) ------------------------------------------------------
+    perturbation_forces: tuple[float, ...] = _f(
+        (-1000.0, 500.0, 1000.0), "N", "force magnitudes along x, y, z", ge=-1000.0, le=1000.0
+    )
+    perturbation_moments: tuple[float, ...] = _f(
+        (-1000.0, 500.0, 1000.0), "N*m", "moment magnitudes about x, y", ge=-1000.0, le=1000.0
+    )
+    load_reaction: str = _f(
+        "outer_seat", "-",
+        "outer_seat: load pair on inner ring and outer-ring seat, response relative to the seat; "
+        "flange: load on the inner ring only, response relative to the clamped flange",
+        choices=("outer_seat", "flange"),
+    )
+
+    def housing_geometry(self, ring: RingSeat) -> HousingGeometry:
+        names = {f.name for f in fields(HousingGeometry)} - {"ring"}
+        return HousingGeometry(ring=ring, **{n: getattr(self, n) for n in names})
+
+    def support_modulus(self, ring: RingSeat) -> float:
+        """Young's modulus [Pa] of the support annulus (Poisson ratio 0) giving the radial
+        stiffness `support_radial_stiffness` under a rigid radial offset of its bore.
+
+        Thin-layer estimate: normal stiffness E/t and shear stiffness G = E/2 over
+        t per unit area, integrated round the annulus: k_r = pi R w (E + G)/t = 1.5 pi R w E / t.
+        Approximate for t/R ~ 0.2; the FE model then carries whatever the annulus gives.
+        """
+        t, w = self.support_radial_thickness, self.support_width
+        r_mean = 0.5 * ring.inner_bore_diameter + 0.5 * t
+        return self.support_radial_stiffness * t / (1.5 * math.pi * r_mean * w)
+
+    def validate(self, ring: RingSeat) -> None:
+        """Raise ValueError naming the key, value, allowed range and unit if the geometry
+        is inconsistent with the bearing ring."""
+        half_b, half_w = 0.5 * ring.width, 0.5 * self.support_width
+        r_b, R = 0.5 * ring.inner_bore_diameter, 0.5 * ring.outer_outside_diameter
+        _require("shaft_inner_diameter", self.shaft_inner_diameter, "<", ring.inner_bore_diameter,
+                 "m", "the ring bore (bearing.inner_bore_diameter)")
+        _require("support_radial_thickness", self.support_radial_thickness, "<", 0.9 * (R - r_b),
+                 "m", "90 % of the gap between ring bore and outer-ring seat")
+        _require("support_a_position", self.support_a_position, "<", -half_b - half_w,
+                 "m", "-(width/2 + support_width/2): the support must clear the inner ring")
+        _require("support_b_position", self.support_b_position, ">", half_b + half_w,
+                 "m", "width/2 + support_width/2: the support must clear the inner ring")
+        _require("housing_flange_position", self.housing_flange_position, ">",
+                 self.support_b_position + half_w + self.housing_flange_thickness,
+                 "m", "support_b_position + support_width/2 + housing_flange_thickness")
+        _require("housing_flange_diameter", self.housing_flange_diameter, ">",
+                 ring.outer_outside_diameter + 2.0 * self.housing_wall_thickness + 0.002,
+                 "m", "outer_outside_diameter + 2 housing_wall_thickness + 2 mm")
+        thinnest = min(0.5 * (ring.inner_outer_diameter - ring.inner_bore_diameter),
+                       self.housing_wall_thickness, self.support_radial_thickness,
+                       r_b - 0.5 * self.shaft_inner_diameter)
+        _require("mesh_size", self.mesh_size, "<=", 4.0 * thinnest,
+                 "m", "4 x the thinnest wall (ring, shaft, support or housing)")
+        for key, unit in (("perturbation_forces", "N"), ("perturbation_moments", "N*m")):
+            values = tuple(getattr(self, key))
+            if not values or any(v == 0.0 or not math.isfinite(v) for v in values):
+                raise ValueError(
+                    f"[fe] {key} = {list(values)} {unit}: give at least one non-zero finite "
+                    "magnitude in [-1000, 1000]"
+                )
+
+
+def _require(key: str, value: float, op: str, bound: float, unit: str, meaning: str) -> None:
+    ok = {"<": value < bound, ">": value > bound, "<=": value <= bound}[op]
+    if not ok:
+        raise ValueError(
+            f"[fe] {key} = {value!r} {unit} is not allowed: it must be {op} {bound:.6g} {unit} "
+            f"({meaning})"
+        )

@@ -1,0 +1,175 @@
+"""Parametric shaft / inner ring / supports / housing geometry (MODEL.md §3), gmsh OCC.
+
+Axisymmetric about z, built from tubes and fragmented so that every interface is
+conforming (the ring is tied to the shaft, the supports to shaft and housing):
+
+    z:   support_a ........ inner ring (|z| <= B/2) ........ support_b ..... flange
+    r:   shaft [r_si, r_b]; ring [r_b, r_race]; support annuli [r_b, r_b + t_s];
+         housing webs [r_b + t_s, R_seat] at the supports; housing shell
+         [R_seat, R_seat + t_h] from support a to the flange; flange disc at the end.
+
+The bearing's outer ring is not meshed: its seat is the housing bore over the ring width.
+Physical groups (the contract with fe_model): volumes `shaft`, `inner_ring`, `support_a`,
+`support_b`, `housing`; surfaces `inner_ring_bore` = `inner_ring_seat` (ring–shaft interface),
+`inner_ring_race` (ring outside diameter, where the balls push), `outer_ring_seat`
+(housing bore over the ring width), `support_a`, `support_b` (shaft–support interfaces),
+`housing_flange` (the clamped mounting face).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from meshes.gmsh_io import classify_surface, extract_mesh, gmsh_session, refine_near_curves, set_uniform_size
+from meshes.mesh_data import MeshData
+
+
+@dataclass(frozen=True)
+class RingSeat:
+    """Bearing ring dimensions the FE geometry needs [m] (from the scene's `[bearing]`).
+
+    inner_outer_diameter is the inner ring's outside diameter for the FE model: use the
+    shoulder (land) diameter, 0.150 m for the reference bearing.
+    """
+
+    inner_bore_diameter: float = 0.130
+    inner_outer_diameter: float = 0.150
+    outer_outside_diameter: float = 0.196
+    width: float = 0.034
+
+    def __post_init__(self) -> None:
+        for name in ("inner_bore_diameter", "inner_outer_diameter", "outer_outside_diameter", "width"):
+            value = getattr(self, name)
+            if not value > 0.0:
+                raise ValueError(f"ring seat {name} = {value!r} m: must be > 0")
+        if not self.inner_bore_diameter < self.inner_outer_diameter < self.outer_outside_diameter:
+            raise ValueError(
+                "ring seat diameters must satisfy inner_bore_diameter < inner_outer_diameter < "
+                f"outer_outside_diameter, got {self.inner_bore_diameter} m, "
+                f"{self.inner_outer_diameter} m, {self.outer_outside_diameter} m"
+            )
+
+
+@dataclass(frozen=True)
+class HousingGeometry:
+    """All dimensions of the simplified assembly [m]; see the module docstring."""
+
+    ring: RingSeat
+    shaft_inner_diameter: float
+    support_a_position: float
+    support_b_position: float
+    support_width: float
+    support_radial_thickness: float
+    housing_wall_thickness: float
+    housing_flange_position: float
+    housing_flange_diameter: float
+    housing_flange_thickness: float
+
+    @property
+    def support_outer_radius(self) -> float:
+        return 0.5 * self.ring.inner_bore_diameter + self.support_radial_thickness
+
+    @property
+    def seat_radius(self) -> float:
+        return 0.5 * self.ring.outer_outside_diameter
+
+
+def build_housing_mesh(geometry: HousingGeometry, mesh_size: float, edge_refinement: float = 1.0) -> MeshData:
+    """Mesh the assembly with linear tetrahedra of characteristic size `mesh_size` [m],
+    graded to `edge_refinement * mesh_size` at the circular edges (1 = uniform)."""
+    with gmsh_session("housing") as gmsh:
+        parts = _add_parts(gmsh, geometry)
+        tags = [dimtag for dimtags in parts.values() for dimtag in dimtags]
+        _, children = gmsh.model.occ.fragment(tags, [])
+        gmsh.model.occ.synchronize()
+        owner = _volume_owners(parts, tags, children)
+        for name in ("shaft", "inner_ring", "support_a", "support_b", "housing"):
+            volumes = sorted(v for v, part in owner.items() if part == name)
+            gmsh.model.setPhysicalName(3, gmsh.model.addPhysicalGroup(3, volumes), name)
+        for name, surfaces in _named_surfaces(gmsh, geometry).items():
+            if not surfaces:
+                raise RuntimeError(f"geometry has no surface for group {name!r}; check the [fe] dimensions")
+            gmsh.model.setPhysicalName(2, gmsh.model.addPhysicalGroup(2, surfaces), name)
+        set_uniform_size(gmsh, mesh_size)
+        if edge_refinement < 1.0:
+            refine_near_curves(gmsh, mesh_size, edge_refinement)
+        gmsh.model.mesh.generate(3)
+        return extract_mesh(gmsh)
+
+
+def _tube(gmsh, r_in: float, r_out: float, z0: float, z1: float) -> list[tuple[int, int]]:
+    occ = gmsh.model.occ
+    outer = occ.addCylinder(0.0, 0.0, z0, 0.0, 0.0, z1 - z0, r_out)
+    if r_in <= 0.0:
+        return [(3, outer)]
+    inner = occ.addCylinder(0.0, 0.0, z0, 0.0, 0.0, z1 - z0, r_in)
+    result, _ = occ.cut([(3, outer)], [(3, inner)])
+    return result
+
+
+def _add_parts(gmsh, g: HousingGeometry) -> dict[str, list[tuple[int, int]]]:
+    r_b = 0.5 * g.ring.inner_bore_diameter
+    half_b = 0.5 * g.ring.width
+    half_w = 0.5 * g.support_width
+    z_a, z_b = g.support_a_position, g.support_b_position
+    r_s, R = g.support_outer_radius, g.seat_radius
+    R_out = R + g.housing_wall_thickness
+    z_end = g.housing_flange_position
+    housing = (
+        _tube(gmsh, R, R_out, z_a - half_w, -half_b)  # shell, support-a side
+        + _tube(gmsh, R, R_out, -half_b, half_b)  # shell at the seat (own bore face)
+        + _tube(gmsh, R, R_out, half_b, z_end)  # shell, flange side
+        + _tube(gmsh, r_s, R, z_a - half_w, z_a + half_w)  # web at support a
+        + _tube(gmsh, r_s, R, z_b - half_w, z_b + half_w)  # web at support b
+        + _tube(gmsh, R_out, 0.5 * g.housing_flange_diameter, z_end - g.housing_flange_thickness, z_end)
+    )
+    return {
+        "shaft": _tube(gmsh, 0.5 * g.shaft_inner_diameter, r_b, z_a - half_w, z_b + half_w),
+        "inner_ring": _tube(gmsh, r_b, 0.5 * g.ring.inner_outer_diameter, -half_b, half_b),
+        "support_a": _tube(gmsh, r_b, r_s, z_a - half_w, z_a + half_w),
+        "support_b": _tube(gmsh, r_b, r_s, z_b - half_w, z_b + half_w),
+        "housing": housing,
+    }
+
+
+def _volume_owners(parts, tags, children) -> dict[int, str]:
+    """Which part each fragmented volume came from (fragment keeps the input order)."""
+    part_of_input = [name for name, dimtags in parts.items() for _ in dimtags]
+    owner: dict[int, str] = {}
+    for name, kids in zip(part_of_input, children):
+        for dim, tag in kids:
+            if dim == 3:
+                owner[tag] = name
+    return owner
+
+
+def _named_surfaces(gmsh, g: HousingGeometry) -> dict[str, list[int]]:
+    tol = 1e-5 * g.housing_flange_diameter  # OCC pads bounding boxes by ~1e-7
+    r_b = 0.5 * g.ring.inner_bore_diameter
+    half_b, half_w = 0.5 * g.ring.width, 0.5 * g.support_width
+
+    def cylinder(radius: float, z0: float, z1: float):
+        return lambda kind: (
+            kind[0] == "cylinder"
+            and math.isclose(kind[1], radius, abs_tol=tol)
+            and kind[2] >= z0 - tol
+            and kind[3] <= z1 + tol
+        )
+
+    rules = {
+        "inner_ring_bore": cylinder(r_b, -half_b, half_b),
+        "inner_ring_seat": cylinder(r_b, -half_b, half_b),  # MODEL.md's name: same facets as the bore
+        "inner_ring_race": cylinder(0.5 * g.ring.inner_outer_diameter, -half_b, half_b),
+        "outer_ring_seat": cylinder(g.seat_radius, -half_b, half_b),
+        "support_a": cylinder(r_b, g.support_a_position - half_w, g.support_a_position + half_w),
+        "support_b": cylinder(r_b, g.support_b_position - half_w, g.support_b_position + half_w),
+        "housing_flange": lambda kind: (
+            kind[0] == "plane_z"
+            and math.isclose(kind[1], g.housing_flange_position, abs_tol=tol)
+            and kind[2] >= g.seat_radius - tol
+        ),
+    }
+    kinds = {tag: classify_surface(gmsh, tag, tol) for _, tag in gmsh.model.getEntities(2)}
+    return {name: sorted(t for t, k in kinds.items() if rule(k)) for name, rule in rules.items()}
+

@@ -1,0 +1,95 @@
+"""A tetrahedral mesh with named physical groups, as plain arrays.
+
+This is the only thing `meshes/` hands to `fe_model/` (MODEL.md §3: the physical-group
+names are the contract). It is taken straight from the gmsh API rather than through a
+.msh file: meshio 5.3.5 cannot read back its own .msh 4.1 and .msh 2.2 drops interior
+groups (the ring–shaft interface is interior). Saved as .npz so a mesh is a cacheable
+artefact keyed by the hash of what built it.
+"""
+
+from __future__ import annotations
+
+import os
+import pathlib
+import tempfile
+from dataclasses import dataclass, field
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class MeshData:
+    """Linear tetrahedra with named volumes and surfaces.
+
+    points: (N, 3) float64 [m]; tets: (E, 4) int64 vertex indices; volumes maps a
+    physical-volume name to the indices of its tetrahedra; surfaces maps a
+    physical-surface name to its triangles as (F, 3) vertex indices.
+    """
+
+    points: np.ndarray
+    tets: np.ndarray
+    volumes: dict[str, np.ndarray] = field(default_factory=dict)
+    surfaces: dict[str, np.ndarray] = field(default_factory=dict)
+
+    @property
+    def n_nodes(self) -> int:
+        return int(self.points.shape[0])
+
+    @property
+    def n_elements(self) -> int:
+        return int(self.tets.shape[0])
+
+    def to_skfem(self):
+        """skfem `MeshTet` with `subdomains` and `boundaries` from the physical groups.
+
+        Boundary facets are matched to the mesh's facets by their sorted vertex
+        triples, which works for interior surfaces too.
+        """
+        from skfem import MeshTet
+
+        mesh = MeshTet(np.ascontiguousarray(self.points.T), np.ascontiguousarray(self.tets.T))
+        facet_index = _facet_lookup(mesh.facets)
+        boundaries = {
+            name: _match_facets(name, tris, facet_index) for name, tris in self.surfaces.items()
+        }
+        subdomains = {name: np.asarray(idx, dtype=np.int64) for name, idx in self.volumes.items()}
+        return mesh.with_subdomains(subdomains).with_boundaries(boundaries)
+
+    def save(self, path: pathlib.Path) -> None:
+        """Write atomically to `path` (.npz): temp file in the same directory, then rename."""
+        path = pathlib.Path(path)
+        arrays = {"points": self.points, "tets": self.tets}
+        arrays.update({f"volume:{k}": v for k, v in self.volumes.items()})
+        arrays.update({f"surface:{k}": v for k, v in self.surfaces.items()})
+        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=path.name, suffix=".tmp.npz")
+        os.close(fd)
+        try:
+            np.savez(tmp, **arrays)
+            os.replace(tmp, path)
+        finally:
+            if os.path.exists(tmp):
+                os.remove(tmp)
+
+    @classmethod
+    def load(cls, path: pathlib.Path) -> "MeshData":
+        with np.load(path) as data:
+            volumes = {k.split(":", 1)[1]: data[k] for k in data.files if k.startswith("volume:")}
+            surfaces = {k.split(":", 1)[1]: data[k] for k in data.files if k.startswith("surface:")}
+            return cls(data["points"], data["tets"], volumes, surfaces)
+
+
+def _facet_lookup(facets: np.ndarray) -> dict[tuple[int, int, int], int]:
+    """Map sorted vertex triple -> facet index for skfem's (3, F) facet array."""
+    sorted_facets = np.sort(facets, axis=0).T
+    return {tuple(f): i for i, f in enumerate(sorted_facets.tolist())}
+
+
+def _match_facets(name: str, triangles: np.ndarray, lookup: dict) -> np.ndarray:
+    keys = np.sort(np.asarray(triangles), axis=1).tolist()
+    try:
+        return np.array([lookup[tuple(k)] for k in keys], dtype=np.int64)
+    except KeyError as err:
+        raise ValueError(
+            f"surface group {name!r} has a triangle {err.args[0]} that is not a facet of the "
+            "volume mesh; the surface mesh is not conforming (was the geometry fragmented?)"
+        ) from None

@@ -5,35 +5,26 @@ Each function takes plain arrays and writes one PNG atomically (matplotlib, Agg)
 
 from __future__ import annotations
 
-import io
 import math
 from pathlib import Path
 
 import numpy as np
 
-from ..artefacts import atomic_write_bytes
+from . import new_figure, save_png
 
 
-def _pyplot():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
+def _subplots(nrows=1, ncols=1, figsize=(8, 4), **kw):
+    fig = new_figure(figsize=figsize)
+    return fig, fig.subplots(nrows, ncols, **kw)
 
 
 def _save(fig, path: Path) -> None:
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=110)
-    _pyplot().close(fig)
-    atomic_write_bytes(Path(path), buf.getvalue())
+    save_png(fig, Path(path))
 
 
 def cage_orbit(xy: np.ndarray, clearance: float, path: Path, title: str = "") -> None:
     """Cage-centre orbit [µm] with the guide-clearance circle (ε = 1)."""
-    plt = _pyplot()
-    fig, ax = plt.subplots(figsize=(6.2, 6.0), constrained_layout=True)
+    fig, ax = _subplots(figsize=(6.2, 6.0))
     th = np.linspace(0, 2 * math.pi, 361)
     c = clearance * 1e6
     ax.plot(c * np.cos(th), c * np.sin(th), "k--", lw=1, label=f"guide clearance C = {c:.0f} µm")
@@ -55,12 +46,11 @@ def cage_orbit(xy: np.ndarray, clearance: float, path: Path, title: str = "") ->
 def cage_speed(t: np.ndarray, speed: np.ndarray, path: Path, kinematic: float | None = None,
                title: str = "") -> None:
     """Cage rotation speed [rev/min] with its relative variation over the last half."""
-    plt = _pyplot()
     rpm = speed * 60.0 / (2 * math.pi)
     late = t >= t[0] + 0.5 * (t[-1] - t[0])
     mean = rpm[late].mean()
     var = (rpm[late].max() - rpm[late].min()) / mean if mean else float("nan")
-    fig, ax = plt.subplots(figsize=(8, 4), constrained_layout=True)
+    fig, ax = _subplots(figsize=(8, 4))
     ax.plot(t, rpm, lw=0.7, label="cage speed")
     ax.axhline(mean, color="C1", lw=1, label=f"mean (last half) {mean:.1f} rpm, variation {100 * var:.2f} % p-p")
     if kinematic is not None:
@@ -76,9 +66,8 @@ def cage_speed(t: np.ndarray, speed: np.ndarray, path: Path, kinematic: float | 
 def phase_portraits(t, positions: dict[str, np.ndarray], velocities: dict[str, np.ndarray],
                     path: Path, title: str = "") -> None:
     """Phase portraits (x, y, z) of each body: position [µm] vs velocity [mm/s]."""
-    plt = _pyplot()
     names = list(positions)
-    fig, axes = plt.subplots(len(names), 3, figsize=(11, 3.3 * len(names)), constrained_layout=True,
+    fig, axes = _subplots(len(names), 3, figsize=(11, 3.3 * len(names)),
                              squeeze=False)
     for row, name in enumerate(names):
         for col, axis in enumerate("xyz"):
@@ -94,8 +83,7 @@ def phase_portraits(t, positions: dict[str, np.ndarray], velocities: dict[str, n
 
 def cage_race_force(t, force_norm, metal_force, eps, path: Path, title: str = "") -> None:
     """Cage–guiding-race force [N] and eccentricity ratio against time."""
-    plt = _pyplot()
-    fig, (a1, a2) = plt.subplots(2, 1, sharex=True, figsize=(8, 5.5), constrained_layout=True)
+    fig, (a1, a2) = _subplots(2, 1, sharex=True, figsize=(8, 5.5))
     a1.plot(t, force_norm, lw=0.6, label="total |F|")
     a1.plot(t, metal_force, lw=0.6, label="metal-to-metal normal force")
     a1.set_ylabel("force [N]")
@@ -112,8 +100,7 @@ def cage_race_force(t, force_norm, metal_force, eps, path: Path, title: str = ""
 
 def pocket_impacts(times, orbital_position, peak_force, path: Path, title: str = "") -> None:
     """Ball–pocket impacts: peak force against time and against orbital position."""
-    plt = _pyplot()
-    fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4), constrained_layout=True)
+    fig, (a1, a2) = _subplots(1, 2, figsize=(11, 4))
     if len(times):
         a1.scatter(times, peak_force, s=4)
         a2.scatter(np.degrees(np.mod(orbital_position, 2 * math.pi)), peak_force, s=4)

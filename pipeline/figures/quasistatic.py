@@ -5,24 +5,19 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from ..artefacts import atomic_write_bytes
 
 
 def plot_load_distribution(result: dict, path: Path, title: str = "") -> None:
     """Two panels sharing the azimuth axis: contact loads [N], contact angles [deg]."""
-    import io
-
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from . import new_figure, save_png
 
     balls = result["balls"]
     az = [math.degrees(b["azimuth"]) % 360.0 for b in balls]
     order = sorted(range(len(az)), key=az.__getitem__)
     az = [az[i] for i in order]
     pick = lambda key, scale=1.0: [balls[i][key] * scale for i in order]  # noqa: E731
-    fig, (ax_q, ax_a) = plt.subplots(2, 1, sharex=True, figsize=(7.5, 6.0), constrained_layout=True)
+    fig = new_figure(figsize=(7.5, 6.0))
+    ax_q, ax_a = fig.subplots(2, 1, sharex=True)
     ax_q.plot(az, pick("inner_load"), "o-", label="inner race")
     ax_q.plot(az, pick("outer_load"), "s--", label="outer race")
     ax_q.set_ylabel("contact load Q [N]")
@@ -38,7 +33,4 @@ def plot_load_distribution(result: dict, path: Path, title: str = "") -> None:
     ax_a.legend()
     ax_a.grid(alpha=0.3)
     fig.suptitle(f"Quasi-static load distribution — {title}" if title else "Quasi-static load distribution")
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=120)
-    plt.close(fig)
-    atomic_write_bytes(Path(path), buf.getvalue())
+    save_png(fig, Path(path), dpi=120)

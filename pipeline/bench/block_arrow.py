@@ -13,17 +13,7 @@ import scipy.linalg as sla
 from dynamics.multibody import (BlockArrowMatrix, BlockArrowSolver, DenseSolver, HHTSettings,
                                 integrate)
 from dynamics.multibody.models import ArrowSprings, Pendulum
-
-
-def best_time(fn, repeat: int = 5, number: int = 20) -> float:
-    """Best mean time of `number` calls over `repeat` runs [s]."""
-    best = np.inf
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        for _ in range(number):
-            fn()
-        best = min(best, (time.perf_counter() - t0) / number)
-    return best
+from pipeline.bench import best_time
 
 
 def random_arrow(Z: int, m: int, nb: int, rng) -> BlockArrowMatrix:

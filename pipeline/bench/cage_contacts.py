@@ -20,6 +20,7 @@ import numpy as np
 from dynamics.geometry import BearingGeometry, CageGeometry, Material
 from dynamics.journal import cage_race_journal, journal_parameters_for_cage
 from dynamics.pocket_contact import pocket_azimuths, pocket_contact, pocket_contacts, pocket_parameters_for_cage
+from pipeline.bench import best_time
 
 
 def reference_state():
@@ -46,13 +47,7 @@ def reference_state():
 def time_call(fn, repeats, rounds=5):
     """Best of `rounds` mean times per call [s] (the machine is shared: take the quietest)."""
     fn()  # compile / load from cache
-    best = math.inf
-    for _ in range(rounds):
-        start = time.perf_counter()
-        for _ in range(repeats):
-            fn()
-        best = min(best, (time.perf_counter() - start) / repeats)
-    return best
+    return best_time(fn, repeat=rounds, number=repeats)
 
 
 @numba.njit

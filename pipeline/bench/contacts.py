@@ -11,19 +11,14 @@ machine only makes times longer).
 from __future__ import annotations
 
 import sys
-import time
 
 import numpy as np
 
+from pipeline.bench import best_time
+
 
 def _best(fn, repeats: int = 7, number: int = 300) -> float:
-    best = float("inf")
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        for _ in range(number):
-            fn()
-        best = min(best, (time.perf_counter() - t0) / number)
-    return best
+    return best_time(fn, repeat=repeats, number=number)
 
 
 def main(scene_name: str = "helicopter-b-given-hinge") -> None:

@@ -44,9 +44,9 @@ def test_bad_scene_exits_2_naming_the_key():
     assert "bearing.ball_count" in result.output
 
 
-def test_unimplemented_commands_say_so_and_fail(tmp_path):
+def test_render_of_a_non_run_directory_is_a_clear_error(tmp_path):
     result = runner.invoke(app, ["render", str(tmp_path)])
-    assert result.exit_code == 3 and "not implemented" in result.output
+    assert result.exit_code == 2 and "scene.toml" in result.output
 
 
 def test_light_commands_do_not_import_heavy_libraries():

@@ -56,21 +56,3 @@ def render_png(path: Path, populate: Callable, shape: tuple[int, int] = (1, 1),
         window = pv.Plotter(off_screen=False, shape=shape, window_size=list(window_size))
         populate(window)
         window.show(title=Path(path).stem)
-
-
-def pyplot():
-    """matplotlib.pyplot on the non-interactive Agg backend."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
-
-
-def save_figure(fig, path: Path, dpi: int = 110) -> None:
-    """Write a matplotlib figure to `path` as PNG, atomically, and close it."""
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=dpi)
-    pyplot().close(fig)
-    atomic_write_bytes(Path(path), buf.getvalue())

@@ -1,21 +1,80 @@
-"""Stage `report`: renders and the run report, from saved results only (never re-solves)."""
+"""Stage `report`: renders and the run report, from saved results only (never re-solves).
+
+Writes into the stage directory (`<run>/report/`): `report.html` (one self-contained
+page), the burn-zone renders, one PNG + ParaView `.vtu` per FE load case, and
+`renders.json` (see `pipeline.render.run_report`). Its key hashes the scene's name and
+description, the render settings and the upstream stages' keys, so any change of
+results upstream redraws it.
+
+`bearingsim render RUN` (`render_run`) redraws it from a finished run directory without
+running any other stage: it takes the upstream keys from their `stage.json` manifests and
+writes the same manifest a `run` would, so a later `bearingsim run` of the same scene finds
+the report up to date instead of drawing it again.
+"""
 
 from __future__ import annotations
 
-from ..runner import Stage, StageContext, StageNotAvailable
+import dataclasses
+import logging
+from pathlib import Path
+
+from ..runner import Stage, StageContext, StageOutcome
+
+RENDER_SETTINGS = {"burn_zone_sectors": 360, "track_bins": [360, 96], "fe_warp_fraction": 0.06}
 
 
-def compute(ctx: StageContext) -> dict:
-    raise StageNotAvailable(
-        "the report stage (renders and run report, issue 8) is not implemented yet"
-    )
+def report_inputs(scene) -> dict:
+    return {"name": scene.name, "description": scene.description, "render": RENDER_SETTINGS}
+
+
+def compute(ctx: StageContext, show: bool = False) -> dict:
+    from ..render.run_report import write_run_report
+
+    return write_run_report(ctx.scene, ctx.run_dir, ctx.upstream, ctx.out_dir, ctx.progress, show=show)
 
 
 STAGE = Stage(
     name="report",
     depends=("identify", "quasistatic", "simulate"),
     needed=lambda scene: True,
-    inputs=lambda scene: {},
+    inputs=report_inputs,
     compute=compute,
     summary="burn-zone and FE renders, HTML report",
 )
+
+
+def finished_upstream(run_dir: Path) -> dict[str, str]:
+    """name -> key of the upstream stages that finished in `run_dir` (manifest status done)."""
+    from ..artefacts import read_manifest
+
+    keys = {}
+    for name in STAGE.depends:
+        manifest = read_manifest(Path(run_dir) / name)
+        if manifest and manifest.get("status") == "done" and manifest.get("key"):
+            keys[name] = manifest["key"]
+    return keys
+
+
+def render_run(run_dir: Path, show: bool = False, progress=None) -> StageOutcome:
+    """Redraw `<run_dir>/report/` from the saved results (atomically, as the stage does).
+
+    Raises FileNotFoundError when `run_dir` holds no scene.toml or no finished stage.
+    """
+    from ..runner import _compute, stage_key
+    from ..scene import load_scene
+
+    run_dir = Path(run_dir)
+    scene_file = run_dir / "scene.toml"
+    if not scene_file.is_file():
+        raise FileNotFoundError(f"{run_dir} is not a run directory: it has no scene.toml "
+                                "(written by `bearingsim run SCENE`; give the directory it printed)")
+    scene = load_scene(scene_file)
+    upstream = finished_upstream(run_dir)
+    if not upstream:
+        raise FileNotFoundError(f"{run_dir} holds no finished stage ({', '.join(STAGE.depends)}): "
+                                f"run `bearingsim run {scene_file}` first")
+    logging.getLogger("bearingsim").info("render %s: from stages %s", run_dir, sorted(upstream))
+    stage = dataclasses.replace(STAGE, compute=lambda ctx: compute(ctx, show=show))
+    key = stage_key(STAGE, scene, upstream)
+    # the runner's own stage executor: same staged directory swap and manifest as `run`
+    return _compute(stage, scene, run_dir, key, upstream, progress)

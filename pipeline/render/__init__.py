@@ -1,0 +1,12 @@
+"""Renders and the run report (MODEL.md §11): FE deflections, burn zone, HTML page.
+
+Reads saved results only and never re-solves (STYLE.md rule 5). pyvista/VTK and
+matplotlib are imported inside the functions that draw (rule 6), so importing this
+package costs nothing. Entry points:
+
+- `run_report.write_run_report` — everything the `report` stage writes;
+- `fe_deflection.render_case` — one FE load case (PNG + ParaView `.vtu`);
+- `burn_zone_data.burn_zone_map` + `burn_zone.render_burn_zone_3d` /
+  `render_burn_zone_map` — the burn zone on the outer race;
+- `report.write_report_html` — the self-contained page.
+"""

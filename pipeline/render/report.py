@@ -1,0 +1,220 @@
+"""The run report: one self-contained HTML page (PNGs embedded as base64 data URIs).
+
+Sections, in the order a reader asks: summary metrics, burn zone, dynamic figures,
+quasi-static table, hinge, FE deflections, solver counters, scene, versions and stage
+manifests. Everything comes from files already in the run directory; a section whose
+stage did not run says so instead of disappearing.
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+import json
+import math
+import time
+import tomllib
+from pathlib import Path
+
+SUMMARY_UNITS = {
+    "duration": "s", "wall_time": "s", "integration_wall_time": "s", "cage_speed_mean": "rad/s",
+    "kinematic_cage_speed": "rad/s", "cage_speed_variation": "-", "cage_metal_contact_fraction": "-",
+    "cage_contact_angle_spread": "rad", "cage_whirl_ratio": "-", "inner_race_axial_mean": "m",
+    "pocket_impacts": "count", "pocket_impact_force_p95": "N", "burn_zone_sector": "rad",
+    "burn_zone_energy_total": "J",
+}
+SOLVER_COUNTERS = ("steps", "rejected_steps", "newton_failures", "newton_iterations", "factorizations",
+                   "residual_evaluations", "min_step_accepts", "integration_wall_time", "wall_time")
+DYNAMIC_FIGURES = ("cage_orbit.png", "cage_speed.png", "cage_race_force.png", "pocket_impacts.png",
+                   "phase_portraits.png")
+STYLE = """
+body{font-family:system-ui,sans-serif;max-width:1200px;margin:1em auto;padding:0 1em;color:#222}
+h1{font-size:1.5em}h2{border-bottom:1px solid #ccc;margin-top:2em}
+table{border-collapse:collapse;margin:.5em 0;font-size:.9em}
+td,th{border:1px solid #ddd;padding:2px 8px;text-align:right}th{background:#f4f4f4}
+td:first-child,th:first-child{text-align:left}
+figure{margin:1em 0}img{max-width:100%;border:1px solid #eee}
+figcaption{font-size:.9em;color:#444}pre{background:#f7f7f7;padding:.5em;overflow-x:auto;font-size:.85em}
+.note{color:#a60}
+"""
+
+
+def _fmt(value) -> str:
+    if isinstance(value, float):
+        return "nan" if math.isnan(value) else f"{value:.6g}"
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_fmt(v) for v in value) + "]"
+    return "—" if value is None else str(value)
+
+
+def table(header: list[str], rows: list[list]) -> str:
+    """An HTML table; cells are escaped and numbers shown to 6 significant digits."""
+    head = "".join(f"<th>{html.escape(h)}</th>" for h in header)
+    body = "".join("<tr>" + "".join(f"<td>{html.escape(_fmt(c))}</td>" for c in row) + "</tr>" for row in rows)
+    return f"<table><tr>{head}</tr>{body}</table>"
+
+
+def image(path: Path, caption: str = "") -> str:
+    """A PNG embedded as a data URI (the page must open alone, e-mailed or archived)."""
+    path = Path(path)
+    if not path.is_file():
+        return f'<p class="note">missing figure {html.escape(path.name)}</p>'
+    data = base64.b64encode(path.read_bytes()).decode("ascii")
+    cap = f"<figcaption>{html.escape(caption)}</figcaption>" if caption else ""
+    return f'<figure><img alt="{html.escape(path.name)}" src="data:image/png;base64,{data}">{cap}</figure>'
+
+
+def _read_json(path: Path) -> dict | None:
+    try:
+        return json.loads(Path(path).read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+
+
+def _not_run(what: str) -> str:
+    return f'<p class="note">{html.escape(what)}</p>'
+
+
+def summary_section(summary: dict | None) -> str:
+    if summary is None:
+        return _not_run("No dynamic run in this directory (stage simulate did not run).")
+    rows = [[k, summary[k], SUMMARY_UNITS.get(k, "")] for k in summary
+            if k not in SOLVER_COUNTERS and not isinstance(summary[k], dict)]
+    if summary.get("burn_zone_sector"):
+        a, b = summary["burn_zone_sector"]
+        rows.append(["burn_zone_sector (deg)", [math.degrees(a), math.degrees(b)], "deg"])
+    energy = summary.get("energy") or {}
+    rows += [[f"energy/{k}", v, "J"] for k, v in energy.items()]
+    return table(["metric", "value", "unit"], rows)
+
+
+def solver_section(summary: dict | None) -> str:
+    if summary is None:
+        return _not_run("No dynamic run: no solver counters.")
+    return table(["counter", "value"], [[k, summary[k]] for k in SOLVER_COUNTERS if k in summary])
+
+
+def quasistatic_section(qs_dir: Path | None) -> str:
+    result = _read_json(qs_dir / "quasistatic.json") if qs_dir else None
+    if result is None:
+        return _not_run("Stage quasistatic did not run.")
+    deg = 180.0 / math.pi
+    ir = result.get("inner_race", {})
+    parts = [table(["inner race", "value", "unit"], [
+        ["displacement x, y, z", [d * 1e6 for d in ir.get("displacement", [])], "µm"],
+        ["tilt about x, y", [r * 1e3 for r in ir.get("tilt", [])], "mrad"],
+        ["cage speed (kinematic)", result.get("cage_speed"), "rad/s"],
+        ["converged", result.get("converged"), ""], ["iterations", result.get("iterations"), ""]])]
+    rows = [[f"{b['azimuth'] * deg:.1f}", b["inner_load"], b["outer_load"], b["inner_contact_angle"] * deg,
+             b["outer_contact_angle"] * deg, b.get("max_pressure_inner", float("nan")) / 1e6,
+             b.get("max_pressure_outer", float("nan")) / 1e6] for b in result.get("balls", [])]
+    parts.append(table(["azimuth [deg]", "Q_i [N]", "Q_o [N]", "α_i [deg]", "α_o [deg]",
+                        "p_max,i [MPa]", "p_max,o [MPa]"], rows))
+    for w in result.get("warnings", []):
+        parts.append(_not_run(f"warning: {w}"))
+    parts.append(image(qs_dir / "load_distribution.png", "Ball loads and contact angles against azimuth."))
+    return "".join(parts)
+
+
+def hinge_section(scene, identify_dir: Path | None) -> str:
+    """Identified hinge (hinge.toml) or the values given in the scene."""
+    h = scene.hinge
+    if h.source == "none":
+        return _not_run("hinge.source = 'none': the inner race is free (no hinge).")
+    if h.source == "given" or identify_dir is None:
+        return (f"<p>Given in the scene (hinge.source = {html.escape(h.source)}); no FE stage.</p>"
+                + table(["quantity", "value", "unit"], [
+                    ["H_u (translational)", h.stiffness_matrix(), "N/m"],
+                    ["H_psi (bending)", list(h.bending), "N·m/rad"],
+                    ["damping time c_G", h.damping_ratio_time, "s"]]))
+    path = identify_dir / "hinge.toml"
+    if not path.is_file():
+        return _not_run(f"identify stage ran but {path.name} is missing.")
+    with open(path, "rb") as fh:
+        doc = tomllib.load(fh)
+    hinge, fit, mesh = doc.get("hinge", {}), doc.get("fit", {}), doc.get("mesh", {})
+    rows = [["H_u (translational)", hinge.get("translational"), "N/m"],
+            ["H_psi (bending)", hinge.get("bending"), "N·m/rad"],
+            ["damping time c_G", h.damping_ratio_time, "s"]]
+    rows += [[f"fit: {k}", v, ""] for k, v in fit.items()]
+    rows += [[f"mesh: {k}", v, ""] for k, v in mesh.items()]
+    rows += [[f"time: {k}", v, "s"] for k, v in doc.get("timings_s", {}).items()]
+    return "<p>Identified by FE (stage identify, fit S.2).</p>" + table(["quantity", "value", "unit"], rows)
+
+
+def fe_section(fe_records: list[dict], out_dir: Path, identify_ran: bool) -> str:
+    if not identify_ran:
+        return _not_run("No FE stage in this run (hinge not identified by FE): no deflection renders.")
+    if not fe_records:
+        return _not_run("The identify stage wrote no case_*.vtu files.")
+    parts = []
+    for r in fe_records:
+        parts.append(image(out_dir / r["file"], (
+            f"{r['load_case']}: half model cut through the axis, deformation ×{r['warp_scale']:g}; "
+            f"left |u| (max {r['max_displacement_m'] * 1e6:.3g} µm), right von Mises stress"
+            + (f" (max {r['max_von_mises_Pa'] / 1e6:.3g} MPa)" if r.get("max_von_mises_Pa") else "")
+            + f"; colour scales 0 to max. ParaView file: {r['vtu']}.")))
+    return "".join(parts)
+
+
+def burn_section(burn: dict | None, out_dir: Path) -> str:
+    if burn is None:
+        return _not_run("No burn-zone map (no dynamic run, or no outer-race-guided cage).")
+    peak = (f"peak sector centred at {burn['peak_sector_deg']:.1f}° "
+            f"({burn['peak_sector_energy_J']:.3g} J, {burn['peak_areal_density_J_m2']:.3g} J/m²)"
+            if burn.get("peak_sector_deg") is not None else "no metal-to-metal contact at the guide land")
+    arc = (f"80 % of the energy in [{burn['sector_deg'][0]:.1f}°, {burn['sector_deg'][1]:.1f}°]"
+           if burn.get("sector_deg") else "")
+    text = (f"<p>Cage metal-contact friction energy (friction power × time) on the guiding land, "
+            f"{burn['sectors']} sectors of {360 / burn['sectors']:g}°, total {burn['energy_total_J']:.4g} J "
+            f"over the whole run, {burn.get('energy_last_half_J', float('nan')):.4g} J of it in the last half "
+            f"(the summary's analysis window); "
+            f"{html.escape(peak)}; {html.escape(arc)}. The model gives the azimuth of the rub only: each "
+            f"sector's energy is spread uniformly over the cage's land overlap (both lands, "
+            f"L = {burn['land_overlap_mm']:.2f} mm). Raceway: ball–outer-race contact load × time, each "
+            f"contact spread over its Hertz ellipse across the groove; "
+            f"{burn['track_outside_fraction'] * 100:.2g} % of it lies beyond the land edges. "
+            "Colour scales run from 0 to the data's maximum.</p>")
+    return (text + image(out_dir / burn["map"], "Unrolled outer race: azimuth × axial position.")
+            + image(out_dir / burn["render"], "Outer race in 3-D, four fixed views (half ring each)."))
+
+
+def provenance_section(run_dir: Path, stage_dirs: dict[str, Path]) -> str:
+    versions = _read_json(run_dir / "versions.json") or {}
+    rows = []
+    for name, d in stage_dirs.items():
+        m = _read_json(d / "stage.json") or {}
+        rows.append([name, (m.get("key") or "")[:16], m.get("wall_time_s"), m.get("finished")])
+    return (table(["stage", "input key", "wall time [s]", "finished"], rows)
+            + table(["package", "version"], [[k, v] for k, v in versions.items()]))
+
+
+def write_report_html(path: Path, scene, run_dir: Path, stage_dirs: dict[str, Path], out_dir: Path,
+                      fe_records: list[dict], burn: dict | None) -> None:
+    """Assemble and write the page (atomically)."""
+    from ..artefacts import atomic_write_text
+
+    sim = stage_dirs.get("simulate")
+    summary = _read_json(sim / "summary.json") if sim else None
+    scene_file = run_dir / "scene.toml"
+    scene_text = scene_file.read_text(encoding="utf-8") if scene_file.is_file() else ""
+    dyn = "".join(image(sim / f) for f in DYNAMIC_FIGURES if (sim / f).is_file()) if sim else ""
+    sections = [
+        ("Summary metrics", summary_section(summary)),
+        ("Burn zone", burn_section(burn, out_dir)),
+        ("Dynamic run", dyn or _not_run("No dynamic figures.")),
+        ("Quasi-static equilibrium", quasistatic_section(stage_dirs.get("quasistatic"))),
+        ("Hinge", hinge_section(scene, stage_dirs.get("identify"))),
+        ("FE deflections", fe_section(fe_records, out_dir, "identify" in stage_dirs)),
+        ("Solver counters", solver_section(summary)),
+        ("Scene", f"<pre>{html.escape(scene_text)}</pre>"),
+        ("Versions and stages", provenance_section(run_dir, stage_dirs)),
+    ]
+    body = "".join(f"<h2>{html.escape(t)}</h2>{b}" for t, b in sections)
+    page = (f"<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\">"
+            f"<title>bearingsim — {html.escape(scene.name)}</title><style>{STYLE}</style></head><body>"
+            f"<h1>bearingsim run report — {html.escape(scene.name)}</h1>"
+            f"<p>{html.escape(scene.description)}</p>"
+            f"<p>Generated {time.strftime('%Y-%m-%d %H:%M:%S %z')} from the saved results in "
+            f"<code>{html.escape(str(run_dir))}</code>.</p>{body}</body></html>\n")
+    atomic_write_text(path, page)

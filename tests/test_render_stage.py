@@ -1,0 +1,155 @@
+"""The `report` stage and `bearingsim render RUN` on a synthetic finished run directory."""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+
+import numpy as np
+import pytest
+import tomli_w
+from typer.testing import CliRunner
+
+from pipeline.artefacts import atomic_write_json, read_manifest
+from pipeline.cli import app
+from pipeline.results.cage_metrics import burn_zone_histogram, burn_zone_sector, time_weights
+from pipeline.results.timeseries import Series, write_timeseries
+from pipeline.runner import run_stages, stage_key
+from pipeline.scene import load_scene
+from pipeline.stages import STAGES
+from pipeline.stages.identify import STAGE as IDENTIFY
+from pipeline.stages.quasistatic import STAGE as QUASISTATIC
+from pipeline.stages.report import STAGE as REPORT
+from pipeline.stages.simulate import STAGE as SIMULATE
+
+from .test_render_fe import write_tiny_case
+
+RUB_AZIMUTH, RUB_POWER, RUB_TIME = 1.0, 100.0, 4e-3  # rad, W, s
+
+
+def _manifest(directory, key):
+    atomic_write_json(directory / "stage.json", {"stage": directory.name, "status": "done", "key": key,
+                                                 "wall_time_s": 0.1, "finished": "2026-01-01T00:00:00"})
+
+
+def _timeseries(scene, path):
+    """A 10 ms run: balls on the outer groove at contact angle 25° + 5° cos(psi); the cage
+    rubs the land at azimuth 1 rad with 100 W during the first 4 ms."""
+    b, Z = scene.bearing, scene.bearing.ball_count
+    t = np.linspace(0.0, 0.01, 201)
+    psi = (np.arange(Z)[None, :] * 2 * math.pi / Z + 140.0 * t[:, None])
+    alpha = np.radians(25.0 + 5.0 * np.cos(psi))
+    rho = 0.5 * b.outer_groove_center_diameter + 0.43e-3 * np.cos(alpha)
+    pos = np.stack([rho * np.cos(psi), rho * np.sin(psi), 0.43e-3 * np.sin(alpha)], axis=2)
+    power = np.where(t < RUB_TIME, RUB_POWER, 0.0)
+    T, B = ("time",), ("time", "ball")
+    write_timeseries(path, {
+        "time": Series(t, "s", "sample time", T),
+        "balls/position": Series(pos, "m", "ball centres", ("time", "ball", "xyz")),
+        "contacts/outer_contact_angle": Series(alpha, "rad", "outer contact angle", B),
+        "contacts/outer_load": Series(np.full_like(alpha, 3000.0), "N", "outer load", B),
+        "cage_race/friction_power": Series(power, "W", "friction power", T),
+        "cage_race/contact_azimuth": Series(np.full_like(t, RUB_AZIMUTH), "rad", "contact azimuth", T),
+    })
+    hist = burn_zone_histogram(np.full_like(t, RUB_AZIMUTH), power * time_weights(t))
+    return {"duration": 0.01, "steps": 1234, "rejected_steps": 5, "newton_iterations": 2000,
+            "factorizations": 7, "cage_speed_mean": 140.0, "burn_zone_sector": list(burn_zone_sector(hist)),
+            "burn_zone_energy_total": float(hist.sum()), "energy": {"drive": 1.0}}
+
+
+@pytest.fixture(scope="module")
+def run_dir(tmp_path_factory):
+    """A finished run of helicopter-b (FE hinge) with the real stages' keys in the manifests."""
+    scene = load_scene("helicopter-b")
+    run = tmp_path_factory.mktemp("run") / "helicopter-b"
+    run.mkdir()
+    (run / "scene.toml").write_text("# resolved\n" + tomli_w.dumps(scene.raw))
+    (run / "versions.json").write_text(json.dumps({"bearingsim": "test", "numpy": np.__version__}))
+    keys = {"identify": stage_key(IDENTIFY, scene, {}), "quasistatic": stage_key(QUASISTATIC, scene, {})}
+    keys["simulate"] = stage_key(SIMULATE, scene, dict(keys))
+    for name in keys:
+        (run / name).mkdir()
+        _manifest(run / name, keys[name])
+    write_tiny_case(run / "identify" / "case_fx.vtu", 3e-6)
+    (run / "identify" / "hinge.toml").write_text(
+        '[hinge]\nsource = "fe"\ntranslational = [[6.5e8, 0, 0], [0, 6.5e8, 0], [0, 0, 5.3e8]]\n'
+        'bending = [8.7e6, 8.7e6]\n[fit]\nrelative_residual = 0.0015\ncondition_number = 1.41\n'
+        '[[cases]]\nname = "fx_-1000"\nload = [-1000.0, 0, 0, 0, 0, 0]\n')
+    balls = [{"azimuth": k * 2 * math.pi / 22, "inner_load": 3000.0, "outer_load": 3050.0,
+              "inner_contact_angle": 0.45, "outer_contact_angle": 0.44} for k in range(22)]
+    (run / "quasistatic" / "quasistatic.json").write_text(json.dumps(
+        {"inner_race": {"displacement": [4e-5, 0.0, 3e-4], "tilt": [0.0, 9e-4]}, "balls": balls,
+         "converged": True, "iterations": 9, "cage_speed": 143.7}))
+    summary = _timeseries(scene, run / "simulate" / "timeseries.h5")
+    (run / "simulate" / "summary.json").write_text(json.dumps(summary))
+    return run, scene, keys
+
+
+def _no_solving(monkeypatch):
+    """Every solver entry point of the other stages fails the test if called."""
+    import dynamics.bearing
+    import dynamics.quasistatic
+    import fe_model
+
+    def boom(*args, **kwargs):
+        raise AssertionError("rendering must not solve anything")
+
+    monkeypatch.setattr(dynamics.bearing, "simulate_bearing", boom)
+    monkeypatch.setattr(dynamics.quasistatic, "solve_quasistatic", boom)
+    monkeypatch.setattr(fe_model, "identify_hinge", boom)
+    monkeypatch.setattr("pipeline.runner.run_stages", boom)  # render never runs the pipeline
+
+
+def test_render_command_regenerates_the_report_without_solving(run_dir, monkeypatch):
+    run, scene, keys = run_dir
+    _no_solving(monkeypatch)
+    monkeypatch.delenv("DISPLAY", raising=False)
+    monkeypatch.delenv("WAYLAND_DISPLAY", raising=False)
+    h5_mtime = (run / "simulate" / "timeseries.h5").stat().st_mtime_ns
+    result = CliRunner().invoke(app, ["render", str(run), "--show"])
+    assert result.exit_code == 0, result.output
+    assert "no display" in result.output and "off-screen" in result.output  # --show falls back
+    out = run / "report"
+    for name in ("report.html", "burn_zone_3d.png", "burn_zone_map.png", "fe_fx.png", "fe_fx.vtu", "renders.json"):
+        assert (out / name).is_file() and (out / name).stat().st_size > 0, name
+    assert (run / "simulate" / "timeseries.h5").stat().st_mtime_ns == h5_mtime
+    manifest = read_manifest(out)
+    assert manifest["status"] == "done"
+    assert manifest["key"] == stage_key(REPORT, scene, keys)  # the key `run` would compute
+
+    renders = json.loads((out / "renders.json").read_text())
+    burn = renders["burn_zone"]
+    # energy: P on the 80 samples t_k = k dt < 4 ms (dt = 50 µs), trapezoid weights dt/2 for
+    # the first and dt for the others (the sample after the last powered one carries P = 0):
+    # E = P dt (80 - 1/2) = 100 W × 3.975 ms
+    assert burn["energy_total_J"] == pytest.approx(RUB_POWER * 5e-5 * 79.5, rel=1e-9)
+    assert burn["energy_last_half_J"] == 0.0  # the rub stops at 4 ms of a 10 ms run
+    assert burn["peak_sector_deg"] == pytest.approx(math.floor(math.degrees(RUB_AZIMUTH)) + 0.5)
+    assert burn["track_outside_fraction"] == 0.0  # 25° ± 5° tracks stay inside the raceway
+    assert renders["fe"][0]["max_displacement_m"] == pytest.approx(3e-6, rel=1e-12)
+
+    page = (out / "report.html").read_text()
+    assert len(re.findall(r'src="data:image/png;base64,', page)) >= 3  # burn 3-D, map, FE
+    assert not re.search(r'src="(?!data:)', page)  # self-contained: no external files
+    for text in ("Summary metrics", "Burn zone", "Quasi-static", "Hinge", "FE deflections",
+                 "Solver counters", "Scene", "Versions", "6.5e+08", "1234", "load case fx = -1000 N"):
+        assert text in page, text
+
+
+def test_run_finds_the_rendered_report_up_to_date_and_redraws_when_forced(run_dir, monkeypatch):
+    run, scene, _ = run_dir
+    if read_manifest(run / "report") is None:
+        CliRunner().invoke(app, ["render", str(run)])
+    _no_solving(monkeypatch)  # (run_stages was imported by name above: still the real one)
+    outcomes = run_stages(scene, run, STAGES, ["report"])
+    assert [o.status for o in outcomes] == ["cached"] * 4
+    first = (run / "report" / "burn_zone_map.png").read_bytes()
+    outcomes = run_stages(scene, run, STAGES, ["report"], force={"report"})  # the `run` path
+    assert [o.status for o in outcomes] == ["cached"] * 3 + ["computed"]
+    assert (run / "report" / "burn_zone_map.png").read_bytes() == first  # reproducible
+
+
+def test_render_rejects_a_directory_that_is_not_a_run(tmp_path):
+    result = CliRunner().invoke(app, ["render", str(tmp_path)])
+    assert result.exit_code == 2 and "not a run directory" in " ".join(result.output.split())

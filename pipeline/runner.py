@@ -9,7 +9,9 @@ served from a stale cache. Stages a scene does not need are left out entirely.
 from __future__ import annotations
 
 import logging
+import shutil
 import time
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
@@ -49,7 +51,7 @@ class StageContext:
 @dataclass
 class StageOutcome:
     name: str
-    status: str  # "computed" | "cached" | "not needed"
+    status: str  # "computed" | "cached" | "from store" | "not needed"
     key: str | None = None
     wall_time: float = 0.0
     info: dict = field(default_factory=dict)
@@ -67,8 +69,14 @@ def run_stages(
     targets: list[str],
     force: set[str] = frozenset(),
     progress: Callable[[str, str, float], None] | None = None,
+    store: Path | None = None,
 ) -> list[StageOutcome]:
-    """Run `targets` (stage names, in order) and whatever they need, caching by input key."""
+    """Run `targets` (stage names, in order) and whatever they need, caching by input key.
+
+    `store`: optional directory shared by many run directories (the points of a sweep).
+    A stage whose key is in the store is linked from it instead of recomputed, and a
+    computed stage is published to it (see :func:`_via_store`).
+    """
     by_name = {s.name: s for s in stages}
     order = _closure(by_name, targets)
     keys: dict[str, str] = {}
@@ -87,7 +95,10 @@ def run_stages(
             log.info("stage %s: up to date (key %s), skipped", name, key[:12])
             outcomes.append(StageOutcome(name, "cached", key, info=read_manifest(stage_dir).get("info", {})))
             continue
-        outcomes.append(_compute(stage, scene, run_dir, key, up, progress))
+        if store is None:
+            outcomes.append(compute_stage(stage, scene, run_dir, key, up, progress))
+        else:
+            outcomes.append(_via_store(stage, scene, run_dir, key, up, progress, Path(store), name in force))
     return outcomes
 
 
@@ -106,7 +117,9 @@ def _closure(by_name: dict[str, Stage], targets: list[str]) -> list[str]:
     return [n for n in by_name if n in wanted]
 
 
-def _compute(stage, scene, run_dir, key, up, progress) -> StageOutcome:
+def compute_stage(stage, scene, run_dir, key, up, progress) -> StageOutcome:
+    """Compute one stage into `run_dir/<stage>` (atomic swap) whatever its cache says;
+    `up` maps upstream stage names to their keys. Also used by `render` to redo `report`."""
     log.info("stage %s: computing (key %s)", stage.name, key[:12])
     t0 = time.perf_counter()
     report = (lambda text, f: progress(stage.name, text, f)) if progress else (lambda text, f: None)
@@ -121,3 +134,47 @@ def _compute(stage, scene, run_dir, key, up, progress) -> StageOutcome:
         })
     log.info("stage %s: done in %.2f s", stage.name, wall)
     return StageOutcome(stage.name, "computed", key, wall, info)
+
+
+def _via_store(stage, scene, run_dir, key, up, progress, store: Path, force: bool) -> StageOutcome:
+    """Link a finished stage from the content-addressed store `store/<stage>/<key>/`, or
+    compute it and publish it there. One lock per key: runs on several workers that need
+    the same stage (e.g. one FE identification for a whole sweep) compute it once; the
+    others wait for the lock and then link the published result."""
+    entry = store / stage.name / key
+    with _store_lock(entry.with_name(f".{key}.lock")):
+        if not force and is_fresh(entry, key):
+            with staged_directory(run_dir / stage.name) as tmp:
+                shutil.copytree(entry, tmp, dirs_exist_ok=True, copy_function=_link_or_copy)
+            log.info("stage %s: linked from store %s (key %s)", stage.name, store, key[:12])
+            return StageOutcome(stage.name, "from store", key, info=read_manifest(entry).get("info", {}))
+        outcome = compute_stage(stage, scene, run_dir, key, up, progress)
+        with staged_directory(entry) as tmp:  # atomic: readers never see a partial entry
+            shutil.copytree(run_dir / stage.name, tmp, dirs_exist_ok=True, copy_function=_link_or_copy)
+        return outcome
+
+
+def _link_or_copy(src, dst) -> None:
+    """Hard link (stage files are written once and replaced whole, never edited in place);
+    copy where links are impossible (another file system, Windows shares)."""
+    try:
+        Path(dst).hardlink_to(src)
+    except OSError:
+        shutil.copy2(src, dst)
+
+
+@contextmanager
+def _store_lock(path: Path):
+    """Exclusive advisory lock on `path`, released on exit or when the process dies."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    try:
+        import fcntl
+    except ImportError:  # no flock (Windows): at worst two runs compute the same stage
+        yield
+        return
+    with open(path, "a+b") as fh:
+        fcntl.flock(fh, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(fh, fcntl.LOCK_UN)

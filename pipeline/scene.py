@@ -32,7 +32,7 @@ FORM1_KEYS = ("inner_groove_center_diameter", "outer_groove_center_diameter",
               "inner_groove_radius", "outer_groove_radius")
 FORM2_KEYS = ("pitch_diameter", "inner_conformity", "outer_conformity", "diametral_clearance")
 TOP_LEVEL = ("name", "description", "bearing", "cage", "materials", "lubricant", "load",
-             "speed", "hinge", "fe", "solver", "physics", "output")
+             "speed", "hinge", "fe", "solver", "physics", "output", "sweep")
 
 
 @dataclass(frozen=True)
@@ -185,6 +185,11 @@ def resolve(table: dict, origin: str = "<table>") -> Scene:
     for key in ("name", "bearing", "materials", "load", "speed"):
         if key not in table:
             raise SceneError(key, f"required {'key' if key == 'name' else 'table'} is missing in {origin}")
+    if "sweep" in table:  # how to vary the scene, not physics: validated, then kept out of raw
+        from .sweep.spec import build_sweep_section
+
+        build_sweep_section(table["sweep"])
+        table = {k: v for k, v in table.items() if k != "sweep"}
     name = convert("name", table["name"], str, {})
     if not name or any(c in name for c in "/\\") or name.startswith("."):
         raise SceneError("name", f"{name!r} cannot name a run directory (no slashes, not empty)")

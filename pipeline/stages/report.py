@@ -60,7 +60,7 @@ def render_run(run_dir: Path, show: bool = False, progress=None) -> StageOutcome
 
     Raises FileNotFoundError when `run_dir` holds no scene.toml or no finished stage.
     """
-    from ..runner import _compute, stage_key
+    from ..runner import compute_stage, stage_key
     from ..scene import load_scene
 
     run_dir = Path(run_dir)
@@ -77,4 +77,4 @@ def render_run(run_dir: Path, show: bool = False, progress=None) -> StageOutcome
     stage = dataclasses.replace(STAGE, compute=lambda ctx: compute(ctx, show=show))
     key = stage_key(STAGE, scene, upstream)
     # the runner's own stage executor: same staged directory swap and manifest as `run`
-    return _compute(stage, scene, run_dir, key, upstream, progress)
+    return compute_stage(stage, scene, run_dir, key, upstream, progress)

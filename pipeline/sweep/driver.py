@@ -1,0 +1,207 @@
+"""Plan a sweep, run its points on a Dask cluster, gather the table and the map.
+
+Layout of a sweep directory (`runs/<sweep name>/` by default)::
+
+    sweep.json          the plan: scene, axes, points (id, label, overrides)
+    points/<id>/        each point's own run directory (scene.toml, stages, point.json)
+    store/              stages shared between points, by key (pipeline.runner)
+    results.csv         one row per point (pipeline.sweep.table); results.parquet with pyarrow
+    stability_map.png   class map with metal-contact contours (pipeline.sweep.stability_map)
+
+Resuming: a point whose `point.json` is finished for the same scene hash is not run again
+(failed points only with `retry_failed`); points lost with a dead worker have no record
+and run again. The table is always rebuilt from the records on disk.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+import uuid
+from contextlib import contextmanager
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable
+
+from ..artefacts import atomic_write_json
+from ..scene import apply_overrides, read_scene_table, resolve
+from ..schema import SceneError
+from .point_runner import PointRequest, finished_record, run_point
+from .points import SweepPoint, expand, point_table, scene_hash
+from .spec import SweepSection, build_sweep_section, with_command_line
+from .table import result_row, write_table
+
+PLAN_FILE, MAP_FILE = "sweep.json", "stability_map.png"
+
+
+@dataclass(frozen=True)
+class SweepPlan:
+    name: str
+    origin: str
+    sweep_dir: Path
+    section: SweepSection
+    points: tuple[SweepPoint, ...]
+    requests: tuple[PointRequest, ...]
+
+    @property
+    def varied(self) -> list[str]:
+        return list(dict.fromkeys(k for p in self.points for k, _ in p.overrides))
+
+
+@dataclass(frozen=True)
+class SweepStatus:
+    """What the progress display shows; `eta_s` is None until a point has finished."""
+
+    total: int
+    done: int  # finished successfully, including `resumed`
+    failed: int
+    running: int
+    resumed: int  # finished in an earlier run, skipped
+    elapsed_s: float
+    eta_s: float | None
+    last: str = ""  # label and outcome of the latest finished point
+
+
+def plan_sweep(scene: str | Path, sets: list[str] | None = None, vary: list[str] | None = None, *,
+               mode: str | None = None, name: str | None = None, out: Path | None = None,
+               store: Path | None = None) -> SweepPlan:
+    """Validate the scene, the sweep definition and every point; nothing is computed."""
+    table, origin = read_scene_table(scene)
+    table = apply_overrides(table, list(sets or []))
+    section = with_command_line(build_sweep_section(table.get("sweep", {})), list(vary or []), mode, name)
+    base = {k: v for k, v in table.items() if k != "sweep"}
+    resolve(base, origin)
+    sweep_name = section.name or f"{base['name']}-sweep"
+    if not sweep_name or any(c in sweep_name for c in "/\\") or sweep_name.startswith("."):
+        raise SceneError("sweep.name", f"{sweep_name!r} cannot name a directory (no slashes, not empty)")
+    sweep_dir = Path(out if out is not None else Path("runs") / sweep_name).resolve()
+    store = Path(store).resolve() if store is not None else sweep_dir / "store"
+    points = tuple(expand(section))
+    requests = []
+    for p in points:
+        t = point_table(base, p)
+        requests.append(PointRequest(p.id, p.label, p.overrides, t, scene_hash(t, section.target),
+                                     str(sweep_dir / "points" / p.id), str(store), section.target))
+    return SweepPlan(sweep_name, origin, sweep_dir, section, points, tuple(requests))
+
+
+def unfinished(plan: SweepPlan, retry_failed: bool = False) -> tuple[dict[str, dict], list[PointRequest]]:
+    """(records of finished points by id, requests still to run)."""
+    records, todo = {}, []
+    for req in plan.requests:
+        rec = finished_record(Path(req.run_dir), req.scene_hash, req.target)
+        if rec is not None and (rec["status"] == "done" or not retry_failed):
+            records[req.point_id] = rec
+        else:
+            todo.append(req)
+    return records, todo
+
+
+def run_sweep(plan: SweepPlan, client, *, progress: Callable[[SweepStatus], None] | None = None,
+              retry_failed: bool = False, poll_s: float = 0.5,
+              point_function: Callable[[PointRequest], dict] = run_point) -> list[dict | None]:
+    """Run the plan's unfinished points on `client` (a distributed.Client); return one record
+    per point, in plan order. Per-point failures are records, never exceptions. `client` is
+    not used (may be None) when every point has finished before."""
+    _write_plan(plan)
+    records, todo = unfinished(plan, retry_failed)
+    resumed = sum(1 for r in records.values() if r["status"] == "done")
+    token = uuid.uuid4().hex[:8]  # fresh task keys: a reused client must not serve old results
+    futures = {client.submit(point_function, req, key=f"bearingsim-point-{req.point_id}-{token}",
+                             pure=False): req for req in todo}
+    t0, last, last_table = time.perf_counter(), "", time.perf_counter()
+    finished_now = 0
+    try:
+        while True:
+            for fut in [f for f in futures if f.done()]:
+                req = futures.pop(fut)
+                records[req.point_id] = _outcome(fut, req)
+                finished_now += 1
+                last = f"{req.label}: {records[req.point_id]['status']}"
+            if progress is not None:
+                progress(_status(plan, records, futures, client, resumed, finished_now, t0, last))
+            if not futures:
+                break
+            if time.perf_counter() - last_table > 15.0:  # partial table for long sweeps
+                write_table(_rows(plan, records), plan.sweep_dir)
+                last_table = time.perf_counter()
+            time.sleep(poll_s)
+    finally:
+        for fut in futures:
+            fut.cancel()
+    return [records.get(req.point_id) for req in plan.requests]
+
+
+def _outcome(fut, req: PointRequest) -> dict:
+    """The record a point returned, or (not saved: the point reruns next time) why its
+    task ended without one — a worker that died with it, or a cancelled task."""
+    if fut.status == "finished":
+        return fut.result()
+    exc = fut.exception() if fut.status == "error" else None
+    message = f"{type(exc).__name__}: {exc}" if exc is not None else f"task {fut.status}"
+    return {"point_id": req.point_id, "label": req.label, "status": "failed", "summary": None,
+            "error": f"not finished, reruns next time: {message}", "scene_hash": req.scene_hash,
+            "lost": True}
+
+
+def _status(plan, records, futures, client, resumed, finished_now, t0, last) -> SweepStatus:
+    done = sum(1 for r in records.values() if r and r.get("status") == "done")
+    failed = sum(1 for r in records.values() if r and r.get("status") != "done")
+    running = _running(client, {f.key for f in futures})
+    elapsed = time.perf_counter() - t0
+    remaining = len(plan.requests) - len(records)
+    eta = elapsed / finished_now * remaining if finished_now else None
+    return SweepStatus(len(plan.requests), done, failed, running, resumed, elapsed, eta, last)
+
+
+def _running(client, keys: set) -> int:
+    """Tasks of ours being run: a worker may hold more than it has threads (queued)."""
+    try:
+        processing, threads = client.processing(), client.nthreads()
+    except Exception:  # noqa: BLE001 - progress must never break a sweep
+        return 0
+    return sum(min(threads.get(w, 1), sum(1 for k in tasks if k in keys)) for w, tasks in processing.items())
+
+
+def _rows(plan: SweepPlan, records: dict) -> list[dict]:
+    limits = plan.section.thresholds
+    return [result_row(p, records.get(p.id), Path(req.run_dir), limits)
+            for p, req in zip(plan.points, plan.requests)]
+
+
+def gather(plan: SweepPlan, records: list[dict | None]) -> dict[str, Path]:
+    """Write the results table and the stability map; returns {"table": ..., "map": ...}."""
+    from .stability_map import plot_stability_map
+
+    rows = _rows(plan, {req.point_id: rec for req, rec in zip(plan.requests, records)})
+    paths = write_table(rows, plan.sweep_dir)
+    s = plan.section
+    out = plot_stability_map(rows, plan.varied, plan.sweep_dir / MAP_FILE, map_x=s.map_x, map_y=s.map_y,
+                             title=f"{plan.name}: cage motion\n(contours: metal-contact fraction)")
+    return {"table": paths[0], **({"parquet": paths[1]} if len(paths) > 1 else {}), "map": out}
+
+
+def _write_plan(plan: SweepPlan) -> None:
+    s = plan.section
+    atomic_write_json(plan.sweep_dir / PLAN_FILE, {
+        "name": plan.name, "scene": plan.origin, "mode": s.mode, "target": s.target,
+        "axes": {a.key: list(a.values) for a in s.vary},
+        "thresholds": dataclasses.asdict(s.thresholds),
+        "points": [{"id": p.id, "label": p.label, "overrides": dict(p.overrides), "run_dir": r.run_dir}
+                   for p, r in zip(plan.points, plan.requests)],
+    })
+
+
+@contextmanager
+def dask_client(scheduler: str | None = None, workers: int = 2):
+    """A client of the scheduler at `scheduler`, or of a local cluster of `workers`
+    single-threaded worker processes (numba kernels hold the GIL)."""
+    from distributed import Client, LocalCluster
+
+    if scheduler:
+        with Client(scheduler) as client:
+            yield client
+        return
+    with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                      dashboard_address=":0") as cluster, Client(cluster) as client:
+        yield client

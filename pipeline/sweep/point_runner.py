@@ -1,0 +1,123 @@
+"""One sweep point = one normal pipeline run in its own run directory.
+
+Runs on a Dask worker. Whatever happens inside the point (bad physics, solver giving up,
+a bug) is caught and written to the point's record `point.json` with the message; only
+the death of the worker process itself escapes, and then nothing is written, so a rerun
+simply runs the point again. The record is written atomically after the stage results
+it points to, so a record on disk always means a finished point.
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+import os
+import socket
+import threading
+import time
+import traceback
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from ..artefacts import atomic_write_json
+
+RECORD_FILE = "point.json"
+log = logging.getLogger("bearingsim")
+
+
+@dataclass(frozen=True)
+class PointRequest:
+    """Everything a worker needs; plain data, so it pickles to any worker."""
+
+    point_id: str
+    label: str
+    overrides: tuple[tuple[str, Any], ...]
+    table: dict  # the point's validated scene table
+    scene_hash: str
+    run_dir: str  # must be reachable from the worker (shared file system for remote ones)
+    store: str | None  # shared stage store (see pipeline.runner.run_stages)
+    target: str = "simulate"
+
+
+def read_record(run_dir: Path) -> dict | None:
+    try:
+        return json.loads((Path(run_dir) / RECORD_FILE).read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+
+
+def finished_record(run_dir: Path, scene_hash: str, target: str = "simulate") -> dict | None:
+    """The point's record if it finished (done or failed) for exactly this scene; a done
+    record also needs its summary on disk."""
+    record = read_record(run_dir)
+    if not record or record.get("scene_hash") != scene_hash:
+        return None
+    if record.get("status") == "done" and not (Path(run_dir) / target / "summary.json").is_file():
+        return None
+    return record if record.get("status") in ("done", "failed") else None
+
+
+def run_point(request: PointRequest, stages=None) -> dict:
+    """Run the point's pipeline to `request.target`; return (and save) its record.
+    `stages` replaces the pipeline's stages (tests)."""
+    run_dir = Path(request.run_dir)
+    done = finished_record(run_dir, request.scene_hash, request.target)
+    if done is not None and done["status"] == "done":  # a rescheduled task that had finished
+        return done
+    _remove_stale_temporaries(run_dir)
+    t0, cpu0 = time.perf_counter(), time.process_time()
+    record: dict[str, Any] = {
+        "point_id": request.point_id, "label": request.label,
+        "overrides": dict(request.overrides), "scene_hash": request.scene_hash,
+        "worker": f"{socket.gethostname()}:{os.getpid()}",
+    }
+    handler = _attach_point_log(run_dir)
+    try:
+        record.update(_run_pipeline(request, run_dir, stages), status="done", error=None)
+    except Exception as exc:  # noqa: BLE001 - any failure of one point is data, not fatal (issue 10)
+        log.error("sweep point %s failed:\n%s", request.label, traceback.format_exc())
+        record.update(status="failed", error=f"{type(exc).__name__}: {exc}", summary=None)
+    finally:
+        log.removeHandler(handler)
+        handler.close()
+    # CPU time of the worker process (its threads run other points only with threads > 1)
+    record.update(wall_time_s=time.perf_counter() - t0, cpu_time_s=time.process_time() - cpu0,
+                  finished=time.strftime("%Y-%m-%dT%H:%M:%S%z"))
+    atomic_write_json(run_dir / RECORD_FILE, record)
+    return record
+
+
+def _run_pipeline(request: PointRequest, run_dir: Path, stages) -> dict:
+    from ..provenance import write_run_provenance
+    from ..runner import run_stages
+    from ..scene import resolve
+
+    if stages is None:
+        from ..stages import STAGES as stages
+    scene = resolve(request.table, origin=f"sweep point {request.label}")
+    write_run_provenance(run_dir, scene.raw, f"sweep point {request.label}")
+    store = Path(request.store) if request.store else None
+    outcomes = run_stages(scene, run_dir, stages, [request.target], store=store)
+    summary = json.loads((run_dir / request.target / "summary.json").read_text(encoding="utf-8"))
+    return {"summary": summary, "stages": {o.name: o.status for o in outcomes}}
+
+
+def _remove_stale_temporaries(run_dir: Path) -> None:
+    """Half-written stage directories (`.<stage>.*.tmp`) left by a worker killed while it ran
+    this point: a point runs on one worker at a time, so no live run owns them."""
+    import shutil
+
+    for tmp in Path(run_dir).glob(".*.tmp"):
+        if tmp.is_dir():
+            shutil.rmtree(tmp, ignore_errors=True)
+
+
+def _attach_point_log(run_dir: Path) -> logging.Handler:
+    """`<run dir>/run.log` of this point only: threads of one worker run other points."""
+    from ..provenance import attach_run_log
+
+    handler = attach_run_log(run_dir)
+    thread = threading.get_ident()
+    handler.addFilter(lambda record: record.thread == thread)
+    return handler

@@ -1,0 +1,84 @@
+"""The sweep's results table: one row per point, from the points' records on disk.
+
+Columns: `point_id`, `status` (done | failed | pending), one column per varied scene key,
+`cage_class` (:mod:`pipeline.sweep.classify`), the summary metrics of SCENE.md (with
+`burn_zone_sector` split into `burn_zone_start` / `burn_zone_end`, rad), run counters,
+`error` (the message of a failed point) and `run_dir`. Written as CSV, and as parquet
+too when pyarrow is installed.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import os
+import tempfile
+from pathlib import Path
+from typing import Any
+
+from ..artefacts import atomic_write_text
+from .classify import CageClassThresholds, classify_cage
+
+SUMMARY_COLUMNS = (
+    "cage_speed_mean", "kinematic_cage_speed", "cage_speed_variation",
+    "cage_metal_contact_fraction", "cage_contact_angle_spread", "cage_whirl_ratio",
+    "inner_race_axial_mean", "pocket_impacts", "pocket_impact_force_p95",
+    "burn_zone_start", "burn_zone_end", "burn_zone_energy_total",
+    "duration", "steps", "rejected_steps", "newton_iterations", "wall_time",
+)
+CSV_FILE, PARQUET_FILE = "results.csv", "results.parquet"
+
+
+def result_row(point, record: dict | None, run_dir: Path, limits: CageClassThresholds) -> dict[str, Any]:
+    """One table row of `point` (a SweepPoint) from its record (None: not run yet)."""
+    status = record.get("status", "failed") if record else "pending"
+    summary = (record or {}).get("summary") if status == "done" else None
+    row: dict[str, Any] = {"point_id": point.id, "status": status}
+    row.update({k: v for k, v in point.overrides})
+    row["cage_class"] = classify_cage(summary, limits) if status != "pending" else "pending"
+    flat = dict(summary or {})
+    sector = flat.pop("burn_zone_sector", None) or (None, None)
+    flat["burn_zone_start"], flat["burn_zone_end"] = sector
+    row.update({k: flat.get(k) for k in SUMMARY_COLUMNS})
+    row["error"] = (record or {}).get("error")
+    row["run_dir"] = str(run_dir)
+    return row
+
+
+def write_table(rows: list[dict[str, Any]], sweep_dir: Path) -> list[Path]:
+    """Write the rows as `results.csv` (and `results.parquet` with pyarrow), atomically."""
+    if not rows:
+        return []
+    columns = list(rows[0])
+    text = io.StringIO()
+    writer = csv.DictWriter(text, fieldnames=columns, lineterminator="\n")
+    writer.writeheader()
+    for row in rows:
+        writer.writerow({k: ("" if row.get(k) is None else row.get(k)) for k in columns})
+    atomic_write_text(sweep_dir / CSV_FILE, text.getvalue())
+    written = [sweep_dir / CSV_FILE]
+    try:
+        import pyarrow
+        import pyarrow.parquet
+    except ImportError:  # parquet is optional; the CSV holds the same table
+        return written
+    fd, tmp = tempfile.mkstemp(prefix=f".{PARQUET_FILE}.", dir=sweep_dir)
+    os.close(fd)
+    pyarrow.parquet.write_table(pyarrow.Table.from_pylist(rows), tmp)
+    os.replace(tmp, sweep_dir / PARQUET_FILE)
+    return written + [sweep_dir / PARQUET_FILE]
+
+
+def read_table(path: Path) -> list[dict[str, Any]]:
+    """Rows of a `results.csv`, numbers as floats, empty cells as None."""
+    with open(path, newline="", encoding="utf-8") as fh:
+        return [{k: _cell(v) for k, v in row.items()} for row in csv.DictReader(fh)]
+
+
+def _cell(text: str) -> Any:
+    if text == "":
+        return None
+    try:
+        return float(text)
+    except ValueError:
+        return text

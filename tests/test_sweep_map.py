@@ -1,0 +1,62 @@
+"""Results table and stability map of a sweep, from hand-made rows (no runs)."""
+
+from __future__ import annotations
+
+import pytest
+
+from pipeline.sweep.classify import CageClassThresholds
+from pipeline.sweep.points import SweepPoint
+from pipeline.sweep.stability_map import axis_label, map_axes, plot_stability_map
+from pipeline.sweep.table import read_table, result_row, write_table
+
+
+def test_map_axes_prefer_moment_and_speed():
+    assert map_axes(["hinge.damping_ratio_time", "speed.inner_rpm", "load.moment"]) == ("load.moment", "speed.inner_rpm")
+    assert map_axes(["solver.atol"]) == ("solver.atol", None)
+    assert map_axes(["load.moment", "speed.inner_rpm"], map_x="speed.inner_rpm") == ("speed.inner_rpm", "load.moment")
+    with pytest.raises(ValueError, match="not varied"):
+        map_axes(["load.moment"], map_y="speed.inner_rpm")
+
+
+def test_axis_labels_carry_scene_units():
+    assert axis_label("load.moment") == "load.moment [N.m]"
+    assert axis_label("speed.inner_rpm") == "speed.inner_rpm [rev/min]"
+    assert axis_label("bearing.ball_count") == "bearing.ball_count"
+
+
+def record(metal, spread=0.2):
+    return {"status": "done", "error": None, "summary": {
+        "duration": 0.1, "cage_speed_mean": 143.7, "cage_speed_variation": 0.01, "steps": 100,
+        "cage_metal_contact_fraction": metal, "cage_contact_angle_spread": spread,
+        "cage_whirl_ratio": 0.0, "burn_zone_sector": [0.5, 1.0]}}
+
+
+def test_table_round_trip_with_failed_and_pending_points(tmp_path):
+    limits = CageClassThresholds()
+    pts = [SweepPoint((("load.moment", m), ("physics.cage_race", c))) for m in (0.0, 600.0) for c in ("hybrid", "dry")]
+    recs = [record(0.0, None), record(0.9), {"status": "failed", "error": "SceneError: boom", "summary": None}, None]
+    rows = [result_row(p, r, tmp_path / p.id, limits) for p, r in zip(pts, recs)]
+    write_table(rows, tmp_path)
+    back = read_table(tmp_path / "results.csv")
+    assert [r["status"] for r in back] == ["done", "done", "failed", "pending"]
+    assert [r["cage_class"] for r in back] == ["centred", "crushed", "failed", "pending"]
+    assert back[1]["burn_zone_start"] == 0.5 and back[1]["burn_zone_end"] == 1.0
+    assert back[2]["error"] == "SceneError: boom" and back[0]["error"] is None
+    assert back[1]["physics.cage_race"] == "dry" and back[1]["load.moment"] == 0.0
+
+
+@pytest.mark.parametrize("varied, values", [
+    (["load.moment", "speed.inner_rpm"], [(m, s) for m in (0.0, 200.0, 400.0, 600.0) for s in (2000.0, 6000.0)]),
+    (["load.moment", "speed.inner_rpm"], [(0.0, 2000.0), (300.0, 3060.0), (600.0, 6000.0), (450.0, 2500.0)]),
+    (["load.moment"], [(0.0,), (300.0,), (600.0,)]),
+    (["load.moment", "speed.inner_rpm", "physics.cage_race"],
+     [(m, s, c) for m in (0.0, 600.0) for s in (2000.0, 6000.0) for c in ("hybrid", "dry")]),
+])
+def test_map_draws_grids_scattered_points_and_panels(tmp_path, varied, values):
+    limits = CageClassThresholds()
+    rows = []
+    for vals in values:
+        point = SweepPoint(tuple(zip(varied, vals)))
+        rows.append(result_row(point, record(vals[0] / 700.0), tmp_path, limits))
+    out = plot_stability_map(rows, varied, tmp_path / "map.png")
+    assert out.stat().st_size > 5_000

@@ -193,15 +193,132 @@ def run(scene: SceneArg, out: OutOpt = None, force: ForceOpt = False, set_: SetO
 def render(run_dir: Annotated[Path, typer.Argument(help="A run directory written by `bearingsim run`.")],
            show: Annotated[bool, typer.Option("--show", help="Open an interactive window when a display is available.")] = False) -> None:
     """Regenerate renders and the report from saved results (never re-solves)."""
-    _fail(EXIT_UNAVAILABLE, "render is not implemented yet (issue 8: FE deflection and burn-zone renders)")
+    from .provenance import attach_run_log
+    from .render.offscreen import display_available
+    from .stages.report import render_run
+
+    if not (run_dir / "scene.toml").is_file():
+        _fail(EXIT_SCENE, f"{run_dir} is not a run directory (no scene.toml); give the directory "
+                          "`bearingsim run SCENE` printed, e.g. runs/helicopter-b")
+    if show and not display_available():
+        err_console.print("no display (DISPLAY / WAYLAND_DISPLAY unset): rendering off-screen only", highlight=False)
+        show = False
+    elif not show:
+        err_console.print("rendering off-screen", highlight=False)
+    handler = attach_run_log(run_dir)
+    try:
+        outcome = render_run(run_dir, show=show)
+    except SceneError as exc:
+        _fail(EXIT_SCENE, f"scene: {exc}")
+    except FileNotFoundError as exc:
+        _fail(EXIT_SCENE, str(exc))
+    except (RuntimeError, ValueError, ArithmeticError, OSError) as exc:
+        logging.getLogger("bearingsim").exception("render failed")
+        _fail(EXIT_FAILED, f"{type(exc).__name__}: {exc}\n(full log: {run_dir / 'run.log'})")
+    finally:
+        logging.getLogger("bearingsim").removeHandler(handler)
+        handler.close()
+    err_console.print(f"  report       computed in {outcome.wall_time:.2f} s", highlight=False)
+    err_console.print(f"report: {run_dir / 'report' / outcome.info['report']}", highlight=False)
 
 
 @app.command()
 def bench(scene: SceneArg,
-          quick: Annotated[bool, typer.Option("--quick", help="CI-sized variant.")] = False) -> None:
-    """Error against run time of the dynamic solver for a scene (work-precision study)."""
-    _fail(EXIT_UNAVAILABLE, "bench is not implemented yet (issue 9: error against run time); "
-                            "component benchmarks run as `python -m pipeline.bench.<name>`")
+          quick: Annotated[bool, typer.Option("--quick", help="CI-sized variant (~1-2 min): short window, few tolerances, coarse FE meshes.")] = False,
+          out: Annotated[Optional[Path], typer.Option("--out", help="Where the tables and plots go [default: runs/<scene name>/bench/].")] = None,
+          fe: Annotated[bool, typer.Option("--fe/--no-fe", help="Also the FE identification study (scenes with hinge.source = 'fe').")] = True,
+          set_: SetOpt = None) -> None:
+    """Error against run time: work-precision of the dynamic solver (and of the FE hinge identification)."""
+    from .bench.command import run_bench
+
+    try:
+        resolved = _load(scene, set_)
+    except SceneError as exc:
+        _fail(EXIT_SCENE, f"scene: {exc}")
+    identify_dir = None
+    if resolved.hinge.source == "fe":
+        _, run_dir, _ = _pipeline(scene, set_, None, ["identify"], set())
+        identify_dir = run_dir / "identify"
+    try:
+        paths, table = run_bench(resolved, identify_dir, quick, out or _run_dir(resolved, None) / "bench", fe,
+                                 progress=lambda text: err_console.print(text, highlight=False))
+    except (RuntimeError, ValueError) as exc:
+        _fail(EXIT_FAILED, f"{type(exc).__name__}: {exc}")
+    out_console.print(table, highlight=False, soft_wrap=True)
+    err_console.print("written: " + ", ".join(str(p) for p in paths), highlight=False)
+
+
+@app.command()
+def stability(cases: Annotated[Optional[list[str]], typer.Argument(help="Case names [default: all]; see pipeline/scenes/stability/.")] = None,
+              window: Annotated[float, typer.Option("--window", help="Simulated window per case [s].")] = 0.010,
+              wall_budget: Annotated[float, typer.Option("--wall-budget", help="Wall-clock budget per case [s].")] = 180.0,
+              out: Annotated[Path, typer.Option("--out", help="Where the table and plot go.")] = Path("runs/stability")) -> None:
+    """Stability suite: stiff and extreme cases, each a pass or a clearly reported refusal."""
+    from .bench.stability import case_names, markdown_table, run_suite, write_suite
+
+    unknown = [c for c in cases or [] if c not in case_names()]
+    if unknown:
+        _fail(EXIT_SCENE, f"unknown stability case {unknown[0]!r}; cases: {', '.join(case_names())}")
+    results = run_suite(cases or None, window, wall_budget,
+                        progress=lambda text: err_console.print(text, highlight=False))
+    paths = write_suite(results, out)
+    out_console.print(markdown_table(results), highlight=False, soft_wrap=True)
+    err_console.print("written: " + ", ".join(str(p) for p in paths), highlight=False)
+    if any(r.status == "garbage" for r in results):
+        _fail(EXIT_FAILED, "a case finished with an unphysical state (see the table): a defect to report")
+
+
+@app.command()
+def sweep(scene: SceneArg,
+          vary: Annotated[Optional[list[str]], typer.Option(
+              "--vary", metavar="KEY=VALUES",
+              help="Vary a scene key (repeatable): start:stop:count or a,b,c, e.g. --vary load.moment=0:600:13. "
+                   "Replaces the scene's [sweep] points.")] = None,
+          mode: Annotated[Optional[str], typer.Option(
+              "--mode", help="factorial (every combination, default) or list (i-th values together).")] = None,
+          set_: SetOpt = None,
+          name: Annotated[Optional[str], typer.Option("--name", help="Sweep name [default: <scene>-sweep].")] = None,
+          out: Annotated[Optional[Path], typer.Option("--out", help="Sweep directory [default: runs/<sweep name>/].")] = None,
+          store: Annotated[Optional[Path], typer.Option(
+              "--store", help="Shared stage store [default: <sweep dir>/store]; share one between sweeps.")] = None,
+          workers: Annotated[int, typer.Option("--workers", min=1, help="Worker processes of the local cluster.")] = 2,
+          scheduler: Annotated[Optional[str], typer.Option(
+              "--scheduler", metavar="ADDRESS", help="Use a running Dask scheduler (e.g. tcp://host:8786); "
+                                                     "its workers must see the sweep directory.")] = None,
+          retry_failed: Annotated[bool, typer.Option("--retry-failed", help="Rerun points that failed before.")] = False,
+          dry_run: Annotated[bool, typer.Option("--dry-run", help="Validate and list the points; run nothing.")] = False) -> None:
+    """Parameter sweep on Dask: one pipeline run per point, a results table and a cage-stability map."""
+    from .sweep.console import SweepProgress, class_counts, print_results
+    from .sweep.driver import dask_client, gather, plan_sweep, run_sweep, unfinished
+    from .sweep.table import read_table, result_row
+
+    try:
+        plan = plan_sweep(scene, set_, vary, mode=mode, name=name, out=out, store=store)
+    except SceneError as exc:
+        _fail(EXIT_SCENE, f"scene: {exc}")
+    if dry_run:
+        rows = [result_row(p, None, Path(r.run_dir), plan.section.thresholds) for p, r in zip(plan.points, plan.requests)]
+        print_results(rows, plan.varied, out_console)
+        err_console.print(f"{len(rows)} points; sweep directory {plan.sweep_dir}/", highlight=False)
+        return
+    err_console.print(f"sweep {plan.name}: {len(plan.points)} points on "
+                      f"{scheduler or f'a local cluster of {workers} workers'}", highlight=False)
+    try:
+        if not unfinished(plan, retry_failed)[1]:  # all points finished before: no cluster needed
+            records = run_sweep(plan, None, retry_failed=retry_failed)
+        else:
+            with dask_client(scheduler, workers) as client, SweepProgress(err_console) as bar:
+                records = run_sweep(plan, client, progress=bar.update, retry_failed=retry_failed)
+    except OSError as exc:
+        _fail(EXIT_FAILED, f"cannot reach the Dask scheduler {scheduler!r}: {exc}" if scheduler else str(exc))
+    paths = gather(plan, records)
+    rows = read_table(paths["table"])
+    print_results(rows, plan.varied, out_console)
+    err_console.print(f"classes: {class_counts(rows)}\nresults: {paths['table']}\nmap: {paths['map']}", highlight=False)
+    unfinished = [r for r in records if r is None or r.get("lost")]
+    if unfinished:
+        _fail(EXIT_FAILED, f"{len(unfinished)} points did not finish (worker lost); rerun the same command "
+                           "to run only those")
 
 
 def main() -> None:  # pragma: no cover - console entry point

@@ -46,6 +46,20 @@ class Load:
     axial: float = field(default=0.0, metadata={"unit": "N"})
     radial: float = field(default=0.0, metadata={"unit": "N", "ge": 0.0})
     moment: float = field(default=0.0, metadata={"unit": "N.m"})
+    step_time: float | None = field(default=None, metadata={
+        "unit": "s", "ge": 0.0, "doc": "time of a sudden moment step (dynamic run only; with step_moment)"})
+    step_moment: float | None = field(default=None, metadata={
+        "unit": "N.m", "doc": "moment about +y from step_time on (the quasi-static start uses `moment`)"})
+
+    def __post_init__(self) -> None:
+        if (self.step_time is None) != (self.step_moment is None):
+            raise ValueError("a load step needs both step_time [s] and step_moment [N.m]; "
+                             f"got step_time = {self.step_time}, step_moment = {self.step_moment}")
+
+    @property
+    def load_step(self) -> tuple[float, float] | None:
+        """(t_step [s], moment after it [N m]) or None (constant load)."""
+        return None if self.step_time is None else (self.step_time, self.step_moment)
 
 
 @dataclass(frozen=True)

@@ -22,7 +22,7 @@ from dynamics.pocket_contact import N_POCKET_OUT, P_OUT_APPROACH, P_OUT_DFN_DRAT
 from .cage_forces import journal_diag, journal_forces, pocket_diag, pocket_forces
 from .params import (
     FP_D, FP_FX, FP_FZ, FP_JB, FP_JCX, FP_JCZ, FP_JIX, FP_JIZ, FP_MB, FP_MC, FP_MI, FP_MY,
-    FP_OMEGA_I, FP_OMEGA_O, IP_CAGE, IP_GYRO, IP_HINGE, IP_JOURNAL, IP_Z,
+    FP_MY_STEP, FP_OMEGA_I, FP_OMEGA_O, FP_T_LOAD_STEP, IP_CAGE, IP_GYRO, IP_HINGE, IP_JOURNAL, IP_Z,
 )
 from .race_forces import (
     N_CONTACT_SCRATCH, N_RC, RC_ACTIVE, RC_ALPHA, RC_CN, RC_EX, RC_EY, RC_FB, RC_FILM,
@@ -247,7 +247,8 @@ def _border(t, q, v, fp, ip, Hu, Hpsi, Gu, Gpsi, xA, RA, jp, want_tangent, ma, g
             o_i, o_c, x_i, R_i, v_i, w_i, F_i, M_i, x_c, R_c, v_c, w_c, F_c, M_c):
     """Inner race (loads, hinge, gyroscopic, spin) and cage (journal, gyroscopic)."""
     ext_f = np.array([fp[FP_FX], 0.0, fp[FP_FZ]])
-    ext_m = np.array([0.0, fp[FP_MY], 0.0])
+    # a sudden load step (stability suite): the moment jumps at t = FP_T_LOAD_STEP
+    ext_m = np.array([0.0, fp[FP_MY] if t < fp[FP_T_LOAD_STEP] else fp[FP_MY_STEP], 0.0])
     Om_i = v[o_i + 3:o_i + 6]
     tau_ext, K_ext = material_moment_of_spatial_moment(R_i, ext_m)
     for i in range(3):

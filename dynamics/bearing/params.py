@@ -25,7 +25,8 @@ FP_ETA0, FP_ALPHA_P, FP_TAU0 = 20, 21, 22  # lubricant at its temperature
 FP_MIN_FILM, FP_MU_DRY, FP_ZETA = 23, 24, 25
 FP_V_REG = 26                              # regularisation speed of Coulomb traction [m/s]
 FP_P_STEP = 27                             # traction viscosity table pressure step [Pa]
-N_FP = 28
+FP_T_LOAD_STEP, FP_MY_STEP = 28, 29        # from t >= FP_T_LOAD_STEP [s] the moment is FP_MY_STEP [N m]
+N_FP = 30
 
 # --- integer switches ip ------------------------------------------------------------------
 IP_Z, IP_TRACTION, IP_FILM, IP_CAGE, IP_JOURNAL, IP_HINGE, IP_GYRO = 0, 1, 2, 3, 4, 5, 6
@@ -115,10 +116,11 @@ def build_model_params(
     bearing: BearingGeometry, cage: CageGeometry | None, ball: Material, race: Material,
     cage_material: Material | None, lubricant, *, axial: float, radial: float, moment: float,
     inner_speed: float, outer_speed: float, hinge: tuple | None, static_x, static_R,
-    options: ModelOptions = ModelOptions(),
+    options: ModelOptions = ModelOptions(), load_step: tuple[float, float] | None = None,
 ) -> BearingModelParams:
     """Pack a bearing. `hinge` = (H_u 3x3 [N/m], H_psi (2) [N m/rad], c_G [s]) or None
-    (inner race free); (static_x, static_R) is the hinge's static frame A (MODEL.md §5)."""
+    (inner race free); (static_x, static_R) is the hinge's static frame A (MODEL.md §5).
+    `load_step` = (t_step [s], moment after it [N m]): a sudden change of the moment."""
     Z = bearing.ball_count
     fp = np.zeros(N_FP)
     fp[[FP_D, FP_DM, FP_DI, FP_DO, FP_RI, FP_RO]] = (
@@ -128,6 +130,7 @@ def build_model_params(
     fp[FP_MI], fp[FP_JIX], fp[FP_JIZ] = inner_race_inertia(bearing, race)
     fp[FP_OMEGA_I], fp[FP_OMEGA_O] = inner_speed, outer_speed
     fp[FP_FX], fp[FP_FZ], fp[FP_MY] = radial, axial, moment
+    fp[FP_T_LOAD_STEP], fp[FP_MY_STEP] = load_step if load_step is not None else (math.inf, moment)
     e_eff = effective_modulus(ball, race)
     fp[FP_E_EFF] = e_eff
     fp[FP_MIN_FILM], fp[FP_MU_DRY] = options.min_film, options.dry_friction

@@ -155,12 +155,14 @@ def run_window(problem, q0, v0, settings, window: float, sample_interval: float,
                linear_solver=None, exact_tangent: bool = False,
                wall_budget: float = math.inf) -> tuple[WindowRun, Instrumented]:
     """Integrate `problem` from t = 0 to `window` [s] with HHT-α (`settings`); sample q and
-    v every `sample_interval` [s]. Never raises for a solver failure: the outcome is in
-    `WindowRun.error` (IntegrationError, WallClockExceeded, or a model's ValueError)."""
+    v every `sample_interval` [s] on [0, window). Never raises for a solver failure: the
+    outcome is in `WindowRun.error` (IntegrationError, WallClockExceeded, a ValueError)."""
     from dynamics.multibody import FixedIntervalSampler, IntegrationError, integrate
 
     wrapped = Instrumented(problem, exact_tangent=exact_tangent, wall_budget=wall_budget)
-    sampler = FixedIntervalSampler(0.0, window, sample_interval, problem.n_dof)
+    # samples on [0, window): a sample exactly at the window's end can be lost to rounding
+    # of the accumulated fixed-step time (the last step ends ~1e-18 s short of it)
+    sampler = FixedIntervalSampler(0.0, window - 0.5 * sample_interval, sample_interval, problem.n_dof)
     t0 = time.perf_counter()
     error = kind = None
     stats: dict = {}

@@ -69,7 +69,7 @@ def build_model(scene: Scene, identify_dir=None):
         axial=s.load.axial, radial=s.load.radial, moment=s.load.moment,
         inner_speed=s.speed.inner, outer_speed=s.speed.outer,
         hinge=hinge_matrices(s, identify_dir), static_x=start["inner_race_displacement"],
-        static_R=start["inner_race_rotation"], options=model_options(s))
+        static_R=start["inner_race_rotation"], options=model_options(s), load_step=s.load.load_step)
     return params, start
 
 

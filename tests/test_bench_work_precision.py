@@ -1,0 +1,118 @@
+"""Machinery of the work-precision study (issue 9): finite-difference tangents, the
+instrumented window runner, error metrics and the observed order of HHT-alpha."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from dynamics.multibody import HHTSettings
+from dynamics.multibody.linear_solvers import BlockArrowMatrix, BlockArrowSolver
+from dynamics.multibody.models import ArrowSprings, Pendulum, RigidBody
+from dynamics.multibody.hinge import HingeStiffness
+from pipeline.bench import wp_metrics as wm
+from pipeline.bench.instrumented import fd_tangent, run_window
+from pipeline.bench.work_precision import markdown_table, method_grid
+
+
+def _state(n, rng, scale=1e-3):
+    return rng.normal(scale=scale, size=n), rng.normal(scale=0.1, size=n), rng.normal(size=n)
+
+
+@pytest.mark.parametrize("structure", ["dense", "block"])
+def test_fd_tangent_matches_the_exact_tangent_of_hardening_springs(structure):
+    """ArrowSprings' analytic tangent is exact ((k + k3 |d|^2) I + 2 k3 d d^T, models.py):
+    two independent methods must agree to the truncation error of central differences."""
+    rng = np.random.default_rng(3)
+    model = ArrowSprings(4, structure=structure)
+    q, v, a = _state(model.n_dof, rng)
+    c_m, c_v, c_q = 1.0, 1.1e-6, 3e-12
+    exact = model.jacobian(0.0, q, v, a, c_m, c_v, c_q)
+    exact = exact.to_dense() if isinstance(exact, BlockArrowMatrix) else exact.copy()
+    template = model.jacobian(0.0, q, v, a, c_m, c_v, c_q)
+    fd = fd_tangent(model, 0.0, q, v, a, c_m, c_v, c_q, template)
+    fd = fd.to_dense() if isinstance(fd, BlockArrowMatrix) else fd
+    assert np.abs(fd - exact).max() <= 1e-7 * np.abs(exact).max()
+
+
+def test_fd_tangent_uses_material_rotation_increments_on_crv_slots():
+    """A hinged rigid body (CRV orientation, gyroscopic terms): the FD tangent with
+    multiplicative rotation increments matches the model's analytic K_t and C_t
+    (dynamics/multibody/models.py RigidBody; hinge S.19-S.20)."""
+    rng = np.random.default_rng(5)
+    model = RigidBody(2.0, np.diag([0.01, 0.012, 0.02]),
+                      hinge=HingeStiffness(1e7 * np.eye(3), np.array([1e4, 1e4]), 1e-5))
+    q, v, a = _state(6, rng, scale=1e-2)
+    exact = model.jacobian(0.0, q, v, a, 1.0, 2e-6, 1e-12).copy()
+    fd = fd_tangent(model, 0.0, q, v, a, 1.0, 2e-6, 1e-12, model.jacobian(0.0, q, v, a, 1.0, 2e-6, 1e-12))
+    assert np.abs(fd - exact).max() <= 1e-5 * np.abs(exact).max()
+
+
+def test_run_window_samples_counts_and_observed_order_two():
+    """Small-amplitude pendulum, theta = theta0 cos(w t): HHT-alpha at fixed steps is second
+    order (Hilber, Hughes & Taylor, Earthq. Eng. Struct. Dyn. 5 (1977) 283, §3)."""
+    w, theta0, T = 2 * math.pi, 1e-3, 2.0
+    hs, errs = [], []
+    for n in (200, 400, 800):
+        h = T / n
+        s = HHTSettings(alpha=0.1, adaptive=False, first_step=h, min_step=h / 10, max_step=h)
+        run, wrapped = run_window(Pendulum(w), np.array([theta0]), np.array([0.0]), s, T, 0.01)
+        assert run.completed and run.stats["steps"] == n
+        assert run.history.shape == (n, 4) and np.allclose(run.history[:, 1], h)
+        assert wrapped.evaluations == run.stats["residual_evaluations"]
+        exact = theta0 * np.cos(w * run.t)
+        hs.append(h)
+        errs.append(wm.rms_vector_error(run.q[:, :1], exact[:, None]))
+    assert wm.observed_order(hs, errs) == pytest.approx(2.0, abs=0.15)
+
+
+def test_wall_clock_budget_stops_a_run_with_a_clear_message():
+    s = HHTSettings(adaptive=False, first_step=1e-4, min_step=1e-5, max_step=1e-4)
+    run, _ = run_window(Pendulum(1.0), np.array([0.1]), np.array([0.0]), s, 100.0, 1.0, wall_budget=0.0)
+    assert not run.completed and run.error_kind == "WallClockExceeded"
+    assert "wall-clock budget" in run.error and "Try" in run.error
+    assert np.isnan(run.q[-1, 0])  # nothing after the stop is reported as a result
+
+
+def test_impact_error_matches_by_ball_and_time():
+    # rows: time, ball, orbital position, peak force, impact speed, duration
+    ref = np.array([[1e-3, 3, 0.0, 100.0, 0, 0], [2e-3, 5, 0.0, 200.0, 0, 0]])
+    assert wm.impact_error(ref.copy(), ref) == (0.0, 2)
+    off = ref.copy()
+    off[:, 3] *= 1.1  # every peak 10 % high
+    assert wm.impact_error(off, ref)[0] == pytest.approx(0.1)
+    wrong_ball = ref.copy()
+    wrong_ball[1, 1] = 6  # second impact on another ball: unmatched, counts 100 %
+    err, matched = wm.impact_error(wrong_ball, ref)
+    assert matched == 1 and err == pytest.approx(math.sqrt(0.5))
+    late = ref.copy()
+    late[0, 0] += 1e-3  # outside the match window
+    assert wm.impact_error(late, ref, match_window=2e-4)[1] == 1
+
+
+def test_rms_error_of_a_stopped_run_is_infinite():
+    x = np.zeros((5, 2))
+    y = x.copy()
+    y[3, 1] = np.nan
+    assert wm.rms_vector_error(y, x) == math.inf
+    y = x + np.array([3.0, 4.0])
+    assert wm.rms_vector_error(y, x) == pytest.approx(5.0)
+
+
+def test_method_grid_and_table_report_failures():
+    quick = method_grid(True)
+    curves = {m.curve for m in quick}
+    assert any(m.exact_tangent for m in quick) and any(m.ivp for m in quick)
+    assert {"HHT a=0.1 fixed h", "HHT a=0.1 adaptive"} <= curves
+    full = method_grid(False)
+    assert {"solve_ivp Radau", "solve_ivp BDF", "HHT a=0 adaptive", "HHT a=0.3 adaptive"} <= {m.curve for m in full}
+    row = {"curve": "solve_ivp BDF", "setting": "rtol = 0.001", "wall": 3.0, "error_text": "stopped at t = 1 s",
+           "steps": None, "newton_iterations": None, "factorizations": None, "rejected": None,
+           **{q: math.inf for q in wm.QUANTITIES}, "impacts_matched": None}
+    study = {"rows": [row], "config": {"window": 0.01, "sample_interval": 1e-5, "reference_step": 1e-7},
+             "reference": {"wall": 1.0, "impacts": 3, "alpha": 0.1}, "observed_order_fixed_h": 2.0,
+             "load_average": 1.0}
+    table = markdown_table(study)
+    assert "failed: stopped at t = 1 s" in table and "2.00 (2 expected)" in table

@@ -311,6 +311,8 @@ def sweep(scene: SceneArg,
                 records = run_sweep(plan, client, progress=bar.update, retry_failed=retry_failed)
     except OSError as exc:
         _fail(EXIT_FAILED, f"cannot reach the Dask scheduler {scheduler!r}: {exc}" if scheduler else str(exc))
+    except RuntimeError as exc:  # e.g. the optional dask extra is not installed
+        _fail(EXIT_FAILED, str(exc))
     paths = gather(plan, records)
     rows = read_table(paths["table"])
     print_results(rows, plan.varied, out_console)

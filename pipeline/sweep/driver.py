@@ -196,7 +196,11 @@ def _write_plan(plan: SweepPlan) -> None:
 def dask_client(scheduler: str | None = None, workers: int = 2):
     """A client of the scheduler at `scheduler`, or of a local cluster of `workers`
     single-threaded worker processes (numba kernels hold the GIL)."""
-    from distributed import Client, LocalCluster
+    try:
+        from distributed import Client, LocalCluster
+    except ImportError as exc:  # the `sweep` extra is optional
+        raise RuntimeError("sweeps need dask.distributed: install the extra with "
+                           "`pip install 'bearingsim[sweep]'` (or `pip install '.[sweep]'` in a checkout)") from exc
 
     if scheduler:
         with Client(scheduler) as client:

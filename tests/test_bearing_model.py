@@ -155,3 +155,22 @@ def test_tangents_agree_with_finite_differences(case, lubricated, dry):
             err = np.abs(model_t[rows, c] - fd[rows, c]).max()
             assert err <= 0.05 * scale + floor, (
                 f"{name} column {cols[c]}: error {err:.3e} of scale {scale:.3e} (floor {floor:.3e})")
+
+
+def test_physics_switches_remove_the_film():
+    """[physics] ehd_film = false: the film kernel is not called (film diagnostics stay 0);
+    with it on, every loaded contact reports a film of order 0.1–1 µm."""
+    from dynamics.bearing import assembly as A
+    from dynamics.lubricant import load_builtin_lubricant
+
+    films = {}
+    for on in (True, False):
+        params, start = reference_model(lubricant=load_builtin_lubricant("nato-o156"),
+                                        options=ModelOptions(traction="coulomb", ehd_film=on))
+        model = BearingModel(params)
+        q, v = initial_coordinates(params, start)
+        forces(model, q, v)
+        per_ball = model.diag[A.N_DG:].reshape(params.ball_count, A.DB)
+        films[on] = per_ball[:, [A.DB_HI, A.DB_HO]]
+    assert np.all(films[False] == 0.0)
+    assert np.all((films[True] > 5e-8) & (films[True] < 5e-6))

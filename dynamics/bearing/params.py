@@ -40,6 +40,7 @@ class ModelOptions:
     """Physics switches and contact parameters (the scene's [physics] table, SI)."""
 
     traction: str = "eyring"          # "eyring" | "coulomb" | "none"
+    ehd_film: bool = True             # compute the central film (needs a lubricant)
     film_formula: str = "nvm"         # "nvm" | "hamrock-dowson"; ignored without lubricant
     cage_race: str = "hybrid"         # "hybrid" | "hydrodynamic" | "dry" | "none"
     gyroscopic: bool = True
@@ -142,7 +143,10 @@ def build_model_params(
     eta_table, rule, work, iwork = np.zeros(2), np.zeros(1), np.zeros((1, 1)), np.zeros(1, dtype=np.int64)
     if lubricant is not None:
         fp[FP_ETA0], fp[FP_ALPHA_P], fp[FP_TAU0] = lubricant.eta0, lubricant.alpha_star, lubricant.eyring_stress
-        ip[IP_FILM] = FILM_HD if options.film_formula == "hamrock-dowson" else FILM_NVM
+        if options.ehd_film:
+            ip[IP_FILM] = FILM_HD if options.film_formula == "hamrock-dowson" else FILM_NVM
+        elif options.traction == "eyring":
+            raise ValueError("Eyring traction needs the EHD film (ehd_film = True)")
         if options.traction == "eyring":
             eta_table, rule, work, iwork, fp[FP_P_STEP] = _traction_tables(lubricant)
     elif options.traction == "eyring":

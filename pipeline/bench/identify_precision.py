@@ -84,16 +84,12 @@ def markdown_table(study: dict) -> str:
 
 
 def write_identification(study: dict, out_dir: Path) -> list[Path]:
-    import json
-
+    """identification_precision.json, .md and .png in `out_dir` (atomic writes)."""
+    from . import write_study_files
     from .wp_plots import plot_identification
 
-    out_dir.mkdir(parents=True, exist_ok=True)
-    js = out_dir / "identification_precision.json"
-    js.write_text(json.dumps(study, indent=1, default=str))
-    md = out_dir / "identification_precision.md"
-    md.write_text(markdown_table(study) + "\n")
-    return [js, md, plot_identification(study["rows"], out_dir / "identification_precision.png")]
+    return write_study_files(study, out_dir, "identification_precision", markdown_table(study),
+                             lambda path: plot_identification(study["rows"], path))
 
 
 def main(argv: list[str] | None = None) -> None:

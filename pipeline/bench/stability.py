@@ -24,7 +24,6 @@ harness (`PERTURBATIONS`): cage at rest and off centre, inner race displaced.
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import os
 import time
@@ -191,16 +190,14 @@ def markdown_table(results: list[CaseResult]) -> str:
 
 
 def write_suite(results: list[CaseResult], out_dir: Path) -> list[Path]:
+    """stability.json, .md and .png in `out_dir` (atomic writes)."""
+    from . import write_study_files
     from .wp_plots import plot_stability
 
-    out_dir.mkdir(parents=True, exist_ok=True)
-    js = out_dir / "stability.json"
-    js.write_text(json.dumps([r.as_row() for r in results], indent=1, default=str))
-    md = out_dir / "stability.md"
-    md.write_text(markdown_table(results) + f"\n\nLoad average {os.getloadavg()[0]:.1f}.\n")
     rows = [{**r.as_row(), "history": r.history} for r in results]
-    png = plot_stability(rows, out_dir / "stability.png")
-    return [js, md, png]
+    return write_study_files([r.as_row() for r in results], out_dir, "stability",
+                             markdown_table(results) + f"\n\nLoad average {os.getloadavg()[0]:.1f}.",
+                             lambda path: plot_stability(rows, path))
 
 
 def run_suite(names: list[str] | None = None, window: float = DEFAULT_WINDOW,

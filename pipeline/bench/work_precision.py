@@ -25,7 +25,6 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import json
 import math
 import os
 import time
@@ -208,24 +207,12 @@ def _int(x) -> str:
 
 
 def write_study(study: dict, out_dir: Path) -> list[Path]:
-    """work_precision.json, .md and .png in `out_dir`."""
+    """work_precision.json, .md and .png in `out_dir` (atomic writes)."""
+    from . import write_study_files
     from .wp_plots import plot_work_precision
 
-    out_dir.mkdir(parents=True, exist_ok=True)
-    js = out_dir / "work_precision.json"
-    js.write_text(json.dumps(study, indent=1, default=_jsonable))
-    md = out_dir / "work_precision.md"
-    md.write_text(markdown_table(study) + "\n")
-    png = plot_work_precision(study, out_dir / "work_precision.png")
-    return [js, md, png]
-
-
-def _jsonable(x):
-    if isinstance(x, np.generic):
-        return x.item()
-    if isinstance(x, np.ndarray):
-        return x.tolist()
-    return str(x)
+    return write_study_files(study, out_dir, "work_precision", markdown_table(study),
+                             lambda path: plot_work_precision(study, path))
 
 
 def main(argv: list[str] | None = None) -> None:

@@ -22,10 +22,11 @@ class FEConfig:
     """Stage-1 settings (MODEL.md §3). Defaults suit the reference bearing (§2)."""
 
     # --- numerics -----------------------------------------------------------------------
-    mesh_size: float = _f(0.020, "m", "characteristic tetrahedron edge length", gt=0.0)
+    mesh_size: float = _f(0.030, "m", "characteristic tetrahedron edge length", gt=0.0)
     edge_refinement: float = _f(
-        0.3, "-", "element size at the circular edges (corners, material junctions) as a "
-        "fraction of mesh_size; 1 = uniform mesh", gt=0.0, le=1.0,
+        0.25, "-", "element size at the circular edges (corners, material junctions) as a "
+        "fraction of mesh_size, 0.32 x that at the support, web and seat edges; 1 = uniform mesh",
+        gt=0.0, le=1.0,
     )
     element_order: int = _f(
         2, "-", "displacement order: 2 (accurate) or 1 (fast preview, ~5 % stiff in bending)",

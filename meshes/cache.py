@@ -12,7 +12,7 @@ from meshes.housing import HousingGeometry, build_housing_mesh
 from meshes.mesh_data import MeshData
 
 # bump when the geometry builder changes what it produces for the same inputs
-BUILDER_VERSION = 1
+BUILDER_VERSION = 2
 
 
 def mesh_key(geometry: HousingGeometry, mesh_size: float, edge_refinement: float = 1.0) -> str:

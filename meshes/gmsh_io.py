@@ -61,17 +61,32 @@ def refine_near_curves(gmsh, size: float, ratio: float, curves: list[int] | None
     """
     if curves is None:
         curves = [tag for _, tag in gmsh.model.getEntities(1)]
+    grade_towards_curves(gmsh, size, [(curves, ratio)], reach=3.0)
+
+
+def grade_towards_curves(gmsh, size: float, refinements: list[tuple[list[int], float]], reach: float) -> None:
+    """Background size field: `ratio * size` on each group of curves, growing linearly to
+    `size` at `reach * size` from them; where zones overlap the smallest size wins.
+
+    A reach of about one size makes the element size grow like the distance to the edge,
+    the grading that edge singularities need, without filling the volume with small tets.
+    """
     field = gmsh.model.mesh.field
-    distance = field.add("Distance")
-    field.setNumbers(distance, "CurvesList", curves)
-    field.setNumber(distance, "Sampling", 400)
-    threshold = field.add("Threshold")
-    field.setNumber(threshold, "InField", distance)
-    field.setNumber(threshold, "SizeMin", ratio * size)
-    field.setNumber(threshold, "SizeMax", size)
-    field.setNumber(threshold, "DistMin", 0.5 * ratio * size)
-    field.setNumber(threshold, "DistMax", 3.0 * size)
-    field.setAsBackgroundMesh(threshold)
+    thresholds = []
+    for curves, ratio in refinements:
+        distance = field.add("Distance")
+        field.setNumbers(distance, "CurvesList", curves)
+        field.setNumber(distance, "Sampling", 400)
+        threshold = field.add("Threshold")
+        field.setNumber(threshold, "InField", distance)
+        field.setNumber(threshold, "SizeMin", ratio * size)
+        field.setNumber(threshold, "SizeMax", size)
+        field.setNumber(threshold, "DistMin", 0.5 * ratio * size)
+        field.setNumber(threshold, "DistMax", reach * size)
+        thresholds.append(threshold)
+    smallest = field.add("Min")
+    field.setNumbers(smallest, "FieldsList", thresholds)
+    field.setAsBackgroundMesh(smallest)
     gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
 
 

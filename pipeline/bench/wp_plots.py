@@ -6,22 +6,14 @@ from pathlib import Path
 
 import numpy as np
 
+from ..figures import new_figure, save_png
 from . import wp_metrics as wm
-
-
-def _pyplot():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
 
 
 def plot_work_precision(study: dict, path: Path) -> Path:
     """Error against wall time, log–log, one panel per quantity, one curve per method."""
-    plt = _pyplot()
-    fig, axes = plt.subplots(2, 2, figsize=(10, 7.5))
+    fig = new_figure(figsize=(10, 7.5), layout="tight")
+    axes = fig.subplots(2, 2)
     curves = list(dict.fromkeys(r["curve"] for r in study["rows"]))
     markers = "os^vD<>ph*"
     for ax, q in zip(axes.ravel(), wm.QUANTITIES):
@@ -38,16 +30,14 @@ def plot_work_precision(study: dict, path: Path) -> Path:
     c = study["config"]
     fig.suptitle(f"Work-precision over {c['window'] * 1e3:g} ms (reference: HHT fixed h = "
                  f"{c['reference_step']:g} s; load average {study['load_average']:.1f})", fontsize=10)
-    fig.tight_layout()
-    fig.savefig(path, dpi=80)
-    plt.close(fig)
+    save_png(fig, path, dpi=80)
     return path
 
 
 def plot_identification(rows: list[dict], path: Path) -> Path:
     """Hinge stiffness error against wall time and peak memory, one curve per element order."""
-    plt = _pyplot()
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    fig = new_figure(figsize=(10, 4), layout="tight")
+    axes = fig.subplots(1, 2)
     for order in sorted({r["element_order"] for r in rows}):
         mine = [r for r in rows if r["element_order"] == order and r["relative_error"] > 0]
         for ax, key in zip(axes, ("seconds", "peak_rss_gb")):
@@ -58,16 +48,14 @@ def plot_identification(rows: list[dict], path: Path) -> Path:
         ax.set_ylabel("|H_u_xx / Richardson - 1|")
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(path, dpi=80)
-    plt.close(fig)
+    save_png(fig, path, dpi=80)
     return path
 
 
 def plot_stability(results: list[dict], path: Path) -> Path:
     """Step size and Newton work per accepted step against time, one line per case."""
-    plt = _pyplot()
-    fig, axes = plt.subplots(2, 1, figsize=(10, 7), sharex=True)
+    fig = new_figure(figsize=(10, 7), layout="tight")
+    axes = fig.subplots(2, 1, sharex=True)
     for r in results:
         hist = np.asarray(r.get("history", np.zeros((0, 4))))
         if hist.shape[0] < 2:
@@ -84,7 +72,5 @@ def plot_stability(results: list[dict], path: Path) -> Path:
     axes[0].legend(fontsize=6, ncol=3)
     for ax in axes:
         ax.grid(True, which="both", alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(path, dpi=80)
-    plt.close(fig)
+    save_png(fig, path, dpi=80)
     return path

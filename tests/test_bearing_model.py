@@ -8,6 +8,7 @@ import pytest
 
 from dynamics.bearing import BearingModel, ModelOptions
 from dynamics.bearing import layout
+from dynamics.bearing.params import FP_MB
 from dynamics.bearing.run import initial_coordinates
 from dynamics.multibody.crv import update_configuration
 
@@ -51,7 +52,7 @@ def _centripetal_ratio(moment: float) -> tuple[np.ndarray, np.ndarray, object, o
     model = BearingModel(params)
     q, v = initial_coordinates(params, start)
     g = forces(model, q, v)
-    w_c, m_b = start["cage_angular_speed"], params.fp[6]
+    w_c, m_b = start["cage_angular_speed"], params.fp[FP_MB]
     ratio, axial = np.empty(params.ball_count), np.empty(params.ball_count)
     for k in range(params.ball_count):
         x = q[6 * k:6 * k + 3]

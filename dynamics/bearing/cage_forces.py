@@ -8,7 +8,7 @@ import numba
 import numpy as np
 
 from dynamics.journal import (
-    J_GUIDANCE, J_OUT_CONTACT_AZIMUTH, J_OUT_DF_DOMEGA_CAGE, J_OUT_DF_DPOS, J_OUT_DF_DVEL,
+    J_OUT_CONTACT_AZIMUTH, J_OUT_DF_DOMEGA_CAGE, J_OUT_DF_DPOS, J_OUT_DF_DVEL,
     J_OUT_DT_DOMEGA_CAGE, J_OUT_DT_DPOS, J_OUT_DT_DVEL, J_OUT_EPS, J_OUT_FORCE,
     J_OUT_FRICTION_POWER, J_OUT_METAL_FORCE, J_OUT_TORQUE, cage_race_journal,
 )
@@ -115,7 +115,3 @@ def journal_diag(jres, diag):
     diag[4] = jres[J_OUT_METAL_FORCE]
     diag[5] = jres[J_OUT_FRICTION_POWER]
     diag[6] = jres[J_OUT_CONTACT_AZIMUTH]
-
-
-def guidance_sign(jp) -> float:
-    return float(jp[J_GUIDANCE])

@@ -17,14 +17,17 @@ from . import layout
 from .assembly import (
     DB, DB_POCKET, DG_P_DISS, DG_P_DRIVE, DG_P_EXT, N_DG, diag_size, evaluate_bearing, mass_diagonal,
 )
-from .params import BearingModelParams
+from .params import FP_DM, BearingModelParams
 
 IMPACT_FIELDS = ("time", "ball", "orbital_position", "peak_force", "impact_speed", "duration")
 
 
 @numba.njit(cache=True)
-def track_impacts(t, diag, Z, state, events):
+def track_impacts(t, diag, Z, state, events, impact_speeds):
     """Update per-pocket impact state from the accepted step's diagnostics.
+
+    Also keeps v_0 of the hysteresis law (`impact_speeds`, Z): while a pocket is open its
+    approach speed is remembered, so the speed it hits with is known when contact starts.
 
     state (Z, 6): in contact, peak force, time of peak, orbital position at peak, impact
     speed (approach speed when contact began), start time. A finished contact becomes a row
@@ -34,6 +37,8 @@ def track_impacts(t, diag, Z, state, events):
     for k in range(Z):
         d = N_DG + DB * k + DB_POCKET
         force, touching, approach, orbital = diag[d], diag[d + 1], diag[d + 2], diag[d + 3]
+        if touching <= 0.0:
+            impact_speeds[k] = max(approach, 0.0)
         if touching > 0.0:
             if state[k, 0] == 0.0:
                 state[k, 0], state[k, 1], state[k, 4], state[k, 5] = 1.0, 0.0, max(approach, 0.0), t
@@ -57,7 +62,7 @@ class BearingModel:
         self.rotation_slots = layout.rotation_slots(Z, has_cage)
         self.nb = layout.border_size(has_cage)
         w = np.ones(self.n_dof)
-        radius = 0.5 * P.fp[1]  # pitch radius: rotation errors read as arc lengths [m]
+        radius = 0.5 * P.fp[FP_DM]  # pitch radius: rotation errors read as arc lengths [m]
         for k in range(Z):
             w[6 * k + 3:6 * k + 6] = 0.0  # ball orientation never enters a force
         for s in self.rotation_slots:
@@ -110,26 +115,17 @@ class BearingModel:
         """Impact log and energy balance from the converged state's diagnostics."""
         d = self.diag
         if self.params.has_cage:
-            n = track_impacts(t, d, self.params.ball_count, self._impact_state, self._events)
+            n = track_impacts(t, d, self.params.ball_count, self._impact_state, self._events,
+                              self.impact_speeds)
             for row in self._events[:n]:
                 if row[3] >= self.impact_threshold:
                     self.impacts.append(row.copy())
-            self._update_impact_speeds()
         powers = (t, d[DG_P_DRIVE], d[DG_P_EXT], d[DG_P_DISS])
         if self._last is not None:
             dt = t - self._last[0]
             for key, i in (("drive", 1), ("external", 2), ("dissipated", 3)):
                 self.energy[key] += 0.5 * dt * (powers[i] + self._last[i])
         self._last = powers
-
-    def _update_impact_speeds(self) -> None:
-        """v_0 of the hysteresis law: while a pocket is open, remember the approach speed."""
-        Z = self.params.ball_count
-        base = N_DG + DB_POCKET
-        for k in range(Z):
-            d = base + DB * k
-            if self.diag[d + 1] <= 0.0:
-                self.impact_speeds[k] = max(self.diag[d + 2], 0.0)
 
     def kinetic_energy(self, v) -> float:
         """T = sum of m v^2/2 + J Omega^2/2 over all bodies [J] (diagonal mass)."""

@@ -21,7 +21,7 @@ from dynamics.multibody.settings import HHTSettings
 
 from . import layout
 from .model import IMPACT_FIELDS, BearingModel
-from .params import BearingModelParams
+from .params import FP_OMEGA_I, BearingModelParams
 
 
 def initial_coordinates(params: BearingModelParams, start: dict) -> tuple[np.ndarray, np.ndarray]:
@@ -39,7 +39,7 @@ def initial_coordinates(params: BearingModelParams, start: dict) -> tuple[np.nda
     q[o:o + 3] = start["inner_race_displacement"]
     tilt = start["inner_race_tilt"]
     q[o + 3:o + 6] = crv_from_rotation_vector(np.array([tilt[0], tilt[1], 0.0]))
-    v[o + 5] = params.fp[14]  # material spin = prescribed inner-race speed
+    v[o + 5] = params.fp[FP_OMEGA_I]  # material spin = prescribed inner-race speed
     if params.has_cage:
         c = layout.cage_offset(Z, True)
         v[c + 5] = start["cage_angular_speed"]

@@ -26,14 +26,15 @@ def _model(scene_name: str, overrides: list[str]):
 
 
 def run_hht(params, start, settings, duration: float) -> dict:
-    from dynamics.bearing import simulate_bearing
+    from dynamics.bearing import layout, simulate_bearing
 
     simulate_bearing(params, start, settings, min(duration, 2e-5), 1e-5)  # compile / load cache
     t0 = time.perf_counter()
     run = simulate_bearing(params, start, settings, duration, 1e-5)
     wall = time.perf_counter() - t0
     return {**run.stats, "wall": wall, "us_per_step": wall / max(run.stats["steps"], 1) * 1e6,
-            "cage_speed_end": float(run.v[-1, 6 * params.ball_count + 11]) if params.has_cage else None}
+            "cage_speed_end": float(run.v[-1, layout.cage_offset(params.ball_count, True) + 5])
+            if params.has_cage else None}
 
 
 def ode_rhs(model, rotation_slots, spin_row):

@@ -90,6 +90,7 @@ def perturbed_start(params, start: dict, perturbation: dict) -> tuple[np.ndarray
 def physical_checks(params, run, q0, v0) -> dict:
     """The checks that tell a physical result from garbage; values and whether each holds."""
     from dynamics.bearing import BearingModel
+    from dynamics.bearing.params import FP_D, FP_DM
 
     model = BearingModel(params)
     q, v = run.q, run.v
@@ -105,7 +106,7 @@ def physical_checks(params, run, q0, v0) -> dict:
         eps, force = _land_contact(model, run)
         out["land_penetration_max"] = float(max(0.0, (eps.max() - 1.0) * params.guide_clearance))
         out["land_metal_force_max"] = float(force.max())
-    D, r_pitch = params.fp[0], 0.5 * params.fp[1]
+    D, r_pitch = params.fp[FP_D], 0.5 * params.fp[FP_DM]
     balls = q[:, :6 * Z].reshape(q.shape[0], Z, 6)[:, :, :3]
     radial = np.hypot(balls[..., 0], balls[..., 1]) - r_pitch
     out["ball_drift_max"] = float(max(np.abs(radial).max(), np.abs(balls[..., 2]).max()) / D)

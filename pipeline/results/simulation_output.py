@@ -15,13 +15,11 @@ from .timeseries import Series, write_timeseries
 
 
 def _crv_to_matrix(c: np.ndarray) -> np.ndarray:
-    """Rotation matrices of CRVs (S.4b), vectorised over samples (n, 3) -> (n, 3, 3)."""
-    c0 = 2.0 - np.sum(c * c, axis=1) / 8.0
-    f = 2.0 / (4.0 - c0) ** 2
-    ct = np.zeros((len(c), 3, 3))
-    ct[:, 0, 1], ct[:, 0, 2], ct[:, 1, 2] = -c[:, 2], c[:, 1], -c[:, 0]
-    ct[:, 1, 0], ct[:, 2, 0], ct[:, 2, 1] = c[:, 2], -c[:, 1], c[:, 0]
-    return np.eye(3) + f[:, None, None] * (c0[:, None, None] * ct + ct @ ct)
+    """Rotation matrices (n, 3, 3) of the CRVs c (n, 3): S.4b, by the dynamics' own kernel."""
+    from dynamics.multibody.crv import crv_to_matrix
+
+    c = np.ascontiguousarray(c, dtype=float)
+    return np.array([crv_to_matrix(ci) for ci in c]).reshape(-1, 3, 3)
 
 
 def collect_series(run, params) -> dict[str, Series]:

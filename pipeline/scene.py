@@ -209,12 +209,10 @@ def resolve(table: dict, origin: str = "<table>") -> Scene:
         hinge_table = {**hinge_table, "translational": [x for r in rows for x in r]}
     hinge = build(Hinge, hinge_table, "hinge")
     lubricant = resolve_lubricant(table.get("lubricant"))
-    physics_table = dict(table.get("physics", {})) if isinstance(table.get("physics", {}), dict) else table.get("physics")
+    physics_table = table.get("physics", {})
     if lubricant is None and isinstance(physics_table, dict):
         # SCENE.md: without [lubricant], contacts are dry; defaults fall back to the dry laws
-        physics_table.setdefault("traction", "coulomb")
-        physics_table.setdefault("cage_race", "dry")
-        physics_table.setdefault("ehd_film", False)
+        physics_table = {"traction": "coulomb", "cage_race": "dry", "ehd_film": False, **physics_table}
     physics = build(Physics, physics_table, "physics")
     if physics.traction == "eyring" and lubricant is None:
         raise SceneError("physics.traction", "'eyring' needs a [lubricant] table; give one, or set "

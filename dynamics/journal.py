@@ -17,10 +17,16 @@ Choices the spec leaves open, made here and flagged for review:
   spec says); in the viscous torque it is the *difference* omega_cage - omega_race, since
   Couette shear vanishes when both surfaces turn together. For the reference scene (outer
   race fixed) the two are equal.
-* the paper's torque weight f_C = (1 + eps0 - eps)/eps0 meets the hydrodynamic torque's
-  (1 - eps_h)^(-1/2) growth, so T is continuous at eps = 1 + eps0 but its slope is
-  infinite from the left. `torque_weight_power` p uses f_C^p; p = 1 is the paper, p = 2
-  gives a finite slope.
+* torque weight: the paper's f_C = (1 + eps0 - eps)/eps0 (`torque_weight = "paper"`)
+  meets the hydrodynamic torque's (1 - eps_h)^(-1/2) growth at eps = 1 + eps0 (where
+  eps_h = e/(C + e0) reaches 1), so T is continuous there but its slope is infinite from
+  the left, and the Newton matrix with it. The default `"smoothstep"` keeps the paper's
+  end values with f_C = 1 - 3 chi^2 + 2 chi^3, chi = (eps - 1)/eps0: it falls like
+  3 (1 - chi)^2, so f_C T^hyd ~ (1 - chi)^(3/2) has a finite (zero) slope at 1 + eps0,
+  and f_C' = 0 at eps = 1 makes the torque slope continuous there too. A deviation from
+  the paper's eq. 31, made because finite derivatives are required (issue: contact
+  kernels); the two weights differ by at most 0.096 (chi = 0.21 and 0.79), times
+  |T^hyd - T^dry|, inside the eps0 band only.
 * `lands`: the journal length L may be split into n separate lands (the race groove
   between them vents the film). n = 1 is the paper's single journal of length L; n = 2
   makes the film force 1/4 as large (each land is a short bearing of length L/2) and
@@ -52,7 +58,9 @@ J_E_EFF = 7  # E', effective modulus cage/race [Pa]
 J_LANDS = 8  # number of separate lands L is split into [-]
 J_MODE = 9  # MODE_* below
 J_GUIDANCE = 10  # +1 outer-race guided (cage inside the land), -1 inner-race guided
-J_TORQUE_WEIGHT_POWER = 11  # p in f_C^p [-]
+J_TORQUE_WEIGHT = 11  # TORQUE_WEIGHTS code: 0 paper (linear), 1 smoothstep
+TORQUE_PAPER, TORQUE_SMOOTHSTEP = 0, 1
+TORQUE_WEIGHTS = {"smoothstep": TORQUE_SMOOTHSTEP, "paper": TORQUE_PAPER}
 J_EPS_CLIP = 12  # hydrodynamic-only mode: eps is clipped here [-]
 N_JOURNAL_PARAMS = 13
 
@@ -114,11 +122,12 @@ def ocvirk_torque(eps, viscosity, omega_rel, R, L, C):
 
 
 @numba.njit(cache=True)
-def hybrid_weights(eps, eps0, torque_weight_power):
+def hybrid_weights(eps, eps0, torque_weight):
     """Blending weights of MODEL.md §8 (paper eqs. 28–31) and their eps-derivatives.
 
-    chi = (eps - 1)/eps0; f_F = exp(2 chi / (chi - 1)) (force), f_C = (1 - chi)^p (torque,
-    p = 1 in the paper). Both are 1 for eps <= 1 and 0 for eps >= 1 + eps0.
+    chi = (eps - 1)/eps0; f_F = exp(2 chi / (chi - 1)) (force); f_C = 1 - chi (torque,
+    torque_weight = TORQUE_PAPER) or 1 - 3 chi^2 + 2 chi^3 (TORQUE_SMOOTHSTEP, default; see
+    the module docstring). Both are 1 for eps <= 1 and 0 for eps >= 1 + eps0.
     f_F is C-infinity at eps = 1 + eps0 and has slope -2/eps0 at eps = 1+.
     Returns (f_F, df_F/deps, f_C, df_C/deps).
     """
@@ -129,8 +138,12 @@ def hybrid_weights(eps, eps0, torque_weight_power):
     chi = (eps - 1.0) / eps0
     f_f = math.exp(2.0 * chi / (chi - 1.0))
     df_f = -2.0 * f_f / ((chi - 1.0) ** 2 * eps0)
-    f_c = (1.0 - chi) ** torque_weight_power
-    df_c = -torque_weight_power * (1.0 - chi) ** (torque_weight_power - 1.0) / eps0
+    if torque_weight == TORQUE_SMOOTHSTEP:
+        f_c = 1.0 - chi * chi * (3.0 - 2.0 * chi)
+        df_c = -6.0 * chi * (1.0 - chi) / eps0
+    else:
+        f_c = 1.0 - chi
+        df_c = -1.0 / eps0
     return f_f, df_f, f_c, df_c
 
 
@@ -141,7 +154,7 @@ def _mode_weights(eps, params):
     c = params[J_CLEARANCE]
     if mode == MODE_HYBRID:
         eps0 = params[J_EPS0]
-        f_f, df_f, f_c, df_c = hybrid_weights(eps, eps0, params[J_TORQUE_WEIGHT_POWER])
+        f_f, df_f, f_c, df_c = hybrid_weights(eps, eps0, params[J_TORQUE_WEIGHT])
         return f_f, df_f / c, f_c, df_c / c, c * (1.0 + eps0), eps > 1.0
     if mode == MODE_HYDRODYNAMIC:
         return 1.0, 0.0, 1.0, 0.0, c, False
@@ -286,7 +299,7 @@ def journal_parameters(
     lands: int = 1,
     mode: str = "hybrid",
     guidance: str = "outer",
-    torque_weight_power: float = 1.0,
+    torque_weight: str = "smoothstep",
     eps_clip: float = 0.999,
 ) -> np.ndarray:
     """Pack and check the journal parameters (SI units) for `cage_race_journal`.
@@ -295,14 +308,13 @@ def journal_parameters(
     viscosity [Pa s] at the land; effective_modulus E' [Pa]; friction_coefficient mu_dry
     [-]; eps0 [-] boundary-layer thickness e0/C; regularisation_speed [m/s] of the dry
     friction; lands: separate lands L is split into; mode: hybrid | hydrodynamic | dry |
-    none; guidance: outer | inner; torque_weight_power: p in f_C^p (1 = paper);
+    none; guidance: outer | inner; torque_weight: smoothstep | paper (module docstring);
     eps_clip: largest eps the hydrodynamic-only mode evaluates.
     """
     positive = {
         "radius [m]": radius, "length [m]": length, "clearance [m]": clearance,
         "effective_modulus [Pa]": effective_modulus, "eps0 [-]": eps0,
         "regularisation_speed [m/s]": regularisation_speed,
-        "torque_weight_power [-]": torque_weight_power,
     }
     for name, value in positive.items():
         if not value > 0.0:
@@ -312,6 +324,8 @@ def journal_parameters(
             raise ValueError(f"cage-race journal: {name} = {value!r} must be >= 0")
     if mode not in MODES:
         raise ValueError(f"cage-race journal: mode = {mode!r}; allowed: {', '.join(MODES)}")
+    if torque_weight not in TORQUE_WEIGHTS:
+        raise ValueError(f"cage-race journal: torque_weight = {torque_weight!r}; allowed: {', '.join(TORQUE_WEIGHTS)}")
     if guidance not in ("outer", "inner"):
         raise ValueError(f"cage-race journal: guidance = {guidance!r}; allowed: 'outer', 'inner'")
     if int(lands) != lands or lands < 1:
@@ -324,7 +338,7 @@ def journal_parameters(
     params[J_V_REG], params[J_E_EFF], params[J_LANDS] = regularisation_speed, effective_modulus, lands
     params[J_MODE] = MODES[mode]
     params[J_GUIDANCE] = 1.0 if guidance == "outer" else -1.0
-    params[J_TORQUE_WEIGHT_POWER], params[J_EPS_CLIP] = torque_weight_power, eps_clip
+    params[J_TORQUE_WEIGHT], params[J_EPS_CLIP] = TORQUE_WEIGHTS[torque_weight], eps_clip
     return params
 
 

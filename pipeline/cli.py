@@ -150,7 +150,10 @@ def check(scene: SceneArg, set_: SetOpt = None) -> None:
 def quasistatic(scene: SceneArg, json_: Annotated[bool, typer.Option("--json", help="Print the result as one JSON object on stdout.")] = False,
                 out: OutOpt = None, force: ForceOpt = False, set_: SetOpt = None) -> None:
     """Static equilibrium: ball loads, contact angles, inner-race displacement, stiffness."""
+    from .figures.worker import prestart
     from .stages.quasistatic import RESULT_FILE
+
+    prestart()  # matplotlib loads in a second process while this one loads the scene and solves
 
     _, run_dir, _ = _pipeline(scene, set_, out, ["quasistatic"], {"quasistatic"} if force else set(), quiet=json_)
     result = json.loads((run_dir / "quasistatic" / RESULT_FILE).read_text())

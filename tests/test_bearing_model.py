@@ -99,7 +99,7 @@ def test_contact_forces_are_equal_and_opposite(dry):
     x_b, x_r = q[0:3].copy(), q[o:o + 3].copy()
     hit = race_contact(x_b, v[0:3].copy(), v[3:6].copy(), x_r, R, v[o:o + 3].copy(), R @ v[o + 3:o + 6],
                        False, params.fp, params.ip, params.hertz_inner, params.eta_table,
-                       params.traction_rule, params.traction_work, params.traction_iwork, cbuf, tbuf, res)
+                       params.traction_rule, params.traction_work, params.traction_iwork, cbuf, tbuf, res, True)
     assert hit
     np.testing.assert_allclose(res[RC_FB:RC_FB + 3], -res[RC_FR:RC_FR + 3], rtol=0, atol=1e-9)
     # moments about the race centre balance: m_r + m_b + (x_b - x_r) x f_b = 0

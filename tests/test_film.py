@@ -86,3 +86,18 @@ def test_film_kernels_equal_py_func_on_random_inputs():
         hc2, hm2 = film.film_hamrock_dowson.py_func(*args)
         assert (hc, hm) == (pytest.approx(hc2, rel=1e-12), pytest.approx(hm2, rel=1e-12))
         assert film.film_central(film.FILM_NVM, *args) == pytest.approx(film.film_central_nvm(*args), rel=1e-15)
+
+
+def test_log_space_nvm_equals_the_direct_formula():
+    # film_central_nvm (time loop) works on logarithms; film_central_nvm_direct writes the
+    # same §6.3 formula with powers. Over all four regimes (loads 1e-2..1e5 N, speeds
+    # 1e-3..100 m/s, lambda 0.005..2, isoviscous and piezoviscous) they agree to rounding.
+    rng = np.random.default_rng(11)
+    logu = lambda lo, hi: math.exp(rng.uniform(math.log(lo), math.log(hi)))  # noqa: E731
+    for _ in range(3000):
+        Rx = logu(1e-4, 0.05)
+        args = (logu(1e-2, 1e5), Rx, Rx / logu(0.005, 2.0), E_EFF, logu(1e-3, 1.0),
+                rng.choice([0.0, logu(5e-9, 3e-8)]), logu(1e-3, 100.0))
+        direct = film.film_central_nvm_direct(*args)
+        assert direct > 0.0
+        assert film.film_central_nvm(*args) == pytest.approx(direct, rel=1e-10), args

@@ -14,6 +14,8 @@ from __future__ import annotations
 import math
 
 import numba
+import numpy as np
+
 from dynamics.film import film_central
 from dynamics.hertz import hertz_table_eval
 from dynamics.race_contact import (
@@ -80,8 +82,10 @@ def _film(F_n, alpha, is_outer, u_s, fp, method):
 
 @numba.njit(cache=True)
 def race_contact(x_b, v_b, w_b, x_r, R_r, v_r, w_r, is_outer, fp, ip, table,
-                 eta_table, rule, work, iwork, cbuf, tbuf, res):
-    """Forces of one ball on one race and their tangent ingredients, into res (N_RC).
+                 eta_table, rule, work, iwork, cbuf, tbuf, res, want_tangent):
+    """Forces of one ball on one race and (want_tangent) their tangent ingredients, into
+    res (N_RC); the tangent-only rows (RC_KP, RC_CN, RC_DN, RC_WTB, RC_WTR, RC_LOAD_SLOPE)
+    stay zero otherwise.
 
     x_b, v_b, w_b: ball centre [m], velocity [m/s], angular velocity [rad/s];
     x_r, R_r, v_r, w_r: race centre, rotation (race -> global), velocity, spatial angular
@@ -105,14 +109,16 @@ def race_contact(x_b, v_b, w_b, x_r, R_r, v_r, w_r, is_outer, fp, ip, table,
     delta_dot = -(n[0] * (v_b[0] - vr_p0) + n[1] * (v_b[1] - vr_p1) + n[2] * (v_b[2] - vr_p2))
     k_n = 1.5 * k_h * math.sqrt(delta)
     c_n = 2.0 * fp[FP_ZETA] * math.sqrt(k_n * fp[FP_MB])
-    F_el = k_h * delta**1.5
+    F_el = k_h * delta * math.sqrt(delta)
     F_n = max(F_el + c_n * delta_dot, 0.0)  # no adhesion
-    _contact_stiffness(k_n, F_el, delta, n, x_b, x_r, R_r, d_g, cbuf, res)
-    for i in range(3):
-        for j in range(3):
-            res[RC_CN + 3 * i + j] = c_n * n[i] * n[j] if F_n > 0.0 else 0.0
+    if want_tangent:
+        _contact_stiffness(k_n, F_el, delta, n, x_b, x_r, R_r, d_g, cbuf, res)
+        if F_n > 0.0:
+            for i in range(3):
+                for j in range(3):
+                    res[RC_CN + 3 * i + j] = c_n * n[i] * n[j]
     # Hertz semi-axes: the major axis (c_a) lies across the rolling direction
-    f13 = F_el ** (1.0 / 3.0)
+    f13 = np.cbrt(F_el)
     a_x, b_y = c_b * f13, c_a * f13
     p_max = 1.5 * F_el / (math.pi * a_x * b_y)
     du0 = cbuf[OUT_SLIDE] * cbuf[OUT_EX] + cbuf[OUT_SLIDE + 1] * cbuf[OUT_EX + 1] + cbuf[OUT_SLIDE + 2] * cbuf[OUT_EX + 2]
@@ -130,16 +136,17 @@ def race_contact(x_b, v_b, w_b, x_r, R_r, v_r, w_r, is_outer, fp, ip, table,
         _coulomb(F_n, a_x, b_y, du0, dv0, w_s, fp[FP_MU_DRY], fp[FP_V_REG], tbuf)
     else:
         tbuf[:] = 0.0
-    _wrenches(res, n, p, x_b, x_r, cbuf, F_n, tbuf)
-    if F_n > 0.0 and mode != 0:
+    _wrenches(res, n, p, x_b, x_r, cbuf, F_n, tbuf, want_tangent)
+    if want_tangent and F_n > 0.0 and mode != 0:
         expo = LOAD_EXPONENT_EYRING if mode == TRACTION_EYRING else LOAD_EXPONENT_COULOMB
         res[RC_LOAD_SLOPE] = expo * k_n / F_n
     for i in range(3):
         res[RC_N + i] = n[i]
         res[RC_EX + i] = cbuf[OUT_EX + i]
         res[RC_EY + i] = cbuf[OUT_EY + i]
-    for i in range(9):
-        res[RC_JT + i] = -tbuf[3 + i]
+    if want_tangent:
+        for i in range(9):
+            res[RC_JT + i] = -tbuf[3 + i]
     res[RC_Q] = F_n
     res[RC_FILM] = h
     res[RC_SRR] = cbuf[OUT_SRR]
@@ -178,9 +185,10 @@ def _contact_stiffness(k_n, F_n, delta, n, x_b, x_r, R_r, d_g, cbuf, res):
 
 
 @numba.njit(cache=True)
-def _wrenches(res, n, p, x_b, x_r, cbuf, F_n, T):
+def _wrenches(res, n, p, x_b, x_r, cbuf, F_n, T, want_tangent):
     """Force on the ball f = F_n n + F_x e_x + F_y e_y at p, its moment about the ball centre
-    plus the spin moment M_z n; the race gets the opposite force at p (moment about x_r)."""
+    plus the spin moment M_z n; the race gets the opposite force at p (moment about x_r);
+    with want_tangent also the traction part alone (RC_WTB, RC_WTR)."""
     ex = cbuf[OUT_EX:OUT_EX + 3]
     ey = cbuf[OUT_EY:OUT_EY + 3]
     for i in range(3):
@@ -197,6 +205,8 @@ def _wrenches(res, n, p, x_b, x_r, cbuf, F_n, T):
     res[RC_MR] = -(q1 * f2 - q2 * f1) - T[2] * n[0]
     res[RC_MR + 1] = -(q2 * f0 - q0 * f2) - T[2] * n[1]
     res[RC_MR + 2] = -(q0 * f1 - q1 * f0) - T[2] * n[2]
+    if not want_tangent:
+        return
     # the traction part alone (for the load-coupling tangent)
     t0, t1, t2 = T[0] * ex[0] + T[1] * ey[0], T[0] * ex[1] + T[1] * ey[1], T[0] * ex[2] + T[1] * ey[2]
     res[RC_WTB], res[RC_WTB + 1], res[RC_WTB + 2] = t0, t1, t2

@@ -53,7 +53,12 @@ def crv_to_matrix(c):
     c0 = crv_c0(c)
     ct = skew(c)
     f = 2.0 / (4.0 - c0) ** 2
-    return np.eye(3) + f * (c0 * ct + ct @ ct)
+    R = np.empty((3, 3))
+    for i in range(3):
+        for j in range(3):  # (c~ c~)_ij = c_i c_j - |c|^2 delta_ij, no BLAS call for 3x3
+            R[i, j] = f * (c0 * ct[i, j] + c[i] * c[j])
+        R[i, i] += 1.0 - f * (c[0] * c[0] + c[1] * c[1] + c[2] * c[2])
+    return R
 
 
 @numba.njit(cache=True)

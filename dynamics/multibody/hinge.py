@@ -25,6 +25,7 @@ import numba
 import numpy as np
 
 from .crv import skew
+from .small import mm, mtv, mv
 
 
 @numba.njit(cache=True)
@@ -33,12 +34,12 @@ def _hinge_psi_terms(R_A, R_B, Omega_B):
     P = np.empty((2, 3))
     P[0, :] = R_A[:, 1]
     P[1, :] = -R_A[:, 0]
-    psi = -(P @ np.ascontiguousarray(R_B[:, 2]))
+    psi = -mv(P, R_B[:, 2])
     e3t = np.zeros((3, 3))
     e3t[0, 1] = -1.0
     e3t[1, 0] = 1.0
-    B_psi = P @ R_B @ e3t
-    return P, psi, B_psi, B_psi @ Omega_B
+    B_psi = mm(mm(P, R_B), e3t)
+    return P, psi, B_psi, mv(B_psi, Omega_B)
 
 
 @numba.njit(cache=True)
@@ -50,28 +51,28 @@ def hinge_forces(x_B, R_B, x_B_dot, Omega_B, x_A, R_A, H_u, H_psi, G_u, G_psi):
     R_B -> R_B exp(dTheta~). H_u, G_u: 3x3 [N/m], [N s/m]; H_psi, G_psi: 2 [N m/rad],
     [N m s/rad].
     """
-    u = R_A.T @ (x_B - x_A)
-    u_dot = R_A.T @ x_B_dot
+    u = mtv(R_A, x_B - x_A)
+    u_dot = mtv(R_A, x_B_dot)
     P, psi, B_psi, psi_dot = _hinge_psi_terms(R_A, R_B, Omega_B)
     f_psi = H_psi * psi + G_psi * psi_dot
     g = np.zeros(6)
-    g[:3] = -(R_A @ (H_u @ u + G_u @ u_dot))
-    g[3:] = -(B_psi.T @ f_psi)
+    g[:3] = -mv(R_A, mv(H_u, u) + mv(G_u, u_dot))
+    g[3:] = -mtv(B_psi, f_psi)
     K = np.zeros((6, 6))
     C = np.zeros((6, 6))
-    K[:3, :3] = R_A @ H_u @ R_A.T
-    C[:3, :3] = R_A @ G_u @ R_A.T
+    K[:3, :3] = mm(mm(R_A, H_u), R_A.T)
+    C[:3, :3] = mm(mm(R_A, G_u), R_A.T)
     # tau = e3~ R^T P^T f_psi; d/dTheta of R^T w is (R^T w)~, of psi is B_psi, of psi_dot is
     # -P R (e3~ Omega)~.
     e3t = np.zeros((3, 3))
     e3t[0, 1] = -1.0
     e3t[1, 0] = 1.0
-    RtPt = R_B.T @ P.T
-    dpsi_dot = -(P @ R_B @ skew(e3t @ Omega_B))
+    RtPt = mm(R_B.T, P.T)
+    dpsi_dot = -mm(mm(P, R_B), skew(mv(e3t, Omega_B)))
     df = np.empty((2, 3))
     for i in range(2):
         df[i, :] = H_psi[i] * B_psi[i, :] + G_psi[i] * dpsi_dot[i, :]
-    K[3:, 3:] = -(e3t @ (skew(RtPt @ f_psi) + RtPt @ df))
+    K[3:, 3:] = -mm(e3t, skew(mv(RtPt, f_psi)) + mm(RtPt, df))
     for i in range(2):
         C[3:, 3:] += G_psi[i] * np.outer(B_psi[i, :], B_psi[i, :])
     return g, K, C
@@ -80,11 +81,11 @@ def hinge_forces(x_B, R_B, x_B_dot, Omega_B, x_A, R_A, H_u, H_psi, G_u, G_psi):
 @numba.njit(cache=True)
 def hinge_energy(x_B, R_B, x_A, R_A, H_u, H_psi):
     """Strain energy V = u^T H_u u / 2 + psi^T H_psi psi / 2 [J] (S.17)."""
-    u = R_A.T @ (x_B - x_A)
+    u = mtv(R_A, x_B - x_A)
     psi = np.empty(2)
     psi[0] = -(R_A[0, 1] * R_B[0, 2] + R_A[1, 1] * R_B[1, 2] + R_A[2, 1] * R_B[2, 2])
     psi[1] = R_A[0, 0] * R_B[0, 2] + R_A[1, 0] * R_B[1, 2] + R_A[2, 0] * R_B[2, 2]
-    return 0.5 * (u @ (H_u @ u)) + 0.5 * (H_psi[0] * psi[0] ** 2 + H_psi[1] * psi[1] ** 2)
+    return 0.5 * (u @ mv(H_u, u)) + 0.5 * (H_psi[0] * psi[0] ** 2 + H_psi[1] * psi[1] ** 2)
 
 
 @numba.njit(cache=True)

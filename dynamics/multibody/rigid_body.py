@@ -19,15 +19,16 @@ import numba
 import numpy as np
 
 from .crv import skew
+from .small import mm, mtv, mv
 
 
 @numba.njit(cache=True)
 def gyroscopic_moment(J, Omega):
     """Complementary inertia moment g_gyr = -Omega x (J Omega) [N m] (material), and
     C_gyr = -dg_gyr/dOmega = Omega~ J - (J Omega)~ [N m s]."""
-    JO = J @ Omega
+    JO = mv(J, Omega)
     g = -np.cross(Omega, JO)
-    C = skew(Omega) @ J - skew(JO)
+    C = mm(skew(Omega), J) - skew(JO)
     return g, C
 
 
@@ -35,7 +36,7 @@ def gyroscopic_moment(J, Omega):
 def material_moment_of_spatial_moment(R, m_s):
     """Material moment tau = R^T m_s [N m] of a spatial moment held fixed in space, and
     K = -dtau/dTheta = -(R^T m_s)~ (R -> R exp(dTheta~) gives dtau = (R^T m_s)~ dTheta)."""
-    tau = R.T @ m_s
+    tau = mtv(R, m_s)
     return tau, -skew(tau)
 
 

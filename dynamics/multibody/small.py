@@ -1,0 +1,50 @@
+"""Small dense products (3x3, 2x3, 6x6) written as loops for the numba kernels.
+
+numba compiles `A @ B` on float64 matrices to a BLAS call, ~200 ns each for a 3x3 product
+(call overhead, and a copy when an operand is a transposed view); these loops take
+~50 ns including the result's allocation. Any layout of the operands works.
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+
+
+@numba.njit(cache=True)
+def mm(A, B):
+    """A B for small matrices (n x k) (k x m)."""
+    n, k = A.shape
+    m = B.shape[1]
+    C = np.zeros((n, m))
+    for i in range(n):
+        for l in range(k):
+            a = A[i, l]
+            for j in range(m):
+                C[i, j] += a * B[l, j]
+    return C
+
+
+@numba.njit(cache=True)
+def mv(A, x):
+    """A x for a small matrix A (n x k) and vector x (k)."""
+    n, k = A.shape
+    y = np.zeros(n)
+    for i in range(n):
+        s = 0.0
+        for l in range(k):
+            s += A[i, l] * x[l]
+        y[i] = s
+    return y
+
+
+@numba.njit(cache=True)
+def mtv(A, x):
+    """A^T x for a small matrix A (n x k) and vector x (n)."""
+    n, k = A.shape
+    y = np.zeros(k)
+    for l in range(n):
+        xl = x[l]
+        for i in range(k):
+            y[i] += A[l, i] * xl
+    return y

@@ -17,16 +17,13 @@ Choices the spec leaves open, made here and flagged for review:
   spec says); in the viscous torque it is the *difference* omega_cage - omega_race, since
   Couette shear vanishes when both surfaces turn together. For the reference scene (outer
   race fixed) the two are equal.
-* torque weight: the paper's f_C = (1 + eps0 - eps)/eps0 (`torque_weight = "paper"`)
-  meets the hydrodynamic torque's (1 - eps_h)^(-1/2) growth at eps = 1 + eps0 (where
-  eps_h = e/(C + e0) reaches 1), so T is continuous there but its slope is infinite from
-  the left, and the Newton matrix with it. The default `"smoothstep"` keeps the paper's
-  end values with f_C = 1 - 3 chi^2 + 2 chi^3, chi = (eps - 1)/eps0: it falls like
-  3 (1 - chi)^2, so f_C T^hyd ~ (1 - chi)^(3/2) has a finite (zero) slope at 1 + eps0,
-  and f_C' = 0 at eps = 1 makes the torque slope continuous there too. A deviation from
-  the paper's eq. 31, made because finite derivatives are required (issue: contact
-  kernels); the two weights differ by at most 0.096 (chi = 0.21 and 0.79), times
-  |T^hyd - T^dry|, inside the eps0 band only.
+* the paper's torque weight f_C = (1 + eps0 - eps)/eps0 meets the film torque's
+  (1 - eps_h^2)^(-1/2) growth at eps = 1 + eps0, where eps_h = e/(C + e0) reaches 1: T is
+  continuous there but its slope would be infinite from the left. So in the blend the film
+  torque is evaluated at min(eps_h, eps_clip) (eps_clip = 0.999, the clip the
+  hydrodynamic-only mode uses for all film terms): the slope stays finite, and T departs
+  from eq. 31 only where f_C < 2.1 % (the last 2.1 % of the eps0 band), by less than
+  f_C T^hyd there. The force needs no clip: f_F vanishes faster than any power.
 * `lands`: the journal length L may be split into n separate lands (the race groove
   between them vents the film). n = 1 is the paper's single journal of length L; n = 2
   makes the film force 1/4 as large (each land is a short bearing of length L/2) and
@@ -58,11 +55,8 @@ J_E_EFF = 7  # E', effective modulus cage/race [Pa]
 J_LANDS = 8  # number of separate lands L is split into [-]
 J_MODE = 9  # MODE_* below
 J_GUIDANCE = 10  # +1 outer-race guided (cage inside the land), -1 inner-race guided
-J_TORQUE_WEIGHT = 11  # TORQUE_WEIGHTS code: 0 paper (linear), 1 smoothstep
-TORQUE_PAPER, TORQUE_SMOOTHSTEP = 0, 1
-TORQUE_WEIGHTS = {"smoothstep": TORQUE_SMOOTHSTEP, "paper": TORQUE_PAPER}
-J_EPS_CLIP = 12  # hydrodynamic-only mode: eps is clipped here [-]
-N_JOURNAL_PARAMS = 13
+J_EPS_CLIP = 11  # film eccentricity clip: all film terms (hydrodynamic mode), the torque (hybrid) [-]
+N_JOURNAL_PARAMS = 12
 
 MODE_HYBRID, MODE_HYDRODYNAMIC, MODE_DRY, MODE_NONE = 0.0, 1.0, 2.0, 3.0
 MODES = {"hybrid": MODE_HYBRID, "hydrodynamic": MODE_HYDRODYNAMIC, "dry": MODE_DRY, "none": MODE_NONE}
@@ -122,12 +116,11 @@ def ocvirk_torque(eps, viscosity, omega_rel, R, L, C):
 
 
 @numba.njit(cache=True)
-def hybrid_weights(eps, eps0, torque_weight):
+def hybrid_weights(eps, eps0):
     """Blending weights of MODEL.md §8 (paper eqs. 28–31) and their eps-derivatives.
 
-    chi = (eps - 1)/eps0; f_F = exp(2 chi / (chi - 1)) (force); f_C = 1 - chi (torque,
-    torque_weight = TORQUE_PAPER) or 1 - 3 chi^2 + 2 chi^3 (TORQUE_SMOOTHSTEP, default; see
-    the module docstring). Both are 1 for eps <= 1 and 0 for eps >= 1 + eps0.
+    chi = (eps - 1)/eps0; f_F = exp(2 chi / (chi - 1)) (force), f_C = 1 - chi (torque).
+    Both are 1 for eps <= 1 and 0 for eps >= 1 + eps0.
     f_F is C-infinity at eps = 1 + eps0 and has slope -2/eps0 at eps = 1+.
     Returns (f_F, df_F/deps, f_C, df_C/deps).
     """
@@ -138,13 +131,7 @@ def hybrid_weights(eps, eps0, torque_weight):
     chi = (eps - 1.0) / eps0
     f_f = math.exp(2.0 * chi / (chi - 1.0))
     df_f = -2.0 * f_f / ((chi - 1.0) ** 2 * eps0)
-    if torque_weight == TORQUE_SMOOTHSTEP:
-        f_c = 1.0 - chi * chi * (3.0 - 2.0 * chi)
-        df_c = -6.0 * chi * (1.0 - chi) / eps0
-    else:
-        f_c = 1.0 - chi
-        df_c = -1.0 / eps0
-    return f_f, df_f, f_c, df_c
+    return f_f, df_f, 1.0 - chi, -1.0 / eps0
 
 
 @numba.njit(cache=True)
@@ -154,7 +141,7 @@ def _mode_weights(eps, params):
     c = params[J_CLEARANCE]
     if mode == MODE_HYBRID:
         eps0 = params[J_EPS0]
-        f_f, df_f, f_c, df_c = hybrid_weights(eps, eps0, params[J_TORQUE_WEIGHT])
+        f_f, df_f, f_c, df_c = hybrid_weights(eps, eps0)
         return f_f, df_f / c, f_c, df_c / c, c * (1.0 + eps0), eps > 1.0
     if mode == MODE_HYDRODYNAMIC:
         return 1.0, 0.0, 1.0, 0.0, c, False
@@ -177,7 +164,11 @@ def _film_terms(e, omega_sum, omega_rel, c_film, params):
     if clipped:
         eps_h = params[J_EPS_CLIP]
     f_n, f_t, df_n, df_t = ocvirk_force(eps_h, mu, omega_sum, R, L / n, c_film)
-    t, dt = ocvirk_torque(eps_h, mu, omega_rel, R, L, c_film)
+    # hybrid blend: the torque is clipped too (finite slope at eps = 1 + eps0, module doc)
+    eps_t = min(eps_h, params[J_EPS_CLIP])
+    t, dt = ocvirk_torque(eps_t, mu, omega_rel, R, L, c_film)
+    if eps_t < eps_h:
+        dt = 0.0
     q = 1.0 - eps_h * eps_h
     p1 = n * mu * R * (L / n) ** 3 / (c_film * c_film)  # per unit omega, all lands
     if clipped:  # beyond the clip the magnitude is frozen: no eps-slope
@@ -190,7 +181,7 @@ def _film_terms(e, omega_sum, omega_rel, c_film, params):
     g_t = eps_h / q**1.5
     dfn_dw = p1 * math.copysign(1.0, omega_sum) * g_n if omega_sum != 0.0 else 0.0
     dft_dw = 0.25 * math.pi * p1 * g_t
-    dt_dw = t / omega_rel if omega_rel != 0.0 else ocvirk_torque(eps_h, mu, 1.0, R, L, c_film)[0]
+    dt_dw = t / omega_rel if omega_rel != 0.0 else ocvirk_torque(eps_t, mu, 1.0, R, L, c_film)[0]
     return (n * f_n, n * f_t, t, n * df_n / c_film, n * df_t / c_film, dt / c_film,
             fn_e, ft_e, dfn_dw, dft_dw, dt_dw)
 
@@ -299,7 +290,6 @@ def journal_parameters(
     lands: int = 1,
     mode: str = "hybrid",
     guidance: str = "outer",
-    torque_weight: str = "smoothstep",
     eps_clip: float = 0.999,
 ) -> np.ndarray:
     """Pack and check the journal parameters (SI units) for `cage_race_journal`.
@@ -308,8 +298,8 @@ def journal_parameters(
     viscosity [Pa s] at the land; effective_modulus E' [Pa]; friction_coefficient mu_dry
     [-]; eps0 [-] boundary-layer thickness e0/C; regularisation_speed [m/s] of the dry
     friction; lands: separate lands L is split into; mode: hybrid | hydrodynamic | dry |
-    none; guidance: outer | inner; torque_weight: smoothstep | paper (module docstring);
-    eps_clip: largest eps the hydrodynamic-only mode evaluates.
+    none; guidance: outer | inner; eps_clip: largest film eccentricity e/C_film the
+    film formulas are evaluated at (all of them in hydrodynamic mode, the torque in hybrid).
     """
     positive = {
         "radius [m]": radius, "length [m]": length, "clearance [m]": clearance,
@@ -324,8 +314,6 @@ def journal_parameters(
             raise ValueError(f"cage-race journal: {name} = {value!r} must be >= 0")
     if mode not in MODES:
         raise ValueError(f"cage-race journal: mode = {mode!r}; allowed: {', '.join(MODES)}")
-    if torque_weight not in TORQUE_WEIGHTS:
-        raise ValueError(f"cage-race journal: torque_weight = {torque_weight!r}; allowed: {', '.join(TORQUE_WEIGHTS)}")
     if guidance not in ("outer", "inner"):
         raise ValueError(f"cage-race journal: guidance = {guidance!r}; allowed: 'outer', 'inner'")
     if int(lands) != lands or lands < 1:
@@ -338,7 +326,7 @@ def journal_parameters(
     params[J_V_REG], params[J_E_EFF], params[J_LANDS] = regularisation_speed, effective_modulus, lands
     params[J_MODE] = MODES[mode]
     params[J_GUIDANCE] = 1.0 if guidance == "outer" else -1.0
-    params[J_TORQUE_WEIGHT], params[J_EPS_CLIP] = TORQUE_WEIGHTS[torque_weight], eps_clip
+    params[J_EPS_CLIP] = eps_clip
     return params
 
 

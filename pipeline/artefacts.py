@@ -98,3 +98,35 @@ def staged_directory(final_dir: Path) -> Iterator[Path]:
     os.replace(tmp, final_dir)
     if old is not None:
         shutil.rmtree(old, ignore_errors=True)
+
+
+class RunDirectoryBusy(RuntimeError):
+    """Another process holds the run directory's lock."""
+
+
+@contextmanager
+def run_directory_lock(run_dir: Path) -> Iterator[None]:
+    """Hold an exclusive lock on `run_dir` (file `.lock` inside) while a pipeline writes it.
+
+    Two runs writing one directory would swap their stage results over each other; the
+    second is refused at once with RunDirectoryBusy. The lock is an advisory flock, released
+    when the process ends however it ends. Where fcntl does not exist (Windows) no lock is
+    taken.
+    """
+    try:
+        import fcntl
+    except ImportError:  # pragma: no cover - not POSIX
+        yield
+        return
+    run_dir.mkdir(parents=True, exist_ok=True)
+    with open(run_dir / ".lock", "a+") as handle:
+        try:
+            fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            raise RunDirectoryBusy(
+                f"another bearingsim process is writing {run_dir}/; wait for it to finish or give "
+                f"this run its own directory with --out") from None
+        try:
+            yield
+        finally:
+            fcntl.flock(handle, fcntl.LOCK_UN)

@@ -6,6 +6,7 @@ progress and log lines go to stderr and to `<run dir>/run.log`.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import logging
 import sys
@@ -15,6 +16,7 @@ from typing import Annotated, Optional
 import typer
 from rich.console import Console
 
+from .artefacts import RunDirectoryBusy, run_directory_lock
 from .runner import StageNotAvailable
 from .schema import SceneError
 
@@ -54,23 +56,38 @@ def _fail(code: int, message: str) -> None:
 
 def _pipeline(scene_arg: str, overrides, out, targets: list[str], force: set[str], quiet: bool = False):
     """Load, validate, then run `targets` with progress on stderr; map errors to exit codes."""
-    from .scene import read_scene_table
-
     try:
         scene = _load(scene_arg, overrides)
     except SceneError as exc:
         _fail(EXIT_SCENE, f"scene: {exc}")
+    run_dir = _run_dir(scene, out)
+    with contextlib.ExitStack() as held:
+        try:
+            held.enter_context(run_directory_lock(run_dir))
+        except RunDirectoryBusy as exc:
+            _fail(EXIT_FAILED, str(exc))
+        outcomes = _run_locked(scene, scene_arg, run_dir, targets, force, quiet)
+    if not quiet:
+        for o in outcomes:
+            extra = f" in {o.wall_time:.2f} s" if o.status == "computed" else ""
+            err_console.print(f"  {o.name:<12} {o.status}{extra}", highlight=False)
+        err_console.print(f"results: {run_dir}/", highlight=False)
+    return scene, run_dir, outcomes
+
+
+def _run_locked(scene, scene_arg, run_dir, targets, force, quiet):
+    """The stages of `_pipeline`, run while it holds the run directory's lock."""
     from .provenance import attach_run_log, write_run_provenance
     from .runner import run_stages
+    from .scene import read_scene_table
     from .stages import STAGES
 
-    run_dir = _run_dir(scene, out)
     handler = attach_run_log(run_dir)
     try:
         write_run_provenance(run_dir, scene.raw, read_scene_table(scene_arg)[1])
         logging.getLogger("bearingsim").info("bearingsim %s: targets %s", scene.name, targets)
         with _StageProgress(quiet) as bar:
-            outcomes = run_stages(scene, run_dir, STAGES, targets, force, progress=bar.update)
+            return run_stages(scene, run_dir, STAGES, targets, force, progress=bar.update)
     except StageNotAvailable as exc:
         _fail(EXIT_UNAVAILABLE, f"{exc}. Results so far are in {run_dir}/")
     except SceneError as exc:
@@ -81,12 +98,6 @@ def _pipeline(scene_arg: str, overrides, out, targets: list[str], force: set[str
     finally:
         logging.getLogger("bearingsim").removeHandler(handler)
         handler.close()
-    if not quiet:
-        for o in outcomes:
-            extra = f" in {o.wall_time:.2f} s" if o.status == "computed" else ""
-            err_console.print(f"  {o.name:<12} {o.status}{extra}", highlight=False)
-        err_console.print(f"results: {run_dir}/", highlight=False)
-    return scene, run_dir, outcomes
 
 
 class _StageProgress:

@@ -168,10 +168,6 @@ class Physics:
         "unit": "-", "ge": 0.0, "le": 1.0, "doc": "metal-to-metal friction at the guide land"})
     cage_race_boundary: float = field(default=0.05, metadata={
         "unit": "-", "gt": 0.0, "lt": 1.0, "doc": "epsilon_0: boundary-layer width of the hybrid model / C"})
-    cage_torque_weight: str = field(default="smoothstep", metadata={
-        "choices": ("smoothstep", "paper"),
-        "doc": "torque blend of the hybrid model: 'paper' is eq. 31's linear f_C (infinite torque slope at "
-               "eps = 1 + eps0); 'smoothstep' keeps its end values with finite slopes"})
 
 
 @dataclass(frozen=True)

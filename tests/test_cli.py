@@ -60,3 +60,16 @@ def test_light_commands_do_not_import_heavy_libraries():
     )
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert proc.returncode == 0, proc.stdout + proc.stderr
+
+
+def test_a_second_run_into_a_busy_run_directory_is_refused(tmp_path):
+    # two processes writing one run directory would swap stage results over each other
+    from pipeline.artefacts import run_directory_lock
+
+    with run_directory_lock(tmp_path):
+        result = CliRunner().invoke(app, ["quasistatic", "deep-groove-209", "--out", str(tmp_path)])
+    assert result.exit_code == 1
+    assert "another bearingsim process is writing" in result.output and "--out" in result.output
+    assert not (tmp_path / "quasistatic").exists()
+    result = CliRunner().invoke(app, ["quasistatic", "deep-groove-209", "--json", "--out", str(tmp_path)])
+    assert result.exit_code == 0, result.output

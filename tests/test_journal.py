@@ -22,8 +22,6 @@ from dynamics.journal import (
     J_OUT_FRICTION_POWER,
     J_OUT_METAL_FORCE,
     J_OUT_TORQUE,
-    TORQUE_PAPER,
-    TORQUE_SMOOTHSTEP,
     cage_race_journal,
     hybrid_weights,
     journal_parameters,
@@ -173,7 +171,7 @@ def test_dry_loads_below_palmgrens_range_are_negligible_in_the_blend():
         q_dry = lundberg_load(delta, L, E_BRONZE_STEEL)[0]
         assert q_dry <= 13.0
         eps = 1.0 + delta / C
-        f_f = hybrid_weights(eps, eps0, TORQUE_SMOOTHSTEP)[0]
+        f_f = hybrid_weights(eps, eps0)[0]
         f_n_film = ocvirk_force(eps / (1 + eps0), mu, omega, R, L, C * (1 + eps0))[0]
         total = f_f * f_n_film + (1 - f_f) * q_dry
         assert (1 - f_f) * q_dry < 1e-2 * total
@@ -212,13 +210,13 @@ def test_lundberg_load_keeps_rising_past_the_curve_maximum():
 # --- hybrid blend --------------------------------------------------------------------------
 def test_hybrid_weight_limits():
     eps0 = 0.05
-    assert hybrid_weights(1.0, eps0, TORQUE_PAPER) == (1.0, 0.0, 1.0, 0.0)
-    assert hybrid_weights(1.0 + eps0, eps0, TORQUE_PAPER) == (0.0, 0.0, 0.0, 0.0)
-    f_f, df_f, f_c, df_c = hybrid_weights(1.0 + 1e-12, eps0, TORQUE_PAPER)
+    assert hybrid_weights(1.0, eps0) == (1.0, 0.0, 1.0, 0.0)
+    assert hybrid_weights(1.0 + eps0, eps0) == (0.0, 0.0, 0.0, 0.0)
+    f_f, df_f, f_c, df_c = hybrid_weights(1.0 + 1e-12, eps0)
     assert f_f == pytest.approx(1.0, abs=1e-9) and f_c == pytest.approx(1.0, abs=1e-9)
     assert df_f == pytest.approx(-2.0 / eps0, rel=1e-6)  # d/dchi exp(2chi/(chi-1)) = -2 at 0
     assert df_c == pytest.approx(-1.0 / eps0)
-    f_f, df_f, f_c, _ = hybrid_weights(1.0 + eps0 * (1 - 1e-3), eps0, TORQUE_PAPER)
+    f_f, df_f, f_c, _ = hybrid_weights(1.0 + eps0 * (1 - 1e-3), eps0)
     assert f_f < 1e-300 and abs(df_f) < 1e-290  # flat: exp(-2/(1-chi)) ~ exp(-2000)
     assert f_c == pytest.approx(1e-3)
 
@@ -247,43 +245,39 @@ def test_force_and_torque_continuous_across_blend(omega_race):
 
 def test_slopes_finite_at_blend_edges():
     # Issue "contact kernels": force and torque derivatives finite at eps = 1 and 1 + eps0.
-    # Default torque weight (smoothstep) and the paper's linear f_C, side by side.
     p1 = params(length=7.6e-3, radius=0.083, clearance=0.29e-3, viscosity=5e-3)
-    p_paper = params(length=7.6e-3, radius=0.083, clearance=0.29e-3, viscosity=5e-3, torque_weight="paper")
     for eps in (1.0 - 1e-9, 1.0 + 1e-9, 1.05 - 1e-9, 1.05 + 1e-9):
-        for p in (p1, p_paper):
-            out = journal_at(eps, p, omega_cage=140.0)
-            assert np.all(np.isfinite(out))
-        d_force = journal_at(eps, p1, omega_cage=140.0)[J_OUT_DF_DPOS:J_OUT_DF_DPOS + 4]
-        assert np.max(np.abs(d_force)) < 1e12  # N/m: a wall, but finite
-        assert abs(journal_at(eps, p1, omega_cage=140.0)[J_OUT_DT_DPOS]) < 1e8
-    # Approaching 1 + eps0 from below without dry friction (torque = f_C T^hyd only): the
-    # paper's f_C meets the film torque's (1 - eps_h)^(-1/2), so the slope grows like
-    # (1 + eps0 - eps)^(-1/2) (x10 for 100x closer) -- infinite in the limit, reported as a
-    # property of eq. 31. The default smoothstep weight falls like (1 - chi)^2 and the slope
-    # vanishes like (1 + eps0 - eps)^(+1/2) (x0.1 for 100x closer).
+        out = journal_at(eps, p1, omega_cage=140.0)
+        assert np.all(np.isfinite(out))
+        assert np.max(np.abs(out[J_OUT_DF_DPOS:J_OUT_DF_DPOS + 4])) < 1e12  # N/m: a wall, but finite
+        assert abs(out[J_OUT_DT_DPOS]) < 1e8  # N m / m
+    # Approaching 1 + eps0 from below without dry friction (torque = f_C T^hyd only). With the
+    # film torque clipped at eps_h = 0.999 (default) the slope levels off at a finite value;
+    # with the clip pushed to 1 - 1e-12 (eq. 31 as written) it grows like
+    # (1 + eps0 - eps)^(-1/2): x10 for 100x closer -- infinite in the limit.
     film_only = dict(length=7.6e-3, radius=0.083, clearance=0.29e-3, viscosity=5e-3, friction_coefficient=0.0)
     slope = lambda eta, **kw: journal_at(1.05 - eta, params(**film_only, **kw), omega_cage=140.0)[J_OUT_DT_DPOS]
-    assert slope(1e-8, torque_weight="paper") / slope(1e-6, torque_weight="paper") == pytest.approx(10.0, rel=0.02)
-    assert slope(1e-8) / slope(1e-6) == pytest.approx(0.1, rel=0.02)
-    # at eps = 1 the smoothstep weight has zero slope: the torque slope is continuous there
-    p_film = params(**film_only)
-    below, above = (journal_at(1.0 + s * 1e-9, p_film, omega_cage=140.0)[J_OUT_DT_DPOS] for s in (-1, 1))
-    assert above == pytest.approx(below, rel=1e-5)
+    assert slope(1e-8) / slope(1e-6) == pytest.approx(1.0, rel=1e-9)
+    assert slope(1e-8, eps_clip=1 - 1e-12) / slope(1e-6, eps_clip=1 - 1e-12) == pytest.approx(10.0, rel=0.02)
+    # FD slope of the torque agrees with the kernel's, across the clip point too
+    for eps in (1.02, 1.0485, 1.0495):
+        h = 1e-9
+        fd = (journal_at(eps + h, params(**film_only), omega_cage=140.0)[J_OUT_TORQUE]
+              - journal_at(eps - h, params(**film_only), omega_cage=140.0)[J_OUT_TORQUE]) / (2 * h * 0.29e-3)
+        assert journal_at(eps, params(**film_only), omega_cage=140.0)[J_OUT_DT_DPOS] == pytest.approx(fd, rel=1e-4)
 
 
-def test_smoothstep_torque_weight_stays_close_to_the_paper():
-    # |1 - 3 chi^2 + 2 chi^3 - (1 - chi)| = chi (1 - chi)(1 - 2 chi) <= 0.0962 (chi = (3 -+ sqrt 3)/6)
-    eps0 = 0.05
-    diffs = [hybrid_weights(1 + eps0 * c, eps0, TORQUE_SMOOTHSTEP)[2] - hybrid_weights(1 + eps0 * c, eps0, TORQUE_PAPER)[2]
-             for c in np.linspace(0, 1, 2001)]
-    assert max(abs(d) for d in diffs) == pytest.approx(math.sqrt(3) / 18, rel=1e-5)
-    for c in (0.3, 0.6):  # derivative against finite differences
-        h = 1e-7
-        _, _, _, d = hybrid_weights(1 + eps0 * c, eps0, TORQUE_SMOOTHSTEP)
-        fd = (hybrid_weights(1 + eps0 * c + h, eps0, TORQUE_SMOOTHSTEP)[2]
-              - hybrid_weights(1 + eps0 * c - h, eps0, TORQUE_SMOOTHSTEP)[2]) / (2 * h)
-        assert d == pytest.approx(fd, rel=1e-6)
+def test_torque_clip_only_acts_in_the_last_two_percent_of_the_band():
+    # eq. 31 (clip at 1 - 1e-12) and the default (clip 0.999) agree exactly up to
+    # eps = 0.999 (1 + eps0) = 1 + 0.979 eps0, and differ by less than f_C T^hyd beyond.
+    film_only = dict(length=7.6e-3, radius=0.083, clearance=0.29e-3, viscosity=5e-3, friction_coefficient=0.0)
+    default, paper = params(**film_only), params(**film_only, eps_clip=1 - 1e-12)
+    for eps in np.linspace(0.5, 1.05 * 0.999 - 1e-9, 200):
+        assert journal_at(eps, default, omega_cage=140.0)[J_OUT_TORQUE] == journal_at(eps, paper, omega_cage=140.0)[J_OUT_TORQUE]
+    band_start = abs(journal_at(1.0, paper, omega_cage=140.0)[J_OUT_TORQUE])
+    for eps in np.linspace(1.05 * 0.999, 1.05 - 1e-12, 200):
+        d = abs(journal_at(eps, default, omega_cage=140.0)[J_OUT_TORQUE] - journal_at(eps, paper, omega_cage=140.0)[J_OUT_TORQUE])
+        assert d <= 0.15 * band_start
 
 
 def test_dry_region_is_lundberg_with_full_slip():
@@ -418,7 +412,7 @@ def test_kernels_equal_their_python_twins():
         np.testing.assert_allclose(ocvirk_torque.py_func(eps, MU, OMEGA, R_S, L_S, C_S),
                                    ocvirk_torque(eps, MU, OMEGA, R_S, L_S, C_S), rtol=1e-13)
     for eps in rng.uniform(0.9, 1.1, 10):
-        np.testing.assert_allclose(hybrid_weights.py_func(eps, 0.05, 1.0), hybrid_weights(eps, 0.05, 1.0), rtol=1e-13)
+        np.testing.assert_allclose(hybrid_weights.py_func(eps, 0.05), hybrid_weights(eps, 0.05), rtol=1e-13)
     for delta in rng.uniform(0, 1e-4, 10):
         np.testing.assert_allclose(lundberg_load.py_func(delta, 3.8e-3, E_BRONZE_STEEL),
                                    lundberg_load(delta, 3.8e-3, E_BRONZE_STEEL), rtol=1e-13)

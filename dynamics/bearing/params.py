@@ -51,7 +51,6 @@ class ModelOptions:
     pocket_restitution: float = 0.7
     cage_race_friction: float = 0.1
     cage_race_boundary: float = 0.05  # epsilon_0
-    cage_torque_weight: str = "smoothstep"  # "smoothstep" | "paper" (dynamics.journal)
     coulomb_regularisation: float = 1e-3  # [m/s]
 
 
@@ -200,6 +199,6 @@ def _cage_params(bearing, cage, ball, race, cage_material, lubricant, options, f
         journal = journal_parameters_for_cage(
             bearing, cage, cage_material, race, viscosity=viscosity,
             friction_coefficient=options.cage_race_friction, eps0=options.cage_race_boundary,
-            mode=options.cage_race, torque_weight=options.cage_torque_weight)
+            mode=options.cage_race)
         ip[IP_JOURNAL] = 1
     return pocket, journal, cage.guide_clearance(bearing)

@@ -1,54 +1,93 @@
 """Time to evaluate every contact of the reference bearing once (issue 3 target: <= 50 us).
 
     python -m pipeline.bench.contacts [SCENE]
+    taskset -c 1 python -m pipeline.bench.contacts     # steadier on a shared machine
 
-Reports the full residual evaluation of the bearing model (44 ball–race contacts with
-film and Eyring traction, 22 ball–pocket contacts, 1 cage–race journal, hinge, loads) and
-its parts, on the quasi-static start state. Minimum over repeats (other work on the
-machine only makes times longer).
+Times the bearing model's force kernel (dynamics/bearing/assembly.py) on the quasi-static
+start state, called from a numba loop (no Python dispatch in the figure), minimum over
+repeats (other work on the machine only makes times longer):
+
+- "contacts": what the issue counts -- 44 ball–race contacts with film and Eyring traction,
+  22 ball–pocket contacts, 1 cage–race journal (hinge and gyroscopic terms switched off);
+- the full residual (plus hinge, gyroscopic moments, loads), and the same with the tangent
+  blocks the Newton matrix needs;
+- a breakdown by switching parts off (differences of these rows).
 """
 
 from __future__ import annotations
 
 import sys
-
+import time
+import numba
 import numpy as np
 
-from pipeline.bench import best_time
+from dynamics.bearing.assembly import evaluate_bearing
 
 
-def _best(fn, repeats: int = 7, number: int = 300) -> float:
-    return best_time(fn, repeat=repeats, number=number)
+@numba.njit
+def _repeat(n, t, q, v, a, fp, ip, tab_i, tab_o, eta, rule, work, iwork, pp, jp, psi, Hu, Hpsi, Gu, Gpsi, xA, RA,
+            v0, mass, want_tangent, ma, g, diag, Kd, Ke, Kf, Kb, Cd, Ce, Cf, Cb):
+    s = 0.0
+    for _ in range(n):
+        s += evaluate_bearing(t, q, v, a, fp, ip, tab_i, tab_o, eta, rule, work, iwork, pp, jp, psi, Hu, Hpsi,
+                              Gu, Gpsi, xA, RA, v0, mass, want_tangent, ma, g, diag, Kd, Ke, Kf, Kb, Cd, Ce, Cf, Cb)
+    return s
+
+
+def _time_kernel(model, q, v, ip, want_tangent: bool, number: int, repeat: int = 25) -> float:
+    """Best mean time [s] of one kernel call over `repeat` runs of `number` calls."""
+    P = model.params
+    K, C = model.K, model.C
+    a = np.zeros(model.n_dof)
+    ma, g = np.zeros(model.n_dof), np.zeros(model.n_dof)
+    args = (0.0, q, v, a, P.fp, ip, P.hertz_inner, P.hertz_outer, P.eta_table, P.traction_rule, P.traction_work,
+            P.traction_iwork, P.pocket, P.journal, P.pocket_psi, P.hinge_Hu, P.hinge_Hpsi, P.hinge_Gu, P.hinge_Gpsi,
+            P.static_x, P.static_R, model.impact_speeds, model.mass, want_tangent, ma, g, model.diag,
+            K.D, K.E, K.F, K.B, C.D, C.E, C.F, C.B)
+    _repeat(1, *args)
+    best = float("inf")
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        _repeat(number, *args)
+        best = min(best, (time.perf_counter() - t0) / number)
+    return best
 
 
 def main(scene_name: str = "helicopter-b-given-hinge") -> None:
-    from dataclasses import replace
-
     from dynamics.bearing import BearingModel
+    from dynamics.bearing.params import IP_CAGE, IP_FILM, IP_GYRO, IP_HINGE, IP_JOURNAL, IP_TRACTION
     from dynamics.bearing.run import initial_coordinates
     from pipeline.scene import load_scene
     from pipeline.stages.simulate import build_model
 
     scene = load_scene(scene_name)
-    rows = []
-    for label, physics in (("all contacts (Eyring traction, film, pockets, journal)", {}),
-                           ("without traction", {"traction": "none"}),
-                           ("without traction and film", {"traction": "none", "ehd_film": False})):
-        s = replace(scene, physics=replace(scene.physics, **physics))
-        params, start = build_model(s)
-        model = BearingModel(params)
-        q, v = initial_coordinates(params, start)
-        n = model.n_dof
-        a, ma, g = np.zeros(n), np.zeros(n), np.zeros(n)
-        model.evaluate(0.0, q, v, a, ma, g)  # compile / load from cache
-        model.jacobian(0.0, q, v, a, 1.0, 1e-6, 1e-12)
-        rows.append((label, _best(lambda: model.evaluate(0.0, q, v, a, ma, g)),
-                     _best(lambda: model.jacobian(0.0, q, v, a, 1.0, 1e-6, 1e-12), number=50)))
-    print(f"bearing contacts of {scene_name} (Z = {params.ball_count}), one core, best of 7")
-    print(f"{'':58s} {'residual':>10s} {'+tangent':>10s}")
-    for label, t_res, t_jac in rows:
-        print(f"{label:58s} {t_res * 1e6:8.1f} us {t_jac * 1e6:8.1f} us")
-    print("target (issue 3): all contacts incl. traction <= 50 us")
+    params, start = build_model(scene)
+    model = BearingModel(params)
+    q, v = initial_coordinates(params, start)
+
+    def switched(**off) -> np.ndarray:
+        ip = params.ip.copy()
+        for index in off.values():
+            ip[index] = 0
+        return ip
+
+    contacts_only = dict(hinge=IP_HINGE, gyro=IP_GYRO)
+    rows = [
+        ("contacts: 44 ball-race (film, Eyring traction), 22 pocket, 1 journal",
+         switched(**contacts_only), False, 400),
+        ("  without traction", switched(**contacts_only, traction=IP_TRACTION), False, 400),
+        ("  without traction and film", switched(**contacts_only, traction=IP_TRACTION, film=IP_FILM), False, 400),
+        ("  without the journal", switched(**contacts_only, journal=IP_JOURNAL), False, 400),
+        ("  ball-race only (no cage: pockets and journal off)", switched(**contacts_only, cage=IP_CAGE), False, 400),
+        ("full residual (+ hinge, gyroscopic moments, loads)", params.ip, False, 400),
+        ("full residual + tangent blocks (Newton matrix)", params.ip, True, 40),
+    ]
+    print(f"force kernel of {scene_name} (Z = {params.ball_count}) on the quasi-static start state,")
+    print("called from a numba loop, best mean of 25 runs")
+    for label, ip, tangent, number in rows:
+        t = _time_kernel(model, q, v, ip, tangent, number)
+        print(f"{label:70s} {t * 1e6:8.1f} us")
+    print("target (issue 3): contacts incl. traction <= 50 us on one core")
 
 
 if __name__ == "__main__":

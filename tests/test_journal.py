@@ -124,39 +124,30 @@ def test_ocvirk_slopes_against_finite_differences():
 
 
 # --- dry part ------------------------------------------------------------------------------
-def test_lundberg_vs_palmgren_bronze_on_steel():
+@pytest.mark.parametrize("l, q_agree, gap_at_1N", [
+    (3.8e-3, 3.5, (0.05, 0.10)),   # one land of the reference cage (lands = 2)
+    (7.6e-3, 13.0, (0.10, 0.20)),  # the reference model's single journal (lands = 1)
+])
+def test_lundberg_vs_palmgren_bronze_on_steel(l, q_agree, gap_at_1N):
     # Palmgren delta[mm] = 3.84e-5 Q^0.9 / l^0.8 (steel; Harris & Kotzalas, Essential
     # Concepts of Bearing Technology, 5th ed., ch. 6) against Lundberg's logarithmic law
-    # (MODEL.md §8), l = 3.8 mm per land (MODEL.md §2), bronze on steel, Palmgren's load
-    # scaled by E'/E'_steel (Lundberg depends on Q/E' only). Deflections at equal load agree
-    # within 5 % from 3.5 N to 5 kN (-4.7 % .. +3.2 %); below, the logarithm grows as
-    # Q -> 0 and at 1 N the gap is 8.7 % (Palmgren's power law is an empirical fit for loaded
-    # contacts). Such loads are interferences of tens of nm, where the dry force is < 1 % of
-    # the cage-land force (test below). As a Newton start (load at equal
-    # deflection) Palmgren is within 10 % over 1 N .. 5 kN.
+    # (MODEL.md §8), line lengths from MODEL.md §2, bronze on steel, Palmgren's load scaled
+    # by E'/E'_steel (Lundberg depends on Q/E' only). Deflections at equal load agree within
+    # 5 % from q_agree to 5 kN (-4.7 % .. +3.2 % at 3.8 mm); below, the logarithm grows as
+    # Q -> 0 (at 1 N: 8.7 % for 3.8 mm, 16 % for 7.6 mm; Palmgren's power law is an empirical
+    # fit for loaded contacts). Such loads are interferences under ~100 nm, where the dry
+    # force is < 1 % of the cage-land force (next test). As a Newton start (load at equal
+    # deflection) Palmgren is within 20 % over 1 N .. 5 kN.
     from dynamics.journal_dry import PALMGREN_COEFFICIENT, PALMGREN_E_EFF_STEEL
 
-    l = 3.8e-3
     scale = PALMGREN_E_EFF_STEEL / E_BRONZE_STEEL
     palmgren = lambda q: PALMGREN_COEFFICIENT * (q * scale) ** 0.9 / (l * 1e3) ** 0.8 * 1e-3  # m
-    for q in np.geomspace(3.5, 5000.0, 40):
+    for q in np.geomspace(q_agree, 5000.0, 40):
         assert abs(lundberg_deflection(q, l, E_BRONZE_STEEL) / palmgren(q) - 1) < 0.05, q
-    assert 0.05 < abs(lundberg_deflection(1.0, l, E_BRONZE_STEEL) / palmgren(1.0) - 1) < 0.10
+    assert gap_at_1N[0] < abs(lundberg_deflection(1.0, l, E_BRONZE_STEEL) / palmgren(1.0) - 1) < gap_at_1N[1]
     for q in np.geomspace(1.0, 5000.0, 40):
         q_start = palmgren_load(lundberg_deflection(q, l, E_BRONZE_STEEL), l, E_BRONZE_STEEL)
-        assert abs(q_start / q - 1) < 0.10, q
-
-
-def test_lundberg_vs_palmgren_single_journal_of_the_reference_cage():
-    # The reference model runs the cage on one journal of L = 7.6 mm (MODEL.md §2, lands = 1),
-    # so its dry line contact is 7.6 mm long: the laws agree within 5 % from 13 N to 5 kN.
-    from dynamics.journal_dry import PALMGREN_COEFFICIENT, PALMGREN_E_EFF_STEEL
-
-    l = 7.6e-3
-    scale = PALMGREN_E_EFF_STEEL / E_BRONZE_STEEL
-    palmgren = lambda q: PALMGREN_COEFFICIENT * (q * scale) ** 0.9 / (l * 1e3) ** 0.8 * 1e-3  # m
-    for q in np.geomspace(13.0, 5000.0, 40):
-        assert abs(lundberg_deflection(q, l, E_BRONZE_STEEL) / palmgren(q) - 1) < 0.05, q
+        assert abs(q_start / q - 1) < 0.20, q
 
 
 def test_dry_loads_below_palmgrens_range_are_negligible_in_the_blend():

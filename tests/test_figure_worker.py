@@ -50,3 +50,14 @@ def test_worker_reports_its_error_and_unused_workers_are_stopped(tmp_path):
     assert w is not None and w.alive()
     figure_worker._release_prestarted()
     assert not w.alive() and figure_worker._prestarted is None
+
+
+def test_without_a_prestarted_worker_the_figure_is_drawn_here(tmp_path, monkeypatch):
+    # `run`, sweeps and library calls draw in-process: no plotting process per stage
+    def no_process(self):
+        raise AssertionError("a figure worker was started without prestart()")
+
+    monkeypatch.setattr(figure_worker.FigureWorker, "__init__", no_process)
+    monkeypatch.setattr(figure_worker, "prestart", lambda: None)
+    _, png = _quasistatic(tmp_path)
+    assert png.read_bytes()[:8] == PNG_MAGIC

@@ -83,23 +83,22 @@ def journal_forces(x_c, v_c, w_c, x_r, v_r, w_race_z, jp, jres, g, cage_off, R_c
         g[cage_off + i] += F[i]
         g[cage_off + 3 + i] += R_c[2, i] * T
     if want_tangent:
-        o = 0
-        Kb[o, o] -= out[J_OUT_DF_DPOS]
-        Kb[o, o + 1] -= out[J_OUT_DF_DPOS + 1]
-        Kb[o + 1, o] -= out[J_OUT_DF_DPOS + 2]
-        Kb[o + 1, o + 1] -= out[J_OUT_DF_DPOS + 3]
-        Kb[o + 5, o] -= out[J_OUT_DT_DPOS]
-        Kb[o + 5, o + 1] -= out[J_OUT_DT_DPOS + 1]
-        Cb[o, o] -= out[J_OUT_DF_DVEL]
-        Cb[o, o + 1] -= out[J_OUT_DF_DVEL + 1]
-        Cb[o + 1, o] -= out[J_OUT_DF_DVEL + 2]
-        Cb[o + 1, o + 1] -= out[J_OUT_DF_DVEL + 3]
-        Cb[o + 5, o] -= out[J_OUT_DT_DVEL]
-        Cb[o + 5, o + 1] -= out[J_OUT_DT_DVEL + 1]
-        Cb[o, o + 5] -= out[J_OUT_DF_DOMEGA_CAGE]
-        Cb[o + 1, o + 5] -= out[J_OUT_DF_DOMEGA_CAGE + 1]
-        Cb[o + 5, o + 5] -= out[J_OUT_DT_DOMEGA_CAGE]
+        _subtract_planar(Kb, out, J_OUT_DF_DPOS, J_OUT_DT_DPOS)
+        _subtract_planar(Cb, out, J_OUT_DF_DVEL, J_OUT_DT_DVEL)
+        Cb[0, 5] -= out[J_OUT_DF_DOMEGA_CAGE]
+        Cb[1, 5] -= out[J_OUT_DF_DOMEGA_CAGE + 1]
+        Cb[5, 5] -= out[J_OUT_DT_DOMEGA_CAGE]
     return F[0] * vel[0] + F[1] * vel[1] + T * (w_c[2] - w_race_z)
+
+
+@numba.njit(cache=True)
+def _subtract_planar(M, out, i_force, i_torque):
+    """M -= the cage block of d(F_x, F_y, T)/d(x, y) (or of the velocities): rows 0, 1
+    (force, row-major 2x2 at out[i_force]) and 5 (torque, out[i_torque:i_torque+2])."""
+    for i in range(2):
+        for j in range(2):
+            M[i, j] -= out[i_force + 2 * i + j]
+        M[5, i] -= out[i_torque + i]
 
 
 @numba.njit(cache=True)

@@ -1,24 +1,20 @@
 """Draw a figure in a second process, started before the numbers it plots exist.
 
 Importing matplotlib costs ~0.7 s, about as much as loading the quasi-static solver's numba
-kernels; the two are independent, so `bearingsim quasistatic` starts this worker first (it
-imports matplotlib on the second core while the solver loads and runs) and hands it the
-result to draw. One job per worker: a JSON object {"figure", "data", "path", "options"}
-on stdin; exit status 0 when the PNG is written (atomically, see figures.save_png).
-
-    with take_worker() as worker:
-        result = compute()
-        worker.draw("load_distribution", payload, path, title="...")
-
-`prestart()` starts one earlier still (the `quasistatic` command calls it before loading the
-scene); `take_worker()` hands that one out, or starts a fresh one. If the worker cannot start
-or fails, `draw` says why (the caller may draw in-process).
+kernels; the two are independent, so `bearingsim quasistatic` calls `prestart()` before it
+loads the scene (the worker imports matplotlib on the second core while the solver loads
+and runs) and the stage's `draw(...)` hands the result to that worker. Without a prestarted
+worker (`run`, sweeps, tests) `draw` plots in this process: a worker per call would only add
+a process start. One job per worker: a JSON object {"figure", "data", "path", "options"} on
+stdin; exit status 0 when the PNG is written (atomically, see figures.save_png). If the
+worker fails, `draw` logs why and plots in this process instead.
 """
 
 from __future__ import annotations
 
 import atexit
 import json
+import logging
 import subprocess
 import sys
 from pathlib import Path
@@ -56,16 +52,20 @@ class FigureWorker:
     def alive(self) -> bool:
         return self._proc.poll() is None
 
-    def __enter__(self) -> "FigureWorker":
-        return self
-
-    def __exit__(self, *exc) -> None:
-        if self._proc.poll() is None:  # never handed a job (the computation failed): stop it
+    def close(self) -> None:
+        """Stop the process if it never got a job, and release its pipes."""
+        if self._proc.poll() is None:
             self._proc.kill()
             self._proc.wait()
         for stream in (self._proc.stdin, self._proc.stderr):
             if stream is not None:
                 stream.close()
+
+    def __enter__(self) -> "FigureWorker":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
 
 
 _prestarted: FigureWorker | None = None
@@ -79,19 +79,26 @@ def prestart() -> None:
         atexit.register(_release_prestarted)
 
 
-def take_worker() -> FigureWorker:
-    """The prestarted worker if there is a live one, else a new one."""
+def draw(figure: str, data: dict, path: Path, **options) -> None:
+    """Draw `figure` (a key of `_figures`) into `path`: in the prestarted worker if there is
+    a live one, else (or if it fails, logged) in this process."""
     global _prestarted
     worker, _prestarted = _prestarted, None
     if worker is not None and worker.alive():
-        return worker
-    return FigureWorker()
+        try:
+            worker.draw(figure, data, path, **options)
+            return
+        except FigureWorkerError as exc:
+            logging.getLogger("bearingsim").warning("%s; drawing in this process", exc)
+        finally:
+            worker.close()
+    _figures()[figure](data, Path(path), **options)
 
 
 def _release_prestarted() -> None:
     global _prestarted
     if _prestarted is not None:
-        _prestarted.__exit__(None, None, None)
+        _prestarted.close()
         _prestarted = None
 
 

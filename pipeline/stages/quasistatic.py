@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import dataclasses
-import logging
 
 from ..artefacts import atomic_write_json
 from ..runner import Stage, StageContext
@@ -38,22 +37,15 @@ def solve(scene: Scene):
 
 
 def compute(ctx: StageContext) -> dict:
-    from ..figures.worker import FigureWorkerError, take_worker
+    from ..figures.worker import draw
 
-    # the figure's process imports matplotlib on the other core while this one solves
-    with take_worker() as worker:
-        ctx.progress("solving equilibrium", 0.0)
-        result = solve(ctx.scene)
-        payload = result.to_json_dict()
-        atomic_write_json(ctx.out_dir / RESULT_FILE, payload)
-        ctx.progress("drawing load distribution", 0.7)
-        try:
-            worker.draw("load_distribution", payload, ctx.out_dir / FIGURE_FILE, title=ctx.scene.name)
-        except FigureWorkerError as exc:  # draw here instead, and say so in run.log
-            logging.getLogger("bearingsim").warning("quasistatic: %s; drawing in this process", exc)
-            from ..figures.quasistatic import plot_load_distribution
-
-            plot_load_distribution(payload, ctx.out_dir / FIGURE_FILE, title=ctx.scene.name)
+    ctx.progress("solving equilibrium", 0.0)
+    result = solve(ctx.scene)
+    payload = result.to_json_dict()
+    atomic_write_json(ctx.out_dir / RESULT_FILE, payload)
+    ctx.progress("drawing load distribution", 0.7)
+    # in the worker `bearingsim quasistatic` prestarted, if any (see figures.worker)
+    draw("load_distribution", payload, ctx.out_dir / FIGURE_FILE, title=ctx.scene.name)
     return {"converged": bool(payload.get("converged")),
             "max_inner_load_N": max(b["inner_load"] for b in payload["balls"])}
 

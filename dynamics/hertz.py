@@ -23,6 +23,8 @@ import math
 import numba
 import numpy as np
 
+from dynamics._kernel_options import NO_REFCOUNT
+
 # Columns of a Hertz table row (value, d/dα pairs for cubic Hermite interpolation).
 TAB_KH, TAB_DKH, TAB_KAPPA, TAB_DKAPPA, TAB_CA, TAB_DCA, TAB_CB, TAB_DCB = range(8)
 TABLE_COLUMNS = 8
@@ -185,7 +187,7 @@ def constant_hertz_table(k_h, kappa, c_a, c_b, n_nodes):
     return table
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def _hermite(table, j, col, t, step):
     y0, y1 = table[j, col], table[j + 1, col]
     m0, m1 = table[j, col + 1] * step, table[j + 1, col + 1] * step
@@ -196,7 +198,7 @@ def _hermite(table, j, col, t, step):
     return value, slope
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def hertz_table_eval(table, alpha):
     """Interpolate a Hertz table at contact angle α [rad] (any sign; constants are even in α).
 

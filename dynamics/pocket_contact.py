@@ -39,6 +39,8 @@ import math
 import numba
 import numpy as np
 
+from dynamics._kernel_options import NO_REFCOUNT
+
 # --- parameter vector layout -----------------------------------------------------------
 P_BALL_RADIUS = 0  # r_b [m]
 P_POCKET_RADIUS = 1  # r_p [m]
@@ -78,7 +80,7 @@ def _cross(ax, ay, az, bx, by, bz):
     return ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def _column_mix(rot, u, v, w):
     """rot @ (u, v, w) as three floats."""
     return (rot[0, 0] * u + rot[0, 1] * v + rot[0, 2] * w,
@@ -121,7 +123,7 @@ def pocket_contact(x_ball, v_ball, w_ball, x_cage, rot_cage, v_cage, w_cage, psi
     return out
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def _pocket_contact_into(out, x_ball, v_ball, w_ball, x_cage, rot_cage, v_cage, w_cage, psi, impact_speed, params):
     """`pocket_contact` writing into a zeroed row `out`; scalar arithmetic, no temporaries."""
     r_b, r_p = params[P_BALL_RADIUS], params[P_POCKET_RADIUS]

@@ -41,6 +41,8 @@ import math
 import numba
 import numpy as np
 
+from dynamics._kernel_options import NO_REFCOUNT
+
 OUT_DELTA = 0  # δ [m]
 OUT_ALPHA = 1  # α [rad]
 OUT_N = 2  # n (3) [-]
@@ -57,7 +59,7 @@ OUT_CENTER = 24  # groove curvature centre C (3) [m]
 CONTACT_OUT_SIZE = 27
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def ball_race_contact_kernel(x_b, v_b, w_b, x_r, R_r, v_r, w_r, d_groove, r_groove, D, is_outer, out):
     """Torus–sphere contact of one ball with one race (MODEL.md §6.1, eqs. 21–23).
 

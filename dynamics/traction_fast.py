@@ -35,6 +35,7 @@ import numba
 import numpy as np
 
 from dynamics import rheology
+from dynamics._kernel_options import NO_REFCOUNT
 from dynamics.traction_nodes import max_nodes, pack_rule, place_nodes
 
 FLAG_OK = 0
@@ -54,7 +55,7 @@ _EXP_ONE = 0x3FF0000000000000
 _SQRT2_MANTISSA = 0x6A09E667F3BCD  # mantissa bits of sqrt(2)
 _WORK_ROWS = 9
 # fast-math without nnan/ninf: pole_position returns inf for "no pole", which must compare correctly
-_VEC = {"fastmath": {"nsz", "arcp", "contract", "afn", "reassoc"}, "error_model": "numpy", "cache": True}
+_VEC = {"fastmath": {"nsz", "arcp", "contract", "afn", "reassoc"}, "error_model": "numpy", **NO_REFCOUNT}
 
 
 @numba.njit(**_VEC)
@@ -174,7 +175,7 @@ def _accumulate(X, Y, W, n, a, b, du0, dv0, w_s, k, r, x, z, ash, out):
     out[11] = j22
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def traction_fast(a, b, p_h, h, tau0, du0, dv0, w_s, eta_table, p_step, rule, work, iwork, out):
     """Eyring traction on the ball by pole-centred quadrature (MODEL.md §6.4).
 

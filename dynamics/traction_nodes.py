@@ -37,9 +37,11 @@ import math
 import numba
 import numpy as np
 
+from dynamics._kernel_options import NO_REFCOUNT
+
 # fastmath + numpy error model: no zero-division branch on `/`, so the ray loops vectorise
 # fast-math without nnan/ninf: pole_position returns inf for "no pole", which must compare correctly
-_VEC = {"fastmath": {"nsz", "arcp", "contract", "afn", "reassoc"}, "error_model": "numpy", "cache": True}
+_VEC = {"fastmath": {"nsz", "arcp", "contract", "afn", "reassoc"}, "error_model": "numpy", **NO_REFCOUNT}
 ANGLE_MAP_BETA = 0.3  # strength of the 4-fold angular stretch of the inside rule
 
 

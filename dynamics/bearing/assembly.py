@@ -12,13 +12,16 @@ from __future__ import annotations
 import numba
 import numpy as np
 
+from dynamics._kernel_options import NO_REFCOUNT
 from dynamics.journal import N_JOURNAL_OUT
 from dynamics.multibody.crv import crv_to_matrix
 from dynamics.multibody.hinge import hinge_energy, hinge_forces
 from dynamics.multibody.joints import prescribe_velocity_residual
 from dynamics.multibody.small import mtv, mv
 from dynamics.multibody.rigid_body import gyroscopic_moment, material_moment_of_spatial_moment
-from dynamics.pocket_contact import N_POCKET_OUT, P_OUT_APPROACH, P_OUT_DFN_DRATE, P_OUT_FRICTION_POWER
+from dynamics.pocket_contact import (
+    N_POCKET_OUT, P_OUT_APPROACH, P_OUT_DFN_DRATE, P_OUT_FRICTION_POWER, P_OUT_IN_CONTACT,
+)
 
 from .cage_forces import journal_diag, journal_forces, pocket_diag, pocket_forces, pocket_tangent
 from .params import (
@@ -195,29 +198,53 @@ def evaluate_bearing(t, q, v, a, fp, ip, tab_i, tab_o, eta_table, rule, work, iw
         w_c = mv(R_c, v[o_c + 3:o_c + 6])
     else:
         x_c, R_c, v_c, w_c = x_o, R_o, x_o, x_o
-    cbuf = np.empty(N_CONTACT_SCRATCH)
-    tbuf = np.empty(12)
-    res = np.empty(N_RC)
-    pres = np.empty(N_POCKET_OUT)
-    for k in range(Z):
+    Z2 = 2 * Z
+    rows = np.empty((Z2, N_RC))  # one row per ball-race contact: inner 2k, outer 2k + 1
+    pocket_rows = np.empty((Z, N_POCKET_OUT))
+    _ball_forces(q, v, fp, ip, tab_i, tab_o, eta_table, rule, work, iwork, pp, psi, v0, x_i, R_i, v_i, w_i,
+                 x_o, R_o, w_o, x_c, R_c, v_c, w_c, o_c >= 0, np.empty(N_CONTACT_SCRATCH), np.empty(12),
+                 rows, pocket_rows, g, diag, F_i, M_i, F_c, M_c, want_tangent)
+    if want_tangent:
+        for k in range(Z):
+            w_b = v[6 * k + 3:6 * k + 6]
+            if rows[2 * k, RC_ACTIVE] > 0.0:
+                _race_term(k, 0, rows[2 * k], R_i, Om_i, w_b, w_i, fp[FP_D], Kd, Ke, Kf, Kb, Cd, Ce, Cf, Cb)
+            if rows[2 * k + 1, RC_ACTIVE] > 0.0:
+                _race_term(k, -1, rows[2 * k + 1], R_o, Om_i, w_b, w_o, fp[FP_D], Kd, Ke, Kf, Kb, Cd, Ce, Cf, Cb)
+            if o_c >= 0 and pocket_rows[k, P_OUT_IN_CONTACT] > 0.0:
+                pocket_tangent(k, q[6 * k:6 * k + 3], x_c, R_c, pp, pocket_rows[k], 6, Kd, Ke, Kf, Kb, Cd, Ce, Cf, Cb)
+    return _border(t, q, v, fp, ip, Hu, Hpsi, Gu, Gpsi, xA, RA, jp, want_tangent, ma, g, diag,
+                   Kb, Cb, o_i, o_c, x_i, R_i, v_i, w_i, F_i, M_i, x_c, R_c, v_c, w_c, F_c, M_c)
+
+
+@numba.njit(**NO_REFCOUNT)
+def _ball_forces(q, v, fp, ip, tab_i, tab_o, eta_table, rule, work, iwork, pp, psi, v0, x_i, R_i, v_i, w_i,
+                 x_o, R_o, w_o, x_c, R_c, v_c, w_c, with_cage, cbuf, tbuf, rows, pocket_rows, g, diag,
+                 F_i, M_i, F_c, M_c, want_tangent):
+    """Forces of every ball's race and pocket contacts into g, the race and cage wrench sums
+    (F_i, M_i, F_c, M_c) and diag; the contact rows (with their tangent ingredients when
+    want_tangent) stay in rows (2k inner, 2k + 1 outer) and pocket_rows for the tangent
+    pass. Allocation-free and without reference counting (dynamics/_kernel_options.py):
+    this loop, with its per-ball views, is the hot path of every residual."""
+    for k in range(ip[IP_Z]):
         b = 6 * k
         x_b, v_b, w_b = q[b:b + 3], v[b:b + 3], v[b + 3:b + 6]
         d = N_DG + DB * k
-        for outer in (False, True):
-            if outer:
+        for j in range(2):
+            res = rows[2 * k + j]
+            if j == 1:
                 hit = race_contact(x_b, v_b, w_b, x_o, R_o, x_o, w_o, True, fp, ip, tab_o, eta_table,
                                    rule, work, iwork, cbuf, tbuf, res, want_tangent)
             else:
                 hit = race_contact(x_b, v_b, w_b, x_i, R_i, v_i, w_i, False, fp, ip, tab_i, eta_table,
                                    rule, work, iwork, cbuf, tbuf, res, want_tangent)
-            j = 1 if outer else 0
             diag[d + DB_AI + j] = res[RC_ALPHA]
             if not hit:
                 continue
             for i in range(3):
                 g[b + i] += res[RC_FB + i]
                 g[b + 3 + i] += res[RC_MB + i]
-                if not outer:
+                if j == 0:
                     F_i[i] += res[RC_FR + i]
                     M_i[i] += res[RC_MR + i]
             diag[d + DB_QI + j] = res[RC_Q]
@@ -228,18 +255,14 @@ def evaluate_bearing(t, q, v, a, fp, ip, tab_i, tab_o, eta_table, rule, work, iw
             diag[DG_V_HERTZ] += res[RC_VHZ]
             if res[RC_FLAG] != 0.0:
                 diag[DG_FLAGS] += 1.0
-            if want_tangent:  # the call itself costs ~0.25 us with its 8 block arguments: skip it
-                _race_term(k, -1 if outer else 0, res, R_o if outer else R_i, Om_i, w_b, w_o if outer else w_i,
-                           fp[FP_D], Kd, Ke, Kf, Kb, Cd, Ce, Cf, Cb)
-        if o_c >= 0:
-            touch = pocket_forces(x_b, v_b, w_b, x_c, R_c, v_c, w_c, psi[k], v0[k], pp, pres, g, b, F_c, M_c)
-            if touch and want_tangent:
-                pocket_tangent(k, x_b, x_c, R_c, pp, pres, 6, Kd, Ke, Kf, Kb, Cd, Ce, Cf, Cb)
+        if with_cage:
+            pres = pocket_rows[k]
+            pocket_forces(x_b, v_b, w_b, x_c, R_c, v_c, w_c, psi[k], v0[k], pp, pres, g, b, F_c, M_c)
             pocket_diag(pres, diag[d + DB_POCKET:d + DB_POCKET + 5])
             # friction power + hysteresis-damping power (damping force = dF_n/d(delta_dot) delta_dot)
             diag[DG_P_DISS] += pres[P_OUT_FRICTION_POWER] + pres[P_OUT_DFN_DRATE] * pres[P_OUT_APPROACH] ** 2
-    return _border(t, q, v, fp, ip, Hu, Hpsi, Gu, Gpsi, xA, RA, jp, want_tangent, ma, g, diag,
-                   Kb, Cb, o_i, o_c, x_i, R_i, v_i, w_i, F_i, M_i, x_c, R_c, v_c, w_c, F_c, M_c)
+        else:
+            pocket_rows[k, :] = 0.0
 
 
 @numba.njit(cache=True)

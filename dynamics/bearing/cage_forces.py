@@ -7,6 +7,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
+from dynamics._kernel_options import NO_REFCOUNT
 from dynamics.journal import (
     J_OUT_CONTACT_AZIMUTH, J_OUT_DF_DOMEGA_CAGE, J_OUT_DF_DPOS, J_OUT_DF_DVEL,
     J_OUT_DT_DOMEGA_CAGE, J_OUT_DT_DPOS, J_OUT_DT_DVEL, J_OUT_EPS, J_OUT_FORCE,
@@ -22,7 +23,7 @@ from dynamics.pocket_contact import (
 from .tangents import add_pair, point_map
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def pocket_forces(x_b, v_b, w_b, x_c, R_c, v_c, w_c, psi, v0, pp, pres, g, b, F_cage, M_cage):
     """Ball in its pocket: adds the ball's wrench to g[b:b+6] and the cage's (spatial,
     about its centre) to F_cage, M_cage. Returns True when in contact (then call
@@ -101,7 +102,7 @@ def _subtract_planar(M, out, i_force, i_torque):
         M[5, i] -= out[i_torque + i]
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def pocket_diag(pres, row):
     """Per-ball pocket quantities for the saved results and the impact log."""
     row[0] = pres[P_OUT_FN]

@@ -16,6 +16,7 @@ import math
 import numba
 import numpy as np
 
+from dynamics._kernel_options import NO_REFCOUNT
 from dynamics.film import film_central
 from dynamics.hertz import hertz_table_eval
 from dynamics.race_contact import (
@@ -44,7 +45,7 @@ LOAD_EXPONENT_COULOMB, LOAD_EXPONENT_EYRING = 1.0, 2.0 / 3.0
 N_CONTACT_SCRATCH = 27
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def _coulomb(F_n, a_x, b_y, du0, dv0, w_s, mu, v_reg, out):
     """Regularised Coulomb traction on the ball: T = -mu F_n s/sqrt(|s|^2 + v_reg^2) and a
     spin moment -mu F_n r_s w_s r_s/sqrt((w_s r_s)^2 + v_reg^2), r_s = (3 pi/16) sqrt(a b)
@@ -66,7 +67,7 @@ def _coulomb(F_n, a_x, b_y, du0, dv0, w_s, mu, v_reg, out):
     out[5] = out[8] = out[9] = out[10] = 0.0
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def _film(F_n, alpha, is_outer, u_s, fp, method):
     """Central film thickness [m] (NVM or Hamrock–Dowson), floored at FP_MIN_FILM."""
     D, d_m = fp[FP_D], fp[FP_DM]
@@ -80,7 +81,7 @@ def _film(F_n, alpha, is_outer, u_s, fp, method):
     return max(h, fp[FP_MIN_FILM])
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def race_contact(x_b, v_b, w_b, x_r, R_r, v_r, w_r, is_outer, fp, ip, table,
                  eta_table, rule, work, iwork, cbuf, tbuf, res, want_tangent):
     """Forces of one ball on one race and (want_tangent) their tangent ingredients, into
@@ -159,7 +160,7 @@ def race_contact(x_b, v_b, w_b, x_r, R_r, v_r, w_r, is_outer, fp, ip, table,
     return True
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def _contact_stiffness(k_n, F_n, delta, n, x_b, x_r, R_r, d_g, cbuf, res):
     """K_p = -dF_ball/dx_b (3x3) of the Hertz force F_n n (S.34), with the normal's rotation
     resolved by direction: across the groove (e_y) the curvature centre C stays put and n
@@ -184,7 +185,7 @@ def _contact_stiffness(k_n, F_n, delta, n, x_b, x_r, R_r, d_g, cbuf, res):
             res[RC_DN + 3 * i + j] = -(ey[i] * ey[j] + (1.0 - 0.5 * d_g / rho) * e_g[i] * e_g[j]) / s
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def _wrenches(res, n, p, x_b, x_r, cbuf, F_n, T, want_tangent):
     """Force on the ball f = F_n n + F_x e_x + F_y e_y at p, its moment about the ball centre
     plus the spin moment M_z n; the race gets the opposite force at p (moment about x_r);

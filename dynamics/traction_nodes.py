@@ -65,7 +65,8 @@ def pole_position(a, b, du0, dv0, w_s):
 H_N_RADIAL, H_FAR_RATIO, H_EDGE_IN, H_EDGE_OUT = 0, 1, 2, 3
 H_N_IN, H_O_IN, H_N_IN_EDGE, H_O_IN_EDGE, H_O_RADIAL = 4, 5, 6, 7, 8
 H_N_CONE, H_O_CONE, H_N_CONE_EDGE, H_O_CONE_EDGE, H_N_FAR, H_O_FAR = 9, 10, 11, 12, 13, 14
-_HEADER = 15
+H_CENTRE, H_N_IN_CENTRE, H_O_IN_CENTRE = 15, 16, 17
+_HEADER = 18
 
 
 def _gauss01(n: int) -> tuple[np.ndarray, np.ndarray]:
@@ -81,11 +82,12 @@ def _ray_angles(n_angle: int) -> list[np.ndarray]:
     return [np.cos(psi), np.sin(psi), dpsi]
 
 
-def pack_rule(n_radial: int, n_angle: tuple[int, int], n_cone: tuple[int, int], n_far: tuple[int, int],
-              far_ratio: float, edge: tuple[float, float]) -> np.ndarray:
+def pack_rule(n_radial: int, n_angle: tuple[int, int, int], n_cone: tuple[int, int], n_far: tuple[int, int],
+              far_ratio: float, edge: tuple[float, float], centre: float) -> np.ndarray:
     """The three rules' call-independent data as one contiguous float64 array.
 
-    n_angle = (rays, rays when |P| >= edge[0]) of the inside rule, n_cone = (chords, chords
+    n_angle = (rays when |P| < centre, rays, rays when |P| >= edge[0]) of the inside rule (the
+    closer the pole to the edge, the more the ray length varies with angle), n_cone = (chords, chords
     when |P| < edge[1]) of the cone rule: a pole near the ellipse edge makes the ray length a
     near-kink in the angle and needs more rays. Blocks: ray angles (`_ray_angles`) per count;
     radial S(v_i) = 3v^2 - 2v^3, C_i = w_i S'(v_i) S(v_i) (inside weight per R^2), w_i,
@@ -100,15 +102,16 @@ def pack_rule(n_radial: int, n_angle: tuple[int, int], n_cone: tuple[int, int], 
     rho = np.sqrt(1.0 - u * u)
     far = [np.outer(rho, np.cos(theta)).ravel(), np.outer(rho, np.sin(theta)).ravel(),
            np.repeat(u_w * u * 2.0 * np.pi / n_far[1], n_far[1])]
-    groups = [_ray_angles(n_angle[0]), _ray_angles(n_angle[1]), radial,
-              list(_gauss01(n_cone[0])), list(_gauss01(n_cone[1])), far]
+    groups = [_ray_angles(n_angle[1]), _ray_angles(n_angle[2]), radial,
+              list(_gauss01(n_cone[0])), list(_gauss01(n_cone[1])), far, _ray_angles(n_angle[0])]
     offsets, o = [], _HEADER
     for g in groups:
         offsets.append(o)
         o += sum(len(b) for b in g)
     header = np.zeros(_HEADER)
     header[[H_N_RADIAL, H_FAR_RATIO, H_EDGE_IN, H_EDGE_OUT]] = n_radial, far_ratio, edge[0], edge[1]
-    header[[H_N_IN, H_O_IN, H_N_IN_EDGE, H_O_IN_EDGE, H_O_RADIAL]] = n_angle[0], offsets[0], n_angle[1], offsets[1], offsets[2]
+    header[[H_N_IN, H_O_IN, H_N_IN_EDGE, H_O_IN_EDGE, H_O_RADIAL]] = n_angle[1], offsets[0], n_angle[2], offsets[1], offsets[2]
+    header[[H_CENTRE, H_N_IN_CENTRE, H_O_IN_CENTRE]] = centre, n_angle[0], offsets[6]
     header[[H_N_CONE, H_O_CONE, H_N_CONE_EDGE, H_O_CONE_EDGE]] = n_cone[0], offsets[3], n_cone[1], offsets[4]
     header[[H_N_FAR, H_O_FAR]] = n_far[0] * n_far[1], offsets[5]
     return np.ascontiguousarray(np.concatenate([header, *(b for g in groups for b in g)]))
@@ -117,7 +120,7 @@ def pack_rule(n_radial: int, n_angle: tuple[int, int], n_cone: tuple[int, int], 
 def max_nodes(rule: np.ndarray) -> int:
     """Largest node count of the rules of a packed rule (workspace length)."""
     n_r = int(rule[H_N_RADIAL])
-    n_ang = max(rule[H_N_IN], rule[H_N_IN_EDGE], rule[H_N_CONE], rule[H_N_CONE_EDGE])
+    n_ang = max(rule[H_N_IN_CENTRE], rule[H_N_IN], rule[H_N_IN_EDGE], rule[H_N_CONE], rule[H_N_CONE_EDGE])
     return int(max(n_r * n_ang, rule[H_N_FAR]))
 
 
@@ -274,7 +277,7 @@ def place_nodes(a, b, du0, dv0, w_s, rule, X, Y, W, ray):
     """
     PU, PV, P_scaled = pole_position(a, b, du0, dv0, w_s)
     if P_scaled < 1.0:
-        h = H_N_IN if P_scaled < rule[H_EDGE_IN] else H_N_IN_EDGE
+        h = H_N_IN_CENTRE if P_scaled < rule[H_CENTRE] else (H_N_IN if P_scaled < rule[H_EDGE_IN] else H_N_IN_EDGE)
         return nodes_inside(a, b, PU, PV, rule, int(rule[h]), int(rule[h + 1]), X, Y, W, ray)
     if P_scaled <= rule[H_FAR_RATIO]:
         h = H_N_CONE_EDGE if P_scaled < rule[H_EDGE_OUT] else H_N_CONE

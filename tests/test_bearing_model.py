@@ -197,3 +197,25 @@ def test_kernels_without_reference_counting_neither_leak_nor_drop_references(lub
         model.jacobian(0.0, q, v, a, 1.0, 1.0, 1.0)
     assert [sys.getrefcount(x) for x in watched] == before
     assert np.all(np.isfinite(g)) and np.abs(g).max() > 0.0
+
+
+@pytest.mark.parametrize("outer", [False, True])
+def test_tabulated_film_equals_the_nvm_formula(lubricated, outer):
+    """The time loop's film reads R_x and the lambda-only NVM terms from the race table
+    (race_forces.film_geometry_columns); it must equal film.film_central_nvm with R_x, R_y
+    computed from the contact angle (MODEL.md §6.2–§6.3) -- over the table's whole range of
+    contact angles, between and on its nodes, for loads and speeds of the reference bearing."""
+    from dynamics.bearing.params import FP_ALPHA_P, FP_D, FP_DM, FP_E_EFF, FP_ETA0, FP_MIN_FILM, FP_RI, FP_RO, IP_FILM
+    from dynamics.bearing.race_forces import _curvature_radii, _film
+    from dynamics.film import film_central_nvm
+
+    params = lubricated[0]
+    fp, table = params.fp, params.hertz_outer if outer else params.hertz_inner
+    rng = np.random.default_rng(5)
+    alphas = np.concatenate([rng.uniform(0.0, 1.5, 60), np.linspace(0.0, np.pi / 2, 181)[1:170:7], [-0.45]])
+    for alpha in alphas:
+        F, u_s = 10 ** rng.uniform(2.0, 3.8), 10 ** rng.uniform(0.5, 1.5)  # 100 N..6 kN, 3..30 m/s
+        Rx, Ry = _curvature_radii(abs(alpha), outer, fp[FP_D], fp[FP_DM], fp[FP_RO] if outer else fp[FP_RI])
+        direct = max(film_central_nvm(F, Rx, Ry, fp[FP_E_EFF], fp[FP_ETA0], fp[FP_ALPHA_P], u_s), fp[FP_MIN_FILM])
+        tabulated = _film(F, alpha, outer, u_s, fp, params.ip[IP_FILM], table)
+        assert tabulated == pytest.approx(direct, rel=1e-8), alpha

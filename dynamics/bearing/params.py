@@ -60,7 +60,7 @@ class BearingModelParams:
 
     fp: np.ndarray
     ip: np.ndarray
-    hertz_inner: np.ndarray
+    hertz_inner: np.ndarray  # Hertz columns + film columns (race_forces.film_geometry_columns)
     hertz_outer: np.ndarray
     eta_table: np.ndarray
     traction_rule: np.ndarray   # fast-path quadrature rule (dynamics.traction_nodes)
@@ -104,6 +104,17 @@ def inner_race_inertia(bearing: BearingGeometry, race: Material) -> tuple[float,
     return m, jx, jz
 
 
+def _race_table(bearing: BearingGeometry, e_eff: float, outer: bool) -> np.ndarray:
+    """A race's contact table: the Hertz columns (`hertz.race_hertz_table`) and, on the same
+    contact-angle grid, the film columns (`race_forces.film_geometry_columns`)."""
+    from .race_forces import film_geometry_columns
+
+    hertz = race_hertz_table(bearing, e_eff, outer=outer)
+    r = bearing.outer_groove_radius if outer else bearing.inner_groove_radius
+    film = film_geometry_columns(bearing.ball_diameter, bearing.pitch_diameter, r, outer, hertz.shape[0])
+    return np.ascontiguousarray(np.hstack([hertz, film]))
+
+
 def _traction_tables(lubricant):
     """(eta table, rule, work, iwork, pressure step) of the Eyring fast path."""
     from dynamics.traction_fast import FastTraction
@@ -140,7 +151,7 @@ def build_model_params(
     ip[IP_Z] = Z
     ip[IP_GYRO] = int(options.gyroscopic)
     ip[IP_TRACTION] = {"none": TRACTION_NONE, "coulomb": TRACTION_COULOMB, "eyring": TRACTION_EYRING}[options.traction]
-    eta_table, rule, work, iwork = np.zeros(2), np.zeros(1), np.zeros((1, 1)), np.zeros(1, dtype=np.int64)
+    eta_table, rule, work, iwork = np.zeros((2, 2)), np.zeros(1), np.zeros((1, 1)), np.zeros(1, dtype=np.int64)
     if lubricant is not None:
         fp[FP_ETA0], fp[FP_ALPHA_P], fp[FP_TAU0] = lubricant.eta0, lubricant.alpha_star, lubricant.eyring_stress
         if options.ehd_film:
@@ -164,8 +175,8 @@ def build_model_params(
         H_u, H_psi, c_G = np.zeros((3, 3)), np.zeros(2), 0.0
     return BearingModelParams(
         fp=fp, ip=ip,
-        hertz_inner=race_hertz_table(bearing, e_eff, outer=False),
-        hertz_outer=race_hertz_table(bearing, e_eff, outer=True),
+        hertz_inner=_race_table(bearing, e_eff, outer=False),
+        hertz_outer=_race_table(bearing, e_eff, outer=True),
         eta_table=np.ascontiguousarray(eta_table), traction_rule=rule, traction_work=work,
         traction_iwork=iwork,
         pocket=pocket, journal=journal,

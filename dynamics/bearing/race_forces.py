@@ -17,8 +17,8 @@ import numba
 import numpy as np
 
 from dynamics._kernel_options import NO_REFCOUNT
-from dynamics.film import film_central
-from dynamics.hertz import hertz_table_eval
+from dynamics.film import film_central, film_central_nvm_terms, nvm_geometry_terms
+from dynamics.hertz import TABLE_COLUMNS, _hermite, hertz_table_eval
 from dynamics.race_contact import (
     OUT_ALPHA, OUT_DELTA, OUT_EX, OUT_EY, OUT_LEVER, OUT_N, OUT_P, OUT_SLIDE, OUT_SPIN,
     OUT_SRR, OUT_U_SUM, ball_race_contact_kernel,
@@ -43,6 +43,8 @@ N_RC = 87
 # |T| grows like F_n (Coulomb) or roughly like the contact area, F_n^(2/3) (Eyring plateau)
 LOAD_EXPONENT_COULOMB, LOAD_EXPONENT_EYRING = 1.0, 2.0 / 3.0
 N_CONTACT_SCRATCH = 27
+TAB_FILM = TABLE_COLUMNS  # first film column of a race table (`film_geometry_columns`)
+N_FILM_TERMS = 6          # R_x and the five terms of film.nvm_geometry_terms
 
 
 @numba.njit(**NO_REFCOUNT)
@@ -67,17 +69,57 @@ def _coulomb(F_n, a_x, b_y, du0, dv0, w_s, mu, v_reg, out):
     out[5] = out[8] = out[9] = out[10] = 0.0
 
 
-@numba.njit(**NO_REFCOUNT)
-def _film(F_n, alpha, is_outer, u_s, fp, method):
-    """Central film thickness [m] (NVM or Hamrock–Dowson), floored at FP_MIN_FILM."""
-    D, d_m = fp[FP_D], fp[FP_DM]
+def _curvature_radii(alpha, is_outer, D, d_m, r):
+    """(R_x, R_y) [m] of a ball-race contact at contact angle alpha (MODEL.md §6.2)."""
     c = math.cos(alpha)
-    r = fp[FP_RO] if is_outer else fp[FP_RI]
     rho_ii1 = -2.0 * c / (d_m + D * c) if is_outer else 2.0 * c / (d_m - D * c)
-    Rx = 1.0 / (2.0 / D + rho_ii1)
-    Ry = 1.0 / (2.0 / D - 1.0 / r)
+    return 1.0 / (2.0 / D + rho_ii1), 1.0 / (2.0 / D - 1.0 / r)
+
+
+_curvature_radii_kernel = numba.njit(**NO_REFCOUNT)(_curvature_radii)
+
+
+def film_geometry_columns(D: float, d_m: float, r: float, is_outer: bool, n_nodes: int) -> np.ndarray:
+    """Columns appended to a race's Hertz table (same contact-angle grid, cubic Hermite
+    pairs): R_x and the lambda-only NVM terms of `film.nvm_geometry_terms`, so that the time
+    loop's film needs no cosine and no lambda logarithms (~40 ns of ~190 per contact).
+    Slopes by central differences (step 1e-6 rad; Hermite error then ~1e-9 relative)."""
+    alpha = np.linspace(0.0, 0.5 * math.pi, n_nodes)
+    step = 1e-6
+
+    def row(a):
+        Rx, Ry = _curvature_radii(a, is_outer, D, d_m, r)
+        return np.array([Rx, *nvm_geometry_terms(Rx, Ry)])
+
+    out = np.empty((n_nodes, 2 * N_FILM_TERMS))
+    for i, a in enumerate(alpha):
+        out[i, 0::2] = row(a)
+        out[i, 1::2] = (row(a + step) - row(a - step)) / (2.0 * step)
+    return out
+
+
+@numba.njit(**NO_REFCOUNT)
+def _film(F_n, alpha, is_outer, u_s, fp, method, table):
+    """Central film thickness [m] (NVM or Hamrock–Dowson), floored at FP_MIN_FILM. NVM reads
+    R_x and its lambda terms from the race table's film columns when it has them."""
+    u = max(u_s, 1e-6)
+    if method != FILM_HD and table.shape[1] >= TAB_FILM + 2 * N_FILM_TERMS:
+        n = table.shape[0]
+        step = 0.5 * math.pi / (n - 1)
+        x = min(abs(alpha), 0.5 * math.pi) / step
+        j = min(int(x), n - 2)
+        t = x - j
+        Rx = _hermite(table, j, TAB_FILM, t, step)[0]
+        ri = _hermite(table, j, TAB_FILM + 2, t, step)[0]
+        ei = _hermite(table, j, TAB_FILM + 4, t, step)[0]
+        h00 = _hermite(table, j, TAB_FILM + 6, t, step)[0]
+        rp = _hermite(table, j, TAB_FILM + 8, t, step)[0]
+        ep = _hermite(table, j, TAB_FILM + 10, t, step)[0]
+        h = film_central_nvm_terms(F_n, Rx, fp[FP_E_EFF], fp[FP_ETA0], fp[FP_ALPHA_P], u, ri, ei, h00, rp, ep)
+        return max(h, fp[FP_MIN_FILM])
+    Rx, Ry = _curvature_radii_kernel(alpha, is_outer, fp[FP_D], fp[FP_DM], fp[FP_RO] if is_outer else fp[FP_RI])
     code = 1 if method == FILM_HD else 0
-    h = film_central(code, F_n, Rx, Ry, fp[FP_E_EFF], fp[FP_ETA0], fp[FP_ALPHA_P], max(u_s, 1e-6))
+    h = film_central(code, F_n, Rx, Ry, fp[FP_E_EFF], fp[FP_ETA0], fp[FP_ALPHA_P], u)
     return max(h, fp[FP_MIN_FILM])
 
 
@@ -128,11 +170,11 @@ def race_contact(x_b, v_b, w_b, x_r, R_r, v_r, w_r, is_outer, fp, ip, table,
     mode = ip[IP_TRACTION]
     h = 0.0
     if ip[IP_FILM] != FILM_NONE:
-        h = _film(F_el, cbuf[OUT_ALPHA], is_outer, cbuf[OUT_U_SUM], fp, ip[IP_FILM])
+        h = _film(F_el, cbuf[OUT_ALPHA], is_outer, cbuf[OUT_U_SUM], fp, ip[IP_FILM], table)
     # traction T = tbuf[0:3] and dT/ds = tbuf[3:12] (row-major), on the ball
     if mode == TRACTION_EYRING:
         res[RC_FLAG] = eyring_traction(a_x, b_y, p_max, h, fp[FP_TAU0], du0, dv0, w_s, eta_table,
-                                       fp[FP_P_STEP], rule, work, iwork, tbuf)
+                                       fp[FP_P_STEP], rule, work, iwork, tbuf, want_tangent)
     elif mode == TRACTION_COULOMB:
         _coulomb(F_n, a_x, b_y, du0, dv0, w_s, fp[FP_MU_DRY], fp[FP_V_REG], tbuf)
     else:

@@ -25,10 +25,10 @@ from dynamics.traction_fast import FastTraction, traction_fast_batch
 D, DM, E_EFF, OMEGA = 0.01905, 0.158003, 208e9 / 0.91, 320.0
 BATCH = 44  # 22 balls x (inner, outer race)
 SETTINGS = {
-    "default (10 x 24/32, cone 16/32)": {},
+    "default (10 x 20/24/32, cone 16/24)": {},
+    "previous default (10 x 24/32, cone 16/32)": {"n_angle": (24, 24, 32), "n_cone": (16, 32), "n_far": (8, 16)},
     "n_radial 9": {"n_radial": 9},
     "n_radial 8": {"n_radial": 8},
-    "n_radial 8, 20 rays": {"n_radial": 8, "n_angle": (20, 32)},
 }
 
 

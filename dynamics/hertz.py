@@ -188,7 +188,9 @@ def constant_hertz_table(k_h, kappa, c_a, c_b, n_nodes):
 
 
 @numba.njit(**NO_REFCOUNT)
-def _hermite(table, j, col, t, step):
+def hermite(table, j, col, t, step):
+    """Cubic Hermite interpolation of column col (value) with col + 1 (slope per rad) of a
+    contact-angle table between rows j and j + 1 at fraction t; returns (value, slope)."""
     y0, y1 = table[j, col], table[j + 1, col]
     m0, m1 = table[j, col + 1] * step, table[j + 1, col + 1] * step
     t2 = t * t
@@ -199,22 +201,29 @@ def _hermite(table, j, col, t, step):
 
 
 @numba.njit(**NO_REFCOUNT)
+def table_position(table, alpha):
+    """(row j, fraction t, step [rad]) of |alpha| on a table's uniform grid over [0, pi/2]
+    (|alpha| > pi/2 is clamped)."""
+    n = table.shape[0]
+    step = 0.5 * math.pi / (n - 1)
+    x = min(abs(alpha), 0.5 * math.pi) / step
+    j = min(int(x), n - 2)
+    return j, x - j, step
+
+
+@numba.njit(**NO_REFCOUNT)
 def hertz_table_eval(table, alpha):
     """Interpolate a Hertz table at contact angle α [rad] (any sign; constants are even in α).
 
     Returns (k_h [N/m^1.5], dk_h/dα [N/m^1.5/rad], κ [-], c_a, c_b [m/N^{1/3}]).
     |α| > π/2 is clamped (no physical ball–race contact lies there).
     """
-    n = table.shape[0]
-    step = 0.5 * math.pi / (n - 1)
     sign = 1.0 if alpha >= 0.0 else -1.0
-    x = min(abs(alpha), 0.5 * math.pi) / step
-    j = min(int(x), n - 2)
-    t = x - j
-    k_h, dk = _hermite(table, j, TAB_KH, t, step)
-    kappa, _ = _hermite(table, j, TAB_KAPPA, t, step)
-    c_a, _ = _hermite(table, j, TAB_CA, t, step)
-    c_b, _ = _hermite(table, j, TAB_CB, t, step)
+    j, t, step = table_position(table, alpha)
+    k_h, dk = hermite(table, j, TAB_KH, t, step)
+    kappa, _ = hermite(table, j, TAB_KAPPA, t, step)
+    c_a, _ = hermite(table, j, TAB_CA, t, step)
+    c_b, _ = hermite(table, j, TAB_CB, t, step)
     return k_h, sign * dk, kappa, c_a, c_b
 
 

@@ -18,7 +18,7 @@ import numpy as np
 
 from dynamics._kernel_options import NO_REFCOUNT
 from dynamics.film import film_central, film_central_nvm_terms, nvm_geometry_terms
-from dynamics.hertz import TABLE_COLUMNS, _hermite, hertz_table_eval
+from dynamics.hertz import TABLE_COLUMNS, hermite, hertz_table_eval, table_position
 from dynamics.race_contact import (
     OUT_ALPHA, OUT_DELTA, OUT_EX, OUT_EY, OUT_LEVER, OUT_N, OUT_P, OUT_SLIDE, OUT_SPIN,
     OUT_SRR, OUT_U_SUM, ball_race_contact_kernel,
@@ -104,17 +104,13 @@ def _film(F_n, alpha, is_outer, u_s, fp, method, table):
     R_x and its lambda terms from the race table's film columns when it has them."""
     u = max(u_s, 1e-6)
     if method != FILM_HD and table.shape[1] >= TAB_FILM + 2 * N_FILM_TERMS:
-        n = table.shape[0]
-        step = 0.5 * math.pi / (n - 1)
-        x = min(abs(alpha), 0.5 * math.pi) / step
-        j = min(int(x), n - 2)
-        t = x - j
-        Rx = _hermite(table, j, TAB_FILM, t, step)[0]
-        ri = _hermite(table, j, TAB_FILM + 2, t, step)[0]
-        ei = _hermite(table, j, TAB_FILM + 4, t, step)[0]
-        h00 = _hermite(table, j, TAB_FILM + 6, t, step)[0]
-        rp = _hermite(table, j, TAB_FILM + 8, t, step)[0]
-        ep = _hermite(table, j, TAB_FILM + 10, t, step)[0]
+        j, t, step = table_position(table, alpha)
+        Rx = hermite(table, j, TAB_FILM, t, step)[0]
+        ri = hermite(table, j, TAB_FILM + 2, t, step)[0]
+        ei = hermite(table, j, TAB_FILM + 4, t, step)[0]
+        h00 = hermite(table, j, TAB_FILM + 6, t, step)[0]
+        rp = hermite(table, j, TAB_FILM + 8, t, step)[0]
+        ep = hermite(table, j, TAB_FILM + 10, t, step)[0]
         h = film_central_nvm_terms(F_n, Rx, fp[FP_E_EFF], fp[FP_ETA0], fp[FP_ALPHA_P], u, ri, ei, h00, rp, ep)
         return max(h, fp[FP_MIN_FILM])
     Rx, Ry = _curvature_radii_kernel(alpha, is_outer, fp[FP_D], fp[FP_DM], fp[FP_RO] if is_outer else fp[FP_RI])

@@ -86,10 +86,10 @@ def pack_rule(n_radial: int, n_angle: tuple[int, int, int], n_cone: tuple[int, i
               far_ratio: float, edge: tuple[float, float], centre: float) -> np.ndarray:
     """The three rules' call-independent data as one contiguous float64 array.
 
-    n_angle = (rays when |P| < centre, rays, rays when |P| >= edge[0]) of the inside rule (the
-    closer the pole to the edge, the more the ray length varies with angle), n_cone = (chords, chords
-    when |P| < edge[1]) of the cone rule: a pole near the ellipse edge makes the ray length a
-    near-kink in the angle and needs more rays. Blocks: ray angles (`_ray_angles`) per count;
+    n_angle = (rays when |P| < centre, rays, rays when |P| >= edge[0]) of the inside rule,
+    n_cone = (chords, chords when |P| < edge[1]) of the cone rule: the nearer the pole to
+    the ellipse edge, the more the ray length varies with the angle (a near-kink at the
+    edge), so the more rays it needs. Blocks: ray angles (`_ray_angles`) per count;
     radial S(v_i) = 3v^2 - 2v^3, C_i = w_i S'(v_i) S(v_i) (inside weight per R^2), w_i,
     cos(pi v_i), sin(pi v_i) (cone chords); cone-angle Gauss nodes and weights per count;
     far grid X, Y and weight per unit a b.

@@ -124,6 +124,14 @@ def _eyring_argument(k, r, n, x, z):
         z[m] = xm + math.sqrt(1.0 + xm * xm)
 
 
+@numba.njit(cache=True, inline="always")
+def _node_slip(X, Y, m, a, b, du0, dv0, w_s):
+    """Node m's position (x, y) [m] and sliding velocity (s_x, s_y) = (du0 - w_s y, dv0 + w_s x)."""
+    xp = a * X[m]
+    yp = b * Y[m]
+    return xp, yp, du0 - w_s * yp, dv0 + w_s * xp
+
+
 @numba.njit(**_VEC)
 def _accumulate(X, Y, W, n, a, b, du0, dv0, w_s, k, r, x, z, ash, out):
     """Sum tau = g s over the nodes into out[0:3] and its Jacobian into out[3:12] (tau0 = 1).
@@ -134,10 +142,7 @@ def _accumulate(X, Y, W, n, a, b, du0, dv0, w_s, k, r, x, z, ash, out):
     Fx = Fy = Mz = 0.0
     j00 = j01 = j02 = j11 = j12 = j20 = j21 = j22 = 0.0
     for m in range(n):
-        xp = a * X[m]
-        yp = b * Y[m]
-        sx = du0 - w_s * yp
-        sy = dv0 + w_s * xp
+        xp, yp, sx, sy = _node_slip(X, Y, m, a, b, du0, dv0, w_s)
         km = k[m]
         xm = x[m]
         x2 = xm * xm
@@ -187,10 +192,7 @@ def _accumulate_force(X, Y, W, n, a, b, du0, dv0, w_s, k, r, x, ash, out):
     thirds of the arithmetic per node."""
     Fx = Fy = Mz = 0.0
     for m in range(n):
-        xp = a * X[m]
-        yp = b * Y[m]
-        sx = du0 - w_s * yp
-        sy = dv0 + w_s * xp
+        xp, yp, sx, sy = _node_slip(X, Y, m, a, b, du0, dv0, w_s)
         xm = x[m]
         small = xm < SMALL_ARG
         g = k[m] * (1.0 - xm * xm / 6.0) if small else ash[m] / (1.0 if small else r[m])

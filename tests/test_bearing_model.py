@@ -219,3 +219,21 @@ def test_tabulated_film_equals_the_nvm_formula(lubricated, outer):
         direct = max(film_central_nvm(F, Rx, Ry, fp[FP_E_EFF], fp[FP_ETA0], fp[FP_ALPHA_P], u_s), fp[FP_MIN_FILM])
         tabulated = _film(F, alpha, outer, u_s, fp, params.ip[IP_FILM], table)
         assert tabulated == pytest.approx(direct, rel=1e-8), alpha
+
+
+@pytest.mark.parametrize("outer", [False, True])
+def test_tabulated_semi_axes_equal_hertz(lubricated, outer):
+    """The time loop takes the contact semi-axes as (c k_h^(1/3)) sqrt(delta) from the race
+    table (race_forces.semi_axis_columns); Hertz's a = c_a F^(1/3) with F = k_h delta^(3/2)
+    and the exact table (hertz.hertz_table_eval) must give the same, between the nodes too."""
+    from dynamics.bearing.race_forces import TAB_SEMI_AXES
+    from dynamics.hertz import hermite, hertz_table_eval, table_position
+
+    table = lubricated[0].hertz_outer if outer else lubricated[0].hertz_inner
+    rng = np.random.default_rng(11)
+    for alpha, delta in zip(rng.uniform(0.0, 1.5, 80), 10 ** rng.uniform(-7, -4.5, 80)):
+        k_h, _, _, c_a, c_b = hertz_table_eval(table, alpha)
+        F13 = (k_h * delta ** 1.5) ** (1.0 / 3.0)
+        j, t, step = table_position(table, alpha)
+        assert hermite(table, j, TAB_SEMI_AXES, t, step)[0] * delta ** 0.5 == pytest.approx(c_a * F13, rel=1e-8)
+        assert hermite(table, j, TAB_SEMI_AXES + 2, t, step)[0] * delta ** 0.5 == pytest.approx(c_b * F13, rel=1e-8)

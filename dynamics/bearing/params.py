@@ -60,7 +60,7 @@ class BearingModelParams:
 
     fp: np.ndarray
     ip: np.ndarray
-    hertz_inner: np.ndarray  # Hertz columns + film columns (race_forces.film_geometry_columns)
+    hertz_inner: np.ndarray  # Hertz, film and semi-axis columns (params._race_table)
     hertz_outer: np.ndarray
     eta_table: np.ndarray
     traction_rule: np.ndarray   # fast-path quadrature rule (dynamics.traction_nodes)
@@ -106,13 +106,14 @@ def inner_race_inertia(bearing: BearingGeometry, race: Material) -> tuple[float,
 
 def _race_table(bearing: BearingGeometry, e_eff: float, outer: bool) -> np.ndarray:
     """A race's contact table: the Hertz columns (`hertz.race_hertz_table`) and, on the same
-    contact-angle grid, the film columns (`race_forces.film_geometry_columns`)."""
-    from .race_forces import film_geometry_columns
+    contact-angle grid, the film columns (`race_forces.film_geometry_columns`) and the
+    semi-axis columns (`race_forces.semi_axis_columns`)."""
+    from .race_forces import film_geometry_columns, semi_axis_columns
 
     hertz = race_hertz_table(bearing, e_eff, outer=outer)
     r = bearing.outer_groove_radius if outer else bearing.inner_groove_radius
     film = film_geometry_columns(bearing.ball_diameter, bearing.pitch_diameter, r, outer, hertz.shape[0])
-    return np.ascontiguousarray(np.hstack([hertz, film]))
+    return np.ascontiguousarray(np.hstack([hertz, film, semi_axis_columns(hertz)]))
 
 
 def _traction_tables(lubricant):

@@ -18,7 +18,7 @@ import numpy as np
 
 from dynamics._kernel_options import NO_REFCOUNT
 from dynamics.film import film_central, film_central_nvm_terms, nvm_geometry_terms
-from dynamics.hertz import TABLE_COLUMNS, hermite, hertz_table_eval, table_position
+from dynamics.hertz import TAB_KH, TABLE_COLUMNS, hermite, hertz_table_eval, table_position
 from dynamics.race_contact import (
     OUT_ALPHA, OUT_DELTA, OUT_EX, OUT_EY, OUT_LEVER, OUT_N, OUT_P, OUT_SLIDE, OUT_SPIN,
     OUT_SRR, OUT_U_SUM, ball_race_contact_kernel,
@@ -45,6 +45,7 @@ LOAD_EXPONENT_COULOMB, LOAD_EXPONENT_EYRING = 1.0, 2.0 / 3.0
 N_CONTACT_SCRATCH = 27
 TAB_FILM = TABLE_COLUMNS  # first film column of a race table (`film_geometry_columns`)
 N_FILM_TERMS = 6          # R_x and the five terms of film.nvm_geometry_terms
+TAB_SEMI_AXES = TAB_FILM + 2 * N_FILM_TERMS  # c_a k_h^(1/3), c_b k_h^(1/3) [m^(1/2)] (`semi_axis_columns`)
 
 
 @numba.njit(**NO_REFCOUNT)
@@ -98,6 +99,21 @@ def film_geometry_columns(D: float, d_m: float, r: float, is_outer: bool, n_node
     return out
 
 
+def semi_axis_columns(hertz: np.ndarray) -> np.ndarray:
+    """Columns appended after the film columns: a/sqrt(delta) = c_a k_h^(1/3) and
+    b/sqrt(delta) = c_b k_h^(1/3) [m^(1/2)] with their slopes (Hertz: a = c_a F^(1/3) and
+    F = k_h delta^(3/2)), so that the time loop needs no cube root per contact."""
+    from dynamics.hertz import TAB_CA, TAB_CB, TAB_DCA, TAB_DCB, TAB_DKH
+
+    k13 = np.cbrt(hertz[:, TAB_KH])
+    dk13 = hertz[:, TAB_DKH] * k13 / (3.0 * hertz[:, TAB_KH])
+    out = np.empty((hertz.shape[0], 4))
+    for c, (col, dcol) in enumerate(((TAB_CA, TAB_DCA), (TAB_CB, TAB_DCB))):
+        out[:, 2 * c] = hertz[:, col] * k13
+        out[:, 2 * c + 1] = hertz[:, dcol] * k13 + hertz[:, col] * dk13
+    return out
+
+
 @numba.njit(**NO_REFCOUNT)
 def _film(F_n, alpha, is_outer, u_s, fp, method, table):
     """Central film thickness [m] (NVM or Hamrock–Dowson), floored at FP_MIN_FILM. NVM reads
@@ -140,15 +156,24 @@ def race_contact(x_b, v_b, w_b, x_r, R_r, v_r, w_r, is_outer, fp, ip, table,
         return False
     n = cbuf[OUT_N:OUT_N + 3]
     p = cbuf[OUT_P:OUT_P + 3]
-    k_h, _, _, c_a, c_b = hertz_table_eval(table, cbuf[OUT_ALPHA])
+    sqrt_delta = math.sqrt(delta)
+    if table.shape[1] >= TAB_SEMI_AXES + 4:  # k_h and the semi-axes per sqrt(delta), no cube root
+        j, t, step = table_position(table, cbuf[OUT_ALPHA])
+        k_h = hermite(table, j, TAB_KH, t, step)[0]
+        b_y = hermite(table, j, TAB_SEMI_AXES, t, step)[0] * sqrt_delta
+        a_x = hermite(table, j, TAB_SEMI_AXES + 2, t, step)[0] * sqrt_delta
+    else:  # a plain Hertz table: a = c_a F^(1/3)
+        k_h, _, _, c_a, c_b = hertz_table_eval(table, cbuf[OUT_ALPHA])
+        f13 = np.cbrt(k_h * delta * sqrt_delta)
+        a_x, b_y = c_b * f13, c_a * f13  # the major axis (c_a) lies across the rolling direction
     # relative normal velocity: delta grows when the ball moves against n relative to the race
     vr_p0 = v_r[0] + w_r[1] * (p[2] - x_r[2]) - w_r[2] * (p[1] - x_r[1])
     vr_p1 = v_r[1] + w_r[2] * (p[0] - x_r[0]) - w_r[0] * (p[2] - x_r[2])
     vr_p2 = v_r[2] + w_r[0] * (p[1] - x_r[1]) - w_r[1] * (p[0] - x_r[0])
     delta_dot = -(n[0] * (v_b[0] - vr_p0) + n[1] * (v_b[1] - vr_p1) + n[2] * (v_b[2] - vr_p2))
-    k_n = 1.5 * k_h * math.sqrt(delta)
+    k_n = 1.5 * k_h * sqrt_delta
     c_n = 2.0 * fp[FP_ZETA] * math.sqrt(k_n * fp[FP_MB])
-    F_el = k_h * delta * math.sqrt(delta)
+    F_el = k_h * delta * sqrt_delta
     F_n = max(F_el + c_n * delta_dot, 0.0)  # no adhesion
     if want_tangent:
         _contact_stiffness(k_n, F_el, delta, n, x_b, x_r, R_r, d_g, cbuf, res)
@@ -156,9 +181,6 @@ def race_contact(x_b, v_b, w_b, x_r, R_r, v_r, w_r, is_outer, fp, ip, table,
             for i in range(3):
                 for j in range(3):
                     res[RC_CN + 3 * i + j] = c_n * n[i] * n[j]
-    # Hertz semi-axes: the major axis (c_a) lies across the rolling direction
-    f13 = np.cbrt(F_el)
-    a_x, b_y = c_b * f13, c_a * f13
     p_max = 1.5 * F_el / (math.pi * a_x * b_y)
     du0 = cbuf[OUT_SLIDE] * cbuf[OUT_EX] + cbuf[OUT_SLIDE + 1] * cbuf[OUT_EX + 1] + cbuf[OUT_SLIDE + 2] * cbuf[OUT_EX + 2]
     dv0 = cbuf[OUT_SLIDE] * cbuf[OUT_EY] + cbuf[OUT_SLIDE + 1] * cbuf[OUT_EY + 1] + cbuf[OUT_SLIDE + 2] * cbuf[OUT_EY + 2]

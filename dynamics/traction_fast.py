@@ -22,9 +22,10 @@ Accuracy against the (128, 1024) quadrature of `dynamics.traction`, default rule
 of 240 random operating points of the reference scene (tests/test_traction_fast.py, -m slow):
 |dF|/|F| <= 0.74 %, |dM_z|/max(|M_z|, |F| b) <= 0.76 %, max|dJ|/max|J| <= 1.4 %; edge cases
 (slip 1e-5 and 0.3, pure spin, pure roll, 20 N, pole at 0.97 / 1.03 ellipse radii) <= 0.7 %.
-Cost ~0.58 us per contact over that sample, ~31 us for the 44 contacts of the reference
-bearing 20 ms into a run (2026-11-21, pipeline/bench/traction.py and bench/contacts.py);
-8 radial nodes: ~0.53 us at <= 1.1 %.
+Cost ~0.58 us per contact over that sample with the Jacobian; without it (a residual-only
+evaluation) ~27 us for the 44 contacts of the reference bearing 20 ms into a run
+(2026-11-21, pipeline/bench/traction.py and bench/contacts.py); 8 radial nodes: ~0.53 us
+at <= 1.1 %.
 """
 
 from __future__ import annotations

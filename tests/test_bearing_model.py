@@ -208,6 +208,7 @@ def test_tabulated_film_equals_the_nvm_formula(lubricated, outer):
     from dynamics.bearing.params import FP_ALPHA_P, FP_D, FP_DM, FP_E_EFF, FP_ETA0, FP_MIN_FILM, FP_RI, FP_RO, IP_FILM
     from dynamics.bearing.race_forces import _curvature_radii, _film
     from dynamics.film import film_central_nvm
+    from dynamics.hertz import table_position
 
     params = lubricated[0]
     fp, table = params.fp, params.hertz_outer if outer else params.hertz_inner
@@ -217,7 +218,7 @@ def test_tabulated_film_equals_the_nvm_formula(lubricated, outer):
         F, u_s = 10 ** rng.uniform(2.0, 3.8), 10 ** rng.uniform(0.5, 1.5)  # 100 N..6 kN, 3..30 m/s
         Rx, Ry = _curvature_radii(abs(alpha), outer, fp[FP_D], fp[FP_DM], fp[FP_RO] if outer else fp[FP_RI])
         direct = max(film_central_nvm(F, Rx, Ry, fp[FP_E_EFF], fp[FP_ETA0], fp[FP_ALPHA_P], u_s), fp[FP_MIN_FILM])
-        tabulated = _film(F, alpha, outer, u_s, fp, params.ip[IP_FILM], table)
+        tabulated = _film(F, alpha, outer, u_s, fp, params.ip[IP_FILM], table, *table_position(table, alpha))
         assert tabulated == pytest.approx(direct, rel=1e-8), alpha
 
 
@@ -237,3 +238,21 @@ def test_tabulated_semi_axes_equal_hertz(lubricated, outer):
         j, t, step = table_position(table, alpha)
         assert hermite(table, j, TAB_SEMI_AXES, t, step)[0] * delta ** 0.5 == pytest.approx(c_a * F13, rel=1e-8)
         assert hermite(table, j, TAB_SEMI_AXES + 2, t, step)[0] * delta ** 0.5 == pytest.approx(c_b * F13, rel=1e-8)
+
+
+def test_hamrock_dowson_film_option_uses_the_contact_curvatures(lubricated):
+    """With the Hamrock–Dowson option the model's film is film_hamrock_dowson's central film
+    at R_x, R_y of the contact angle (MODEL.md §6.3), not the tabulated NVM terms."""
+    from dynamics.bearing.params import FILM_HD, FP_ALPHA_P, FP_D, FP_DM, FP_E_EFF, FP_ETA0, FP_MIN_FILM, FP_RI
+    from dynamics.bearing.race_forces import _curvature_radii, _film
+    from dynamics.film import film_hamrock_dowson
+    from dynamics.hertz import table_position
+
+    params = lubricated[0]
+    fp, table = params.fp, params.hertz_inner
+    for alpha, F, u_s in [(0.3, 800.0, 12.0), (0.55, 4000.0, 25.0), (0.45, 150.0, 4.0)]:
+        Rx, Ry = _curvature_radii(alpha, False, fp[FP_D], fp[FP_DM], fp[FP_RI])
+        expected = max(film_hamrock_dowson(F, Rx, Ry, fp[FP_E_EFF], fp[FP_ETA0], fp[FP_ALPHA_P], u_s)[0],
+                       fp[FP_MIN_FILM])
+        assert _film(F, alpha, False, u_s, fp, FILM_HD, table, *table_position(table, alpha)) == pytest.approx(
+            expected, rel=1e-12)

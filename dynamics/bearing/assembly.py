@@ -198,8 +198,7 @@ def evaluate_bearing(t, q, v, a, fp, ip, tab_i, tab_o, eta_table, rule, work, iw
         w_c = mv(R_c, v[o_c + 3:o_c + 6])
     else:
         x_c, R_c, v_c, w_c = x_o, R_o, x_o, x_o
-    Z2 = 2 * Z
-    rows = np.empty((Z2, N_RC))  # one row per ball-race contact: inner 2k, outer 2k + 1
+    rows = np.empty((2 * Z, N_RC))  # one row per ball-race contact: inner 2k, outer 2k + 1
     pocket_rows = np.empty((Z, N_POCKET_OUT))
     _ball_forces(q, v, fp, ip, tab_i, tab_o, eta_table, rule, work, iwork, pp, psi, v0, x_i, R_i, v_i, w_i,
                  x_o, R_o, w_o, x_c, R_c, v_c, w_c, o_c >= 0, np.empty(N_CONTACT_SCRATCH), np.empty(12),
@@ -223,8 +222,8 @@ def _ball_forces(q, v, fp, ip, tab_i, tab_o, eta_table, rule, work, iwork, pp, p
                  F_i, M_i, F_c, M_c, want_tangent):
     """Forces of every ball's race and pocket contacts into g, the race and cage wrench sums
     (F_i, M_i, F_c, M_c) and diag; the contact rows (with their tangent ingredients when
-    want_tangent) stay in rows (2k inner, 2k + 1 outer) and pocket_rows for the tangent
-    pass. Allocation-free and without reference counting (dynamics/_kernel_options.py):
+    want_tangent) stay in rows (2k inner, 2k + 1 outer) and, with a cage, pocket_rows for
+    the tangent pass. Allocation-free and without reference counting (dynamics/_kernel_options.py):
     this loop, with its per-ball views, is the hot path of every residual."""
     for k in range(ip[IP_Z]):
         b = 6 * k
@@ -261,8 +260,6 @@ def _ball_forces(q, v, fp, ip, tab_i, tab_o, eta_table, rule, work, iwork, pp, p
             pocket_diag(pres, diag[d + DB_POCKET:d + DB_POCKET + 5])
             # friction power + hysteresis-damping power (damping force = dF_n/d(delta_dot) delta_dot)
             diag[DG_P_DISS] += pres[P_OUT_FRICTION_POWER] + pres[P_OUT_DFN_DRATE] * pres[P_OUT_APPROACH] ** 2
-        else:
-            pocket_rows[k, :] = 0.0
 
 
 @numba.njit(cache=True)

@@ -25,19 +25,18 @@ from .tangents import add_pair, point_map
 
 @numba.njit(**NO_REFCOUNT)
 def pocket_forces(x_b, v_b, w_b, x_c, R_c, v_c, w_c, psi, v0, pp, pres, g, b, F_cage, M_cage):
-    """Ball in its pocket: adds the ball's wrench to g[b:b+6] and the cage's (spatial,
-    about its centre) to F_cage, M_cage. Returns True when in contact (then call
-    `pocket_tangent` for the Newton matrix)."""
+    """Ball in its pocket: the contact row into pres and, in contact (pres[P_OUT_IN_CONTACT]
+    > 0; then `pocket_tangent` gives its Newton blocks), the ball's wrench added to g[b:b+6]
+    and the cage's (spatial, about its centre) to F_cage, M_cage."""
     pres[:] = 0.0
     _pocket_contact_into(pres, x_b, v_b, w_b, x_c, R_c, v_c, w_c, psi, v0, pp)
     if pres[P_OUT_IN_CONTACT] <= 0.0:
-        return False
+        return
     for i in range(3):
         g[b + i] += pres[P_OUT_FORCE_BALL + i]
         g[b + 3 + i] += pres[P_OUT_MOMENT_BALL + i]
         F_cage[i] += pres[P_OUT_FORCE_CAGE + i]
         M_cage[i] += pres[P_OUT_MOMENT_CAGE + i]
-    return True
 
 
 @numba.njit(cache=True)

@@ -17,8 +17,8 @@ import numba
 import numpy as np
 
 from dynamics._kernel_options import NO_REFCOUNT
-from dynamics.film import film_central, film_central_nvm_terms, nvm_geometry_terms
-from dynamics.hertz import TAB_KH, TABLE_COLUMNS, hermite, hertz_table_eval, table_position
+from dynamics.film import film_central_nvm_terms, film_hamrock_dowson, nvm_geometry_terms
+from dynamics.hertz import TAB_KH, TABLE_COLUMNS, hermite, table_position
 from dynamics.race_contact import (
     OUT_ALPHA, OUT_DELTA, OUT_EX, OUT_EY, OUT_LEVER, OUT_N, OUT_P, OUT_SLIDE, OUT_SPIN,
     OUT_SRR, OUT_U_SUM, ball_race_contact_kernel,
@@ -115,23 +115,22 @@ def semi_axis_columns(hertz: np.ndarray) -> np.ndarray:
 
 
 @numba.njit(**NO_REFCOUNT)
-def _film(F_n, alpha, is_outer, u_s, fp, method, table):
-    """Central film thickness [m] (NVM or Hamrock–Dowson), floored at FP_MIN_FILM. NVM reads
-    R_x and its lambda terms from the race table's film columns when it has them."""
+def _film(F_n, alpha, is_outer, u_s, fp, method, table, j, t, step):
+    """Central film thickness [m], floored at FP_MIN_FILM. NVM reads R_x and its lambda
+    terms from the race table's film columns at the table position (j, t, step) of alpha
+    (`hertz.table_position`); Hamrock–Dowson computes R_x, R_y from alpha."""
     u = max(u_s, 1e-6)
-    if method != FILM_HD and table.shape[1] >= TAB_FILM + 2 * N_FILM_TERMS:
-        j, t, step = table_position(table, alpha)
-        Rx = hermite(table, j, TAB_FILM, t, step)[0]
-        ri = hermite(table, j, TAB_FILM + 2, t, step)[0]
-        ei = hermite(table, j, TAB_FILM + 4, t, step)[0]
-        h00 = hermite(table, j, TAB_FILM + 6, t, step)[0]
-        rp = hermite(table, j, TAB_FILM + 8, t, step)[0]
-        ep = hermite(table, j, TAB_FILM + 10, t, step)[0]
-        h = film_central_nvm_terms(F_n, Rx, fp[FP_E_EFF], fp[FP_ETA0], fp[FP_ALPHA_P], u, ri, ei, h00, rp, ep)
+    if method == FILM_HD:
+        Rx, Ry = _curvature_radii_kernel(alpha, is_outer, fp[FP_D], fp[FP_DM], fp[FP_RO] if is_outer else fp[FP_RI])
+        h = film_hamrock_dowson(F_n, Rx, Ry, fp[FP_E_EFF], fp[FP_ETA0], fp[FP_ALPHA_P], u)[0]
         return max(h, fp[FP_MIN_FILM])
-    Rx, Ry = _curvature_radii_kernel(alpha, is_outer, fp[FP_D], fp[FP_DM], fp[FP_RO] if is_outer else fp[FP_RI])
-    code = 1 if method == FILM_HD else 0
-    h = film_central(code, F_n, Rx, Ry, fp[FP_E_EFF], fp[FP_ETA0], fp[FP_ALPHA_P], u)
+    Rx = hermite(table, j, TAB_FILM, t, step)[0]
+    ri = hermite(table, j, TAB_FILM + 2, t, step)[0]
+    ei = hermite(table, j, TAB_FILM + 4, t, step)[0]
+    h00 = hermite(table, j, TAB_FILM + 6, t, step)[0]
+    rp = hermite(table, j, TAB_FILM + 8, t, step)[0]
+    ep = hermite(table, j, TAB_FILM + 10, t, step)[0]
+    h = film_central_nvm_terms(F_n, Rx, fp[FP_E_EFF], fp[FP_ETA0], fp[FP_ALPHA_P], u, ri, ei, h00, rp, ep)
     return max(h, fp[FP_MIN_FILM])
 
 
@@ -144,7 +143,8 @@ def race_contact(x_b, v_b, w_b, x_r, R_r, v_r, w_r, is_outer, fp, ip, table,
 
     x_b, v_b, w_b: ball centre [m], velocity [m/s], angular velocity [rad/s];
     x_r, R_r, v_r, w_r: race centre, rotation (race -> global), velocity, spatial angular
-    velocity. Returns True when in contact.
+    velocity; table: the race's contact table (Hertz, film and semi-axis columns,
+    `params._race_table`). Returns True when in contact.
     """
     res[:] = 0.0
     d_g = fp[FP_DO] if is_outer else fp[FP_DI]
@@ -157,15 +157,12 @@ def race_contact(x_b, v_b, w_b, x_r, R_r, v_r, w_r, is_outer, fp, ip, table,
     n = cbuf[OUT_N:OUT_N + 3]
     p = cbuf[OUT_P:OUT_P + 3]
     sqrt_delta = math.sqrt(delta)
-    if table.shape[1] >= TAB_SEMI_AXES + 4:  # k_h and the semi-axes per sqrt(delta), no cube root
-        j, t, step = table_position(table, cbuf[OUT_ALPHA])
-        k_h = hermite(table, j, TAB_KH, t, step)[0]
-        b_y = hermite(table, j, TAB_SEMI_AXES, t, step)[0] * sqrt_delta
-        a_x = hermite(table, j, TAB_SEMI_AXES + 2, t, step)[0] * sqrt_delta
-    else:  # a plain Hertz table: a = c_a F^(1/3)
-        k_h, _, _, c_a, c_b = hertz_table_eval(table, cbuf[OUT_ALPHA])
-        f13 = np.cbrt(k_h * delta * sqrt_delta)
-        a_x, b_y = c_b * f13, c_a * f13  # the major axis (c_a) lies across the rolling direction
+    # k_h and the Hertz semi-axes per sqrt(delta) from the race table (no cube root); the
+    # major axis b_y lies across the rolling direction
+    j, t, step = table_position(table, cbuf[OUT_ALPHA])
+    k_h = hermite(table, j, TAB_KH, t, step)[0]
+    b_y = hermite(table, j, TAB_SEMI_AXES, t, step)[0] * sqrt_delta
+    a_x = hermite(table, j, TAB_SEMI_AXES + 2, t, step)[0] * sqrt_delta
     # relative normal velocity: delta grows when the ball moves against n relative to the race
     vr_p0 = v_r[0] + w_r[1] * (p[2] - x_r[2]) - w_r[2] * (p[1] - x_r[1])
     vr_p1 = v_r[1] + w_r[2] * (p[0] - x_r[0]) - w_r[0] * (p[2] - x_r[2])
@@ -188,7 +185,7 @@ def race_contact(x_b, v_b, w_b, x_r, R_r, v_r, w_r, is_outer, fp, ip, table,
     mode = ip[IP_TRACTION]
     h = 0.0
     if ip[IP_FILM] != FILM_NONE:
-        h = _film(F_el, cbuf[OUT_ALPHA], is_outer, cbuf[OUT_U_SUM], fp, ip[IP_FILM], table)
+        h = _film(F_el, cbuf[OUT_ALPHA], is_outer, cbuf[OUT_U_SUM], fp, ip[IP_FILM], table, j, t, step)
     # traction T = tbuf[0:3] and dT/ds = tbuf[3:12] (row-major), on the ball
     if mode == TRACTION_EYRING:
         res[RC_FLAG] = eyring_traction(a_x, b_y, p_max, h, fp[FP_TAU0], du0, dv0, w_s, eta_table,

@@ -4,7 +4,7 @@ numba keeps a reference count on every array a function receives or slices (a vi
 updates it with an atomic add inside a non-inlined call (NRT_incref / NRT_decref); its
 pruning pass leaves most of these in place across calls. In the force kernel of the
 reference bearing they took ~28 % of all samples (perf profile of
-`python -m pipeline.bench.contacts`, 2026-11-21; the kernel went from 75 to 50 us with
+`python -m benchmarks.contacts`, 2026-11-21; the kernel went from 75 to 50 us with
 this option). Kernels that allocate nothing and return no array need none of it.
 
 With `_nrt=False` numba refuses to compile an allocation, an array return, or a call to

@@ -11,15 +11,15 @@ from __future__ import annotations
 import importlib
 
 _ATTRS = {
-    "FEConfig": "fe_model.config",
-    "HingeFit": "fe_model.hinge_fit",
-    "fit_hinge": "fe_model.hinge_fit",
-    "HingeIdentification": "fe_model.identify",
-    "identify_hinge": "fe_model.identify",
-    "read_hinge": "fe_model.artefacts",
-    "convergence_study": "fe_model.convergence",
-    "richardson": "fe_model.convergence",
-    "RingSeat": "meshes.housing",
+    "FEConfig": "bearingsim.fe_model.config",
+    "HingeFit": "bearingsim.fe_model.hinge_fit",
+    "fit_hinge": "bearingsim.fe_model.hinge_fit",
+    "HingeIdentification": "bearingsim.fe_model.identify",
+    "identify_hinge": "bearingsim.fe_model.identify",
+    "read_hinge": "bearingsim.fe_model.artefacts",
+    "convergence_study": "bearingsim.fe_model.convergence",
+    "richardson": "bearingsim.fe_model.convergence",
+    "RingSeat": "bearingsim.meshes.housing",
 }
 
 __all__ = sorted(_ATTRS)

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from fe_model.kernels import csr_from_triplets, element_stiffness_upper, upper_triplet_indices
+from bearingsim.fe_model.kernels import csr_from_triplets, element_stiffness_upper, upper_triplet_indices
 
 
 def lame_parameters(youngs_modulus: float, poisson_ratio: float) -> tuple[float, float]:

@@ -22,12 +22,12 @@ from typing import Callable
 
 import numpy as np
 
-from fe_model.config import FEConfig
-from fe_model.elasticity import ElasticModel
-from fe_model.hinge_fit import HingeFit, fit_hinge
-from fe_model.loads import RegionMoments, distributed_load_matrix, rigid_fit_operator
-from fe_model.solvers import SPDFactorization
-from meshes import RingSeat, cached_housing_mesh
+from bearingsim.fe_model.config import FEConfig
+from bearingsim.fe_model.elasticity import ElasticModel
+from bearingsim.fe_model.hinge_fit import HingeFit, fit_hinge
+from bearingsim.fe_model.loads import RegionMoments, distributed_load_matrix, rigid_fit_operator
+from bearingsim.fe_model.solvers import SPDFactorization
+from bearingsim.meshes import RingSeat, cached_housing_mesh
 
 Progress = Callable[[str, float], None]
 MATERIAL_IDS = {"shaft": 1, "inner_ring": 2, "support_a": 3, "support_b": 3, "housing": 4}
@@ -146,7 +146,7 @@ def identify_hinge(
     """Identify H_u (3x3) and H_psi (2) from the FE model and write the artefacts:
     `hinge.toml`, `case_<axis>.vtu` (largest magnitude of each load axis) and the mesh
     cache `mesh-<key>.npz`, all in `out_dir`."""
-    from fe_model.artefacts import write_case_vtu, write_hinge_toml
+    from bearingsim.fe_model.artefacts import write_case_vtu, write_hinge_toml
 
     progress = progress or (lambda stage, fraction: None)
     out_dir = pathlib.Path(out_dir)

@@ -4,7 +4,7 @@ Measured on the 2-core build machine for a ~400k-dof P2 housing model (factor + 
 solves): MKL PARDISO with the matrix declared SPD (mtype 2) ~15 s / 3.1 GB; scipy
 SuperLU 250-550 s; AMG-preconditioned CG ~110 s; CHOLMOD/MUMPS need system packages.
 So PARDISO is the default and SuperLU the portable fallback (non-x86 machines, where
-pypardiso is not installed); see pipeline/bench/fe.py for the figures of this code.
+pypardiso is not installed); see benchmarks/fe.py for the figures of this code.
 """
 
 from __future__ import annotations
@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-from fe_model.elasticity import full_from_upper
+from bearingsim.fe_model.elasticity import full_from_upper
 
 
 def pardiso_available() -> bool:

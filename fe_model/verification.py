@@ -16,9 +16,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fe_model.elasticity import ElasticModel
-from fe_model.loads import RegionMoments, distributed_load_matrix, rigid_fit_operator
-from fe_model.solvers import SPDFactorization
+from bearingsim.fe_model.elasticity import ElasticModel
+from bearingsim.fe_model.loads import RegionMoments, distributed_load_matrix, rigid_fit_operator
+from bearingsim.fe_model.solvers import SPDFactorization
 
 
 @dataclass(frozen=True)
@@ -43,7 +43,7 @@ class Cantilever:
         traction on the tip, tip face rigid-fitted about its centroid."""
         from skfem import FacetBasis
 
-        from meshes.verification import cantilever_mesh
+        from bearingsim.meshes.verification import cantilever_mesh
 
         mesh = cantilever_mesh(self.length, self.width, self.height, mesh_size).to_skfem()
         model = ElasticModel.build(mesh, order, {"beam": (self.youngs_modulus, self.poisson_ratio)})
@@ -78,7 +78,7 @@ class LameTube:
         """FE surface-mean radial displacement at the bore and outside [m], and dofs."""
         from skfem import FacetBasis, LinearForm
 
-        from meshes.verification import quarter_tube_mesh
+        from bearingsim.meshes.verification import quarter_tube_mesh
 
         mesh = quarter_tube_mesh(self.inner_radius, self.outer_radius, self.half_length, mesh_size).to_skfem()
         model = ElasticModel.build(mesh, order, {"tube": (self.youngs_modulus, self.poisson_ratio)})

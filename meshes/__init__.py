@@ -1,8 +1,8 @@
 """gmsh geometry builders for stage 1 (MODEL.md §3). gmsh is imported lazily."""
 
-from meshes.cache import cached_housing_mesh, mesh_key
-from meshes.housing import HousingGeometry, RingSeat, build_housing_mesh
-from meshes.mesh_data import MeshData
+from bearingsim.meshes.cache import cached_housing_mesh, mesh_key
+from bearingsim.meshes.housing import HousingGeometry, RingSeat, build_housing_mesh
+from bearingsim.meshes.mesh_data import MeshData
 
 __all__ = [
     "HousingGeometry",

@@ -8,8 +8,8 @@ import importlib.metadata
 import json
 import pathlib
 
-from meshes.housing import HousingGeometry, build_housing_mesh
-from meshes.mesh_data import MeshData
+from bearingsim.meshes.housing import HousingGeometry, build_housing_mesh
+from bearingsim.meshes.mesh_data import MeshData
 
 # bump when the geometry builder changes what it produces for the same inputs
 BUILDER_VERSION = 2

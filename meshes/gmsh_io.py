@@ -12,7 +12,7 @@ from typing import Iterator
 
 import numpy as np
 
-from meshes.mesh_data import MeshData
+from bearingsim.meshes.mesh_data import MeshData
 
 GMSH_TET4 = 4
 GMSH_TRI3 = 2

@@ -21,8 +21,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from meshes.gmsh_io import classify_surface, close, extract_mesh, gmsh_session, grade_towards_curves, set_uniform_size
-from meshes.mesh_data import MeshData
+from bearingsim.meshes.gmsh_io import classify_surface, close, extract_mesh, gmsh_session, grade_towards_curves, set_uniform_size
+from bearingsim.meshes.mesh_data import MeshData
 
 # Graded refinement (see build_housing_mesh): the edges that set the axial stiffness get
 # SINGULAR_EDGE_FACTOR x the size of the other circular edges; sizes grow back to

@@ -16,7 +16,12 @@ from typing import Annotated, Optional
 import typer
 from rich.console import Console
 
-from .artefacts import RunDirectoryBusy, run_directory_lock
+from .numba_cache import configure_numba_cache
+
+# before any kernel is compiled or loaded: the cache keyed by the dynamics sources
+configure_numba_cache()
+
+from .artefacts import RunDirectoryBusy, run_directory_lock  # noqa: E402
 from .runner import StageNotAvailable
 from .schema import SceneError
 
@@ -243,7 +248,7 @@ def bench(scene: SceneArg,
           fe: Annotated[bool, typer.Option("--fe/--no-fe", help="Also the FE identification study (scenes with hinge.source = 'fe').")] = True,
           set_: SetOpt = None) -> None:
     """Error against run time: work-precision of the dynamic solver (and of the FE hinge identification)."""
-    from .bench.command import run_bench
+    from .studies.command import run_bench
 
     try:
         resolved = _load(scene, set_)
@@ -268,7 +273,7 @@ def stability(cases: Annotated[Optional[list[str]], typer.Argument(help="Case na
               wall_budget: Annotated[float, typer.Option("--wall-budget", help="Wall-clock budget per case [s].")] = 180.0,
               out: Annotated[Path, typer.Option("--out", help="Where the table and plot go.")] = Path("runs/stability")) -> None:
     """Stability suite: stiff and extreme cases, each a pass or a clearly reported refusal."""
-    from .bench.stability import case_names, markdown_table, run_suite, write_suite
+    from .studies.stability import case_names, markdown_table, run_suite, write_suite
 
     unknown = [c for c in cases or [] if c not in case_names()]
     if unknown:

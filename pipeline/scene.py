@@ -14,7 +14,7 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
-from dynamics.geometry import BearingGeometry, CageGeometry, Material
+from bearingsim.dynamics.geometry import BearingGeometry, CageGeometry, Material
 
 from .scene_sections import (
     CatalogueBearing,
@@ -42,7 +42,7 @@ class Scene:
     bearing: BearingGeometry
     cage: CageGeometry | None
     materials: Materials
-    lubricant: Any | None  # dynamics.lubricant.Lubricant (at its operating temperature)
+    lubricant: Any | None  # dynamics.lubrication.lubricant.Lubricant (at its operating temperature)
     load: Load
     speed: Speed
     hinge: Hinge
@@ -55,7 +55,7 @@ class Scene:
 
 # --- built-in scenes -------------------------------------------------------------------
 def builtin_scene_names() -> list[str]:
-    files = resources.files("pipeline") / "scenes"
+    files = resources.files("bearingsim.pipeline") / "scenes"
     return sorted(p.name[:-5] for p in files.iterdir() if p.name.endswith(".toml"))
 
 
@@ -71,7 +71,7 @@ def read_scene_table(scene: str | Path) -> tuple[dict, str]:
         if str(scene) not in names:
             raise SceneError("", f"{str(scene)!r} is neither a scene file nor a built-in scene; "
                                  f"built-in scenes: {', '.join(names)}")
-        text = (resources.files("pipeline") / "scenes" / f"{scene}.toml").read_text(encoding="utf-8")
+        text = (resources.files("bearingsim.pipeline") / "scenes" / f"{scene}.toml").read_text(encoding="utf-8")
         origin = f"built-in:{scene}"
     try:
         return tomllib.loads(text), origin
@@ -154,7 +154,7 @@ def resolve_lubricant(table: Any):
         return None
     if not isinstance(table, dict):
         raise SceneError("lubricant", f"expected a table, got {table!r}")
-    from dynamics import lubricant as lub  # light: numpy + a data file
+    from bearingsim.dynamics.lubrication import lubricant as lub  # light: numpy + a data file
 
     table = dict(table)
     name = table.get("name")
@@ -172,7 +172,7 @@ def resolve_lubricant(table: Any):
 def resolve_fe(table: Any, hinge: Hinge) -> Any | None:
     if hinge.source != "fe":
         return None
-    from fe_model.config import FEConfig
+    from bearingsim.fe_model.config import FEConfig
 
     return build(FEConfig, table if table is not None else {}, "fe")
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from dynamics.geometry import Material
+from bearingsim.dynamics.geometry import Material
 
 
 @dataclass(frozen=True)

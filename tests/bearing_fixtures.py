@@ -7,10 +7,10 @@ import math
 
 import numpy as np
 
-from dynamics.bearing import ModelOptions, build_model_params
-from dynamics.geometry import BearingGeometry, CageGeometry, Material
-from dynamics.quasistatic import solve_quasistatic
-from dynamics.quasistatic_result import initial_state
+from bearingsim.dynamics.bearing import ModelOptions, build_model_params
+from bearingsim.dynamics.geometry import BearingGeometry, CageGeometry, Material
+from bearingsim.dynamics.quasistatic.solver import solve_quasistatic
+from bearingsim.dynamics.quasistatic.result import initial_state
 
 STEEL = Material(208e9, 0.3, 7850.0)
 BRONZE = Material(110e9, 0.34, 8800.0)

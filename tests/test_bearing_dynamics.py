@@ -8,10 +8,10 @@ import math
 import numpy as np
 import pytest
 
-from dynamics.bearing import ModelOptions, layout, simulate_bearing
-from dynamics.bearing import assembly as A
-from dynamics.lubricant import load_builtin_lubricant
-from dynamics.multibody.settings import HHTSettings
+from bearingsim.dynamics.bearing import ModelOptions, layout, simulate_bearing
+from bearingsim.dynamics.bearing import assembly as A
+from bearingsim.dynamics.lubrication.lubricant import load_builtin_lubricant
+from bearingsim.dynamics.multibody.settings import HHTSettings
 
 from .bearing_fixtures import INNER_SPEED, REFERENCE, reference_model
 
@@ -40,7 +40,7 @@ def test_cage_speed_near_epicyclic(case_b):
     speed with a stationary outer ring), evaluated at the mean quasi-static contact angle.
     Traction makes balls creep, so the cage runs a little slower, not faster; 2 % bounds it."""
     params, start, r = case_b
-    from dynamics.quasistatic import solve_quasistatic
+    from bearingsim.dynamics.quasistatic.solver import solve_quasistatic
 
     from .bearing_fixtures import STEEL
     qs = solve_quasistatic(REFERENCE, STEEL, STEEL, axial=34000.0, moment=430.0,

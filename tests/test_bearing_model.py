@@ -6,11 +6,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from dynamics.bearing import BearingModel, ModelOptions
-from dynamics.bearing import layout
-from dynamics.bearing.params import FP_MB
-from dynamics.bearing.run import initial_coordinates
-from dynamics.multibody.crv import update_configuration
+from bearingsim.dynamics.bearing import BearingModel, ModelOptions
+from bearingsim.dynamics.bearing import layout
+from bearingsim.dynamics.bearing.params import FP_MB
+from bearingsim.dynamics.bearing.run import initial_coordinates
+from bearingsim.dynamics.multibody.crv import update_configuration
 
 from .bearing_fixtures import reference_model
 
@@ -25,7 +25,7 @@ def dry():
 
 @pytest.fixture(scope="module")
 def lubricated():
-    from dynamics.lubricant import load_builtin_lubricant
+    from bearingsim.dynamics.lubrication.lubricant import load_builtin_lubricant
 
     params, start = reference_model(options=ModelOptions(), lubricant=load_builtin_lubricant("nato-o156"))
     model = BearingModel(params)
@@ -89,8 +89,8 @@ def test_contact_forces_are_equal_and_opposite(dry):
     """Sum of all generalised contact forces on balls + inner race + cage, plus the outer
     race's share, is the applied load: checked through linear momentum with the outer race
     removed from the sum — so here via one ball–race contact's wrench pair."""
-    from dynamics.bearing.race_forces import N_CONTACT_SCRATCH, N_RC, RC_FB, RC_FR, RC_MB, RC_MR, race_contact
-    from dynamics.multibody.crv import crv_to_matrix
+    from bearingsim.dynamics.bearing.race_forces import N_CONTACT_SCRATCH, N_RC, RC_FB, RC_FR, RC_MB, RC_MR, race_contact
+    from bearingsim.dynamics.multibody.crv import crv_to_matrix
 
     params, _, model, q, v = dry
     o = layout.inner_offset(params.ball_count)
@@ -161,8 +161,8 @@ def test_tangents_agree_with_finite_differences(case, lubricated, dry):
 def test_physics_switches_remove_the_film():
     """[physics] ehd_film = false: the film kernel is not called (film diagnostics stay 0);
     with it on, every loaded contact reports a film of order 0.1–1 µm."""
-    from dynamics.bearing import assembly as A
-    from dynamics.lubricant import load_builtin_lubricant
+    from bearingsim.dynamics.bearing import assembly as A
+    from bearingsim.dynamics.lubrication.lubricant import load_builtin_lubricant
 
     films = {}
     for on in (True, False):
@@ -205,10 +205,10 @@ def test_tabulated_film_equals_the_nvm_formula(lubricated, outer):
     (race_forces.film_geometry_columns); it must equal film.film_central_nvm with R_x, R_y
     computed from the contact angle (MODEL.md §6.2–§6.3) -- over the table's whole range of
     contact angles, between and on its nodes, for loads and speeds of the reference bearing."""
-    from dynamics.bearing.params import FP_ALPHA_P, FP_D, FP_DM, FP_E_EFF, FP_ETA0, FP_MIN_FILM, FP_RI, FP_RO, IP_FILM
-    from dynamics.bearing.race_forces import _curvature_radii, _film
-    from dynamics.film import film_central_nvm
-    from dynamics.hertz import table_position
+    from bearingsim.dynamics.bearing.params import FP_ALPHA_P, FP_D, FP_DM, FP_E_EFF, FP_ETA0, FP_MIN_FILM, FP_RI, FP_RO, IP_FILM
+    from bearingsim.dynamics.bearing.race_forces import _curvature_radii, _film
+    from bearingsim.dynamics.lubrication.film import film_central_nvm
+    from bearingsim.dynamics.contact.hertz import table_position
 
     params = lubricated[0]
     fp, table = params.fp, params.hertz_outer if outer else params.hertz_inner
@@ -227,8 +227,8 @@ def test_tabulated_semi_axes_equal_hertz(lubricated, outer):
     """The time loop takes the contact semi-axes as (c k_h^(1/3)) sqrt(delta) from the race
     table (race_forces.semi_axis_columns); Hertz's a = c_a F^(1/3) with F = k_h delta^(3/2)
     and the exact table (hertz.hertz_table_eval) must give the same, between the nodes too."""
-    from dynamics.bearing.race_forces import TAB_SEMI_AXES
-    from dynamics.hertz import hermite, hertz_table_eval, table_position
+    from bearingsim.dynamics.bearing.race_forces import TAB_SEMI_AXES
+    from bearingsim.dynamics.contact.hertz import hermite, hertz_table_eval, table_position
 
     table = lubricated[0].hertz_outer if outer else lubricated[0].hertz_inner
     rng = np.random.default_rng(11)
@@ -243,10 +243,10 @@ def test_tabulated_semi_axes_equal_hertz(lubricated, outer):
 def test_hamrock_dowson_film_option_uses_the_contact_curvatures(lubricated):
     """With the Hamrock–Dowson option the model's film is film_hamrock_dowson's central film
     at R_x, R_y of the contact angle (MODEL.md §6.3), not the tabulated NVM terms."""
-    from dynamics.bearing.params import FILM_HD, FP_ALPHA_P, FP_D, FP_DM, FP_E_EFF, FP_ETA0, FP_MIN_FILM, FP_RI
-    from dynamics.bearing.race_forces import _curvature_radii, _film
-    from dynamics.film import film_hamrock_dowson
-    from dynamics.hertz import table_position
+    from bearingsim.dynamics.bearing.params import FILM_HD, FP_ALPHA_P, FP_D, FP_DM, FP_E_EFF, FP_ETA0, FP_MIN_FILM, FP_RI
+    from bearingsim.dynamics.bearing.race_forces import _curvature_radii, _film
+    from bearingsim.dynamics.lubrication.film import film_hamrock_dowson
+    from bearingsim.dynamics.contact.hertz import table_position
 
     params = lubricated[0]
     fp, table = params.fp, params.hertz_inner

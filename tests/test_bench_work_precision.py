@@ -8,13 +8,13 @@ import math
 import numpy as np
 import pytest
 
-from dynamics.multibody import HHTSettings
-from dynamics.multibody.linear_solvers import BlockArrowMatrix, BlockArrowSolver
-from dynamics.multibody.models import ArrowSprings, Pendulum, RigidBody
-from dynamics.multibody.hinge import HingeStiffness
-from pipeline.bench import wp_metrics as wm
-from pipeline.bench.instrumented import fd_tangent, run_window
-from pipeline.bench.work_precision import markdown_table, method_grid
+from bearingsim.dynamics.multibody import HHTSettings
+from bearingsim.dynamics.multibody.linear_solvers import BlockArrowMatrix, BlockArrowSolver
+from bearingsim.dynamics.multibody.example_problems import ArrowSprings, Pendulum, RigidBody
+from bearingsim.dynamics.multibody.hinge import HingeStiffness
+from bearingsim.pipeline.studies import wp_metrics as wm
+from bearingsim.pipeline.studies.instrumented import fd_tangent, run_window
+from bearingsim.pipeline.studies.work_precision import markdown_table, method_grid
 
 
 def _state(n, rng, scale=1e-3):
@@ -40,7 +40,7 @@ def test_fd_tangent_matches_the_exact_tangent_of_hardening_springs(structure):
 def test_fd_tangent_uses_material_rotation_increments_on_crv_slots():
     """A hinged rigid body (CRV orientation, gyroscopic terms): the FD tangent with
     multiplicative rotation increments matches the model's analytic K_t and C_t
-    (dynamics/multibody/models.py RigidBody; hinge S.19-S.20)."""
+    (dynamics/multibody/example_problems.py RigidBody; hinge S.19-S.20)."""
     rng = np.random.default_rng(5)
     model = RigidBody(2.0, np.diag([0.01, 0.012, 0.02]),
                       hinge=HingeStiffness(1e7 * np.eye(3), np.array([1e4, 1e4]), 1e-5))

@@ -7,14 +7,14 @@ import math
 import numpy as np
 import pytest
 
-from pipeline.results.cage_metrics import (
+from bearingsim.pipeline.results.cage_metrics import (
     burn_zone_histogram,
     burn_zone_sector,
     cage_summary,
     circular_spread,
     whirl_ratio,
 )
-from pipeline.results.timeseries import Series, read_timeseries, write_timeseries
+from bearingsim.pipeline.results.timeseries import Series, read_timeseries, write_timeseries
 
 
 def test_circular_spread_limits():

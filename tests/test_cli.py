@@ -9,7 +9,7 @@ import pytest
 
 from typer.testing import CliRunner
 
-from pipeline.cli import app
+from bearingsim.pipeline.cli import app
 
 runner = CliRunner()
 
@@ -64,7 +64,7 @@ def test_light_commands_do_not_import_heavy_libraries():
 
 def test_a_second_run_into_a_busy_run_directory_is_refused(tmp_path):
     # two processes writing one run directory would swap stage results over each other
-    from pipeline.artefacts import run_directory_lock
+    from bearingsim.pipeline.artefacts import run_directory_lock
 
     with run_directory_lock(tmp_path):
         result = CliRunner().invoke(app, ["quasistatic", "deep-groove-209", "--out", str(tmp_path)])

@@ -6,8 +6,8 @@ import scipy.sparse as sp
 from skfem import Basis, BilinearForm, ElementVector, MeshTet, asm
 from skfem.helpers import ddot, eye, sym_grad, trace
 
-from fe_model.elasticity import ElasticModel, full_from_upper, lame_parameters, scalar_element
-from fe_model.kernels import csr_from_triplets
+from bearingsim.fe_model.elasticity import ElasticModel, full_from_upper, lame_parameters, scalar_element
+from bearingsim.fe_model.kernels import csr_from_triplets
 
 
 def _cube_mesh(n: int = 3) -> MeshTet:

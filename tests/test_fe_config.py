@@ -4,7 +4,7 @@ import dataclasses
 
 import pytest
 
-from fe_model import FEConfig, RingSeat
+from bearingsim.fe_model import FEConfig, RingSeat
 
 ALLOWED_METADATA = {"unit", "gt", "ge", "lt", "le", "choices", "doc"}
 

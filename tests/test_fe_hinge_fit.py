@@ -6,8 +6,8 @@ import math
 import numpy as np
 import pytest
 
-from fe_model import FEConfig, fit_hinge, richardson
-from fe_model.identify import load_cases
+from bearingsim.fe_model import FEConfig, fit_hinge, richardson
+from bearingsim.fe_model.identify import load_cases
 
 
 def _random_hinge(seed: int):

@@ -6,7 +6,7 @@ import meshio
 import numpy as np
 import pytest
 
-from fe_model import FEConfig, RingSeat, identify_hinge, read_hinge
+from bearingsim.fe_model import FEConfig, RingSeat, identify_hinge, read_hinge
 
 
 @pytest.fixture(scope="module")

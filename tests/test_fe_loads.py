@@ -4,9 +4,9 @@ import numpy as np
 import pytest
 from skfem import Basis, FacetBasis, MeshTet
 
-from fe_model.artefacts import von_mises
-from fe_model.elasticity import ElasticModel, scalar_element
-from fe_model.loads import RegionMoments, distributed_load_matrix, rigid_fit_operator
+from bearingsim.fe_model.artefacts import von_mises
+from bearingsim.fe_model.elasticity import ElasticModel, scalar_element
+from bearingsim.fe_model.loads import RegionMoments, distributed_load_matrix, rigid_fit_operator
 
 CENTRE = np.array([0.3, 0.05, -0.02])
 

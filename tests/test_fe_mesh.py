@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 from skfem import Basis, ElementTetP1, FacetBasis, Functional
 
-from fe_model import FEConfig, RingSeat
-from meshes import MeshData, build_housing_mesh, cached_housing_mesh
+from bearingsim.fe_model import FEConfig, RingSeat
+from bearingsim.meshes import MeshData, build_housing_mesh, cached_housing_mesh
 
 SIZE = 0.03  # coarse: these tests are about topology and groups, not accuracy
 

@@ -2,9 +2,9 @@
 
 import numpy as np
 
-from fe_model import FEConfig, RingSeat
-from meshes import build_housing_mesh
-from meshes.housing import SINGULAR_EDGE_FACTOR
+from bearingsim.fe_model import FEConfig, RingSeat
+from bearingsim.meshes import build_housing_mesh
+from bearingsim.meshes.housing import SINGULAR_EDGE_FACTOR
 
 
 def _shortest_edge_near(mesh, radius: float, z: float, reach: float) -> float:

@@ -11,8 +11,8 @@ Elasticity, 3rd ed., §28, eqs. for u = [(1-nu) A r + (1+nu) B/r]/E).
 import numpy as np
 import pytest
 
-from fe_model import richardson
-from fe_model.verification import Cantilever, LameTube
+from bearingsim.fe_model import richardson
+from bearingsim.fe_model.verification import Cantilever, LameTube
 
 
 def test_cantilever_p2_coarse_matches_timoshenko():

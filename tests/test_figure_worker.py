@@ -7,8 +7,8 @@ import json
 import pytest
 from typer.testing import CliRunner
 
-from pipeline.cli import app
-from pipeline.figures import worker as figure_worker
+from bearingsim.pipeline.cli import app
+from bearingsim.pipeline.figures import worker as figure_worker
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 

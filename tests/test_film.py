@@ -5,8 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from dynamics import film
-from dynamics.lubricant import load_builtin_lubricant
+from bearingsim.dynamics.lubrication import film
+from bearingsim.dynamics.lubrication.lubricant import load_builtin_lubricant
 from tests.lubrication_points import E_EFF, curvature_radii, rolling_speed
 
 # Regimes of the Moes diagram (Nijenbanning, Venner & Moes, Wear 176 (1994), Fig. 1 and the

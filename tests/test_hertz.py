@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 from scipy.special import ellipe, ellipk
 
-from dynamics.geometry import BearingGeometry, Material, effective_modulus
-from dynamics.hertz import (DEFAULT_TABLE_NODES, elliptic_km, ellipticity, hertz_exact, hertz_hamrock_brewe,
+from bearingsim.dynamics.geometry import BearingGeometry, Material, effective_modulus
+from bearingsim.dynamics.contact.hertz import (DEFAULT_TABLE_NODES, elliptic_km, ellipticity, hertz_exact, hertz_hamrock_brewe,
                             hertz_table_eval, max_pressure, normal_tangent, race_curvature, race_hertz_table)
 
 STEEL = Material(208e9, 0.3, 7850)

@@ -1,4 +1,4 @@
-"""Cage–race hybrid short journal (MODEL.md §8): dynamics/journal.py, dynamics/journal_dry.py."""
+"""Cage–race hybrid short journal (MODEL.md §8): dynamics/journal/hybrid.py, dynamics/journal/dry.py."""
 
 import math
 
@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 from scipy import integrate
 
-from dynamics.geometry import BearingGeometry, CageGeometry, Material, effective_modulus
-from dynamics.journal import (
+from bearingsim.dynamics.geometry import BearingGeometry, CageGeometry, Material, effective_modulus
+from bearingsim.dynamics.journal.hybrid import (
     J_CLEARANCE,
     J_OUT_CONTACT_AZIMUTH,
     J_OUT_DF_DOMEGA_CAGE,
@@ -31,7 +31,7 @@ from dynamics.journal import (
     ocvirk_torque,
     unpack_journal,
 )
-from dynamics.journal_dry import lundberg_compliance, lundberg_deflection, lundberg_load, palmgren_load
+from bearingsim.dynamics.journal.dry import lundberg_compliance, lundberg_deflection, lundberg_load, palmgren_load
 
 STEEL = Material(208e9, 0.3, 7850.0)  # MODEL.md §2 scene values
 BRONZE = Material(110e9, 0.34, 8800.0)
@@ -138,7 +138,7 @@ def test_lundberg_vs_palmgren_bronze_on_steel(l, q_agree, gap_at_1N):
     # fit for loaded contacts). Such loads are interferences under ~100 nm, where the dry
     # force is < 1 % of the cage-land force (next test). As a Newton start (load at equal
     # deflection) Palmgren is within 20 % over 1 N .. 5 kN.
-    from dynamics.journal_dry import PALMGREN_COEFFICIENT, PALMGREN_E_EFF_STEEL
+    from bearingsim.dynamics.journal.dry import PALMGREN_COEFFICIENT, PALMGREN_E_EFF_STEEL
 
     scale = PALMGREN_E_EFF_STEEL / E_BRONZE_STEEL
     palmgren = lambda q: PALMGREN_COEFFICIENT * (q * scale) ** 0.9 / (l * 1e3) ** 0.8 * 1e-3  # m
@@ -171,7 +171,7 @@ def test_dry_loads_below_palmgrens_range_are_negligible_in_the_blend():
 def test_palmgren_formula_in_its_own_units():
     # Q = 1000 N, l = 10 mm, steel: delta = 3.84e-5 * 1000^0.9 / 10^0.8 mm = 3.050e-3 mm
     # (hand evaluation of Palmgren's formula as quoted in MODEL.md §8).
-    from dynamics.journal_dry import PALMGREN_E_EFF_STEEL
+    from bearingsim.dynamics.journal.dry import PALMGREN_E_EFF_STEEL
 
     q = palmgren_load(3.84e-5 * 1000**0.9 / 10**0.8 * 1e-3, 10e-3, PALMGREN_E_EFF_STEEL)
     assert q == pytest.approx(1000.0, rel=1e-12)

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from dynamics.multibody import crv
+from bearingsim.dynamics.multibody import crv
 
 RNG = np.random.default_rng(20240601)
 

@@ -5,11 +5,11 @@ import numpy as np
 import pytest
 from scipy.special import ellipj, ellipk
 
-from dynamics.multibody import (BlockArrowSolver, DenseSolver, FixedIntervalSampler,
+from bearingsim.dynamics.multibody import (BlockArrowSolver, DenseSolver, FixedIntervalSampler,
                                 HHTSettings, IntegrationError, JacobianReuse, SolverStats,
                                 integrate)
-from dynamics.multibody.hht import HHTState, HHTStepper
-from dynamics.multibody.models import ArrowSprings, ElasticPendulum, Pendulum
+from bearingsim.dynamics.multibody.hht import HHTState, HHTStepper
+from bearingsim.dynamics.multibody.example_problems import ArrowSprings, ElasticPendulum, Pendulum
 
 
 def pendulum_exact(theta0, omega0, t):

@@ -5,8 +5,8 @@ strain rates agree with the kernel's form."""
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from dynamics.multibody.crv import skew
-from dynamics.multibody.hinge import (HingeStiffness, hinge_energy, hinge_forces,
+from bearingsim.dynamics.multibody.crv import skew
+from bearingsim.dynamics.multibody.hinge import (HingeStiffness, hinge_energy, hinge_forces,
                                       hinge_strains)
 
 RNG = np.random.default_rng(11)

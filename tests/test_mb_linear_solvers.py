@@ -4,7 +4,7 @@ solver against a dense solve (numpy.linalg.solve, LAPACK gesv, as the independen
 import numpy as np
 import pytest
 
-from dynamics.multibody.linear_solvers import (BlockArrowMatrix, BlockArrowSolver,
+from bearingsim.dynamics.multibody.linear_solvers import (BlockArrowMatrix, BlockArrowSolver,
                                                DenseSolver, lu_factor_inplace)
 
 RNG = np.random.default_rng(7)

@@ -10,11 +10,11 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
-from dynamics.multibody import HHTSettings, HingeStiffness, integrate
-from dynamics.multibody.crv import (crv_from_rotation_vector, crv_H_inv, crv_rescale,
+from bearingsim.dynamics.multibody import HHTSettings, HingeStiffness, integrate
+from bearingsim.dynamics.multibody.crv import (crv_from_rotation_vector, crv_H_inv, crv_rescale,
                                     crv_to_matrix)
-from dynamics.multibody.models import RigidBody
-from dynamics.multibody.rigid_body import (gyroscopic_moment,
+from bearingsim.dynamics.multibody.example_problems import RigidBody
+from bearingsim.dynamics.multibody.rigid_body import (gyroscopic_moment,
                                            material_moment_of_spatial_force,
                                            material_moment_of_spatial_moment)
 

@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from dynamics.multibody.small import mm, mtv, mv
+from bearingsim.dynamics.multibody.small import mm, mtv, mv
 
 
 def test_small_products_equal_numpy_for_any_layout():

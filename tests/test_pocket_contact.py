@@ -1,4 +1,4 @@
-"""Ball–pocket contact (MODEL.md §7): dynamics/pocket_contact.py."""
+"""Ball–pocket contact (MODEL.md §7): dynamics/contact/pocket.py."""
 
 import math
 
@@ -7,8 +7,8 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
-from dynamics.geometry import BearingGeometry, CageGeometry, Material, effective_modulus
-from dynamics.pocket_contact import (
+from bearingsim.dynamics.geometry import BearingGeometry, CageGeometry, Material, effective_modulus
+from bearingsim.dynamics.contact.pocket import (
     P_K_H,
     P_OUT_APPROACH,
     P_OUT_DELTA,

@@ -8,11 +8,11 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from dynamics.geometry import BearingGeometry, Material, effective_modulus
-from dynamics.hertz import hertz_exact, race_curvature
-from dynamics.quasistatic import QuasiStaticError, solve_quasistatic
-from dynamics.quasistatic_result import initial_state
-from dynamics.race_contact import ball_race_contact
+from bearingsim.dynamics.geometry import BearingGeometry, Material, effective_modulus
+from bearingsim.dynamics.contact.hertz import hertz_exact, race_curvature
+from bearingsim.dynamics.quasistatic.solver import QuasiStaticError, solve_quasistatic
+from bearingsim.dynamics.quasistatic.result import initial_state
+from bearingsim.dynamics.contact.race import ball_race_contact
 
 STEEL = Material(208e9, 0.3, 7850)
 HELI = BearingGeometry(0.01905, 22, 0.1584, 0.1573, 0.009753, 0.009906,

@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from dynamics.race_contact import (CONTACT_OUT_SIZE, ball_race_contact, ball_race_contact_kernel,
+from bearingsim.dynamics.contact.race import (CONTACT_OUT_SIZE, ball_race_contact, ball_race_contact_kernel,
                                    ball_race_contact_reference)
 
 D = 0.01905

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from pipeline.render.burn_zone_data import (
+from bearingsim.pipeline.render.burn_zone_data import (
     BurnZoneMap,
     OuterRaceProfile,
     _band_cdf,
@@ -16,7 +16,7 @@ from pipeline.render.burn_zone_data import (
     outer_semi_major_axis,
     sector_energy,
 )
-from pipeline.scene import load_scene
+from bearingsim.pipeline.scene import load_scene
 
 SCENE = load_scene("helicopter-b-given-hinge")
 
@@ -104,8 +104,8 @@ def test_point_track_and_unloaded_balls(profile):
 
 def test_semi_axis_table_matches_direct_hertz_solution():
     """Two methods: interpolated α-table of exact constants vs the direct exact solve."""
-    from dynamics.geometry import effective_modulus
-    from dynamics.hertz import hertz_exact, race_curvature
+    from bearingsim.dynamics.geometry import effective_modulus
+    from bearingsim.dynamics.contact.hertz import hertz_exact, race_curvature
 
     b, m = SCENE.bearing, SCENE.materials
     alpha = np.radians([12.0, 25.43, 31.7, 40.0])
@@ -134,7 +134,7 @@ def _map(profile, peak_deg: float, side_deg: int | None = None) -> BurnZoneMap:
 
 
 def test_camera_faces_the_loaded_half_of_the_groove(profile):
-    from pipeline.render.burn_zone import camera_side
+    from bearingsim.pipeline.render.burn_zone import camera_side
 
     upper, lower = _map(profile, 30.0), _map(profile, 30.0)
     lower.track_density[:] = upper.track_density[:, ::-1]  # mirror the tracks to z < 0
@@ -148,7 +148,7 @@ def _png(path):
 
 
 def test_unrolled_map_differs_where_the_data_differ(profile, tmp_path):
-    from pipeline.render.burn_zone import render_burn_zone_map
+    from bearingsim.pipeline.render.burn_zone import render_burn_zone_map
 
     box = render_burn_zone_map(_map(profile, 30.0, 90), tmp_path / "a.png", "a")["box_px"]
     render_burn_zone_map(_map(profile, 200.0, 250), tmp_path / "b.png", "a")
@@ -175,7 +175,7 @@ def test_unrolled_map_differs_where_the_data_differ(profile, tmp_path):
 
 
 def test_3d_render_is_not_blank_and_changes_with_the_data(profile, tmp_path):
-    from pipeline.render.burn_zone import render_burn_zone_3d
+    from bearingsim.pipeline.render.burn_zone import render_burn_zone_3d
 
     render_burn_zone_3d(_map(profile, 30.0), tmp_path / "a.png", "a")
     render_burn_zone_3d(_map(profile, 30.0), tmp_path / "a2.png", "a")

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from pipeline.render.fe_deflection import FECase, find_cases, nice_scale, render_case, warp_scale
+from bearingsim.pipeline.render.fe_deflection import FECase, find_cases, nice_scale, render_case, warp_scale
 
 LENGTH, SIDE = 0.1, 0.02  # m
 

@@ -11,17 +11,17 @@ import pytest
 import tomli_w
 from typer.testing import CliRunner
 
-from pipeline.artefacts import atomic_write_json, read_manifest
-from pipeline.cli import app
-from pipeline.results.cage_metrics import burn_zone_histogram, burn_zone_sector, time_weights
-from pipeline.results.timeseries import Series, write_timeseries
-from pipeline.runner import run_stages, stage_key
-from pipeline.scene import load_scene
-from pipeline.stages import STAGES
-from pipeline.stages.identify import STAGE as IDENTIFY
-from pipeline.stages.quasistatic import STAGE as QUASISTATIC
-from pipeline.stages.report import STAGE as REPORT
-from pipeline.stages.simulate import STAGE as SIMULATE
+from bearingsim.pipeline.artefacts import atomic_write_json, read_manifest
+from bearingsim.pipeline.cli import app
+from bearingsim.pipeline.results.cage_metrics import burn_zone_histogram, burn_zone_sector, time_weights
+from bearingsim.pipeline.results.timeseries import Series, write_timeseries
+from bearingsim.pipeline.runner import run_stages, stage_key
+from bearingsim.pipeline.scene import load_scene
+from bearingsim.pipeline.stages import STAGES
+from bearingsim.pipeline.stages.identify import STAGE as IDENTIFY
+from bearingsim.pipeline.stages.quasistatic import STAGE as QUASISTATIC
+from bearingsim.pipeline.stages.report import STAGE as REPORT
+from bearingsim.pipeline.stages.simulate import STAGE as SIMULATE
 
 from .test_render_fe import write_tiny_case
 
@@ -88,17 +88,17 @@ def run_dir(tmp_path_factory):
 
 def _no_solving(monkeypatch):
     """Every solver entry point of the other stages fails the test if called."""
-    import dynamics.bearing
-    import dynamics.quasistatic
-    import fe_model
+    import bearingsim.dynamics.bearing
+    import bearingsim.dynamics.quasistatic.solver
+    import bearingsim.fe_model
 
     def boom(*args, **kwargs):
         raise AssertionError("rendering must not solve anything")
 
-    monkeypatch.setattr(dynamics.bearing, "simulate_bearing", boom)
-    monkeypatch.setattr(dynamics.quasistatic, "solve_quasistatic", boom)
-    monkeypatch.setattr(fe_model, "identify_hinge", boom)
-    monkeypatch.setattr("pipeline.runner.run_stages", boom)  # render never runs the pipeline
+    monkeypatch.setattr(bearingsim.dynamics.bearing, "simulate_bearing", boom)
+    monkeypatch.setattr(bearingsim.dynamics.quasistatic.solver, "solve_quasistatic", boom)
+    monkeypatch.setattr(bearingsim.fe_model, "identify_hinge", boom)
+    monkeypatch.setattr("bearingsim.pipeline.runner.run_stages", boom)  # render never runs the pipeline
 
 
 def test_render_command_regenerates_the_report_without_solving(run_dir, monkeypatch):

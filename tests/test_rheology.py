@@ -5,8 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from dynamics import rheology
-from dynamics.lubricant import Lubricant, builtin_lubricant_names, load_builtin_lubricant, lubricant_from_dict
+from bearingsim.dynamics.lubrication import rheology
+from bearingsim.dynamics.lubrication.lubricant import Lubricant, builtin_lubricant_names, load_builtin_lubricant, lubricant_from_dict
 
 
 @pytest.fixture(scope="module")

@@ -7,15 +7,15 @@ import math
 
 import pytest
 
-from dynamics.geometry import BearingGeometry
-from pipeline.scene import (
+from bearingsim.dynamics.geometry import BearingGeometry
+from bearingsim.pipeline.scene import (
     apply_overrides,
     builtin_scene_names,
     load_scene,
     read_scene_table,
     resolve,
 )
-from pipeline.schema import SceneError
+from bearingsim.pipeline.schema import SceneError
 
 
 @pytest.fixture(scope="module")

@@ -6,9 +6,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from pipeline.bench import stability as st
-from pipeline.scene import builtin_scene_names, load_scene
-from pipeline.schema import SceneError
+from bearingsim.pipeline.studies import stability as st
+from bearingsim.pipeline.scene import builtin_scene_names, load_scene
+from bearingsim.pipeline.schema import SceneError
 
 CASES = ("high-moment", "high-speed", "zero-clearance", "preload", "stiff-hinge", "soft-hinge",
          "dry-contact", "tiny-guide-clearance", "light-cage", "load-step", "far-from-equilibrium")
@@ -40,7 +40,7 @@ def test_a_load_step_needs_both_keys():
 
 @pytest.fixture(scope="module")
 def load_step_model():
-    from pipeline.stages.simulate import build_model
+    from bearingsim.pipeline.stages.simulate import build_model
 
     params, start = build_model(load_scene(st.case_path("load-step")), None)
     return params, start
@@ -49,9 +49,9 @@ def load_step_model():
 def test_load_step_changes_the_inner_race_moment_at_step_time(load_step_model):
     """Before t_step the moment is 100 N m, after it 430 N m about +y (spatial); the kernel
     returns material moments on the inner race, R^T M (S.4b frames)."""
-    from dynamics.bearing import BearingModel, layout
-    from dynamics.bearing.run import initial_coordinates
-    from dynamics.multibody.crv import crv_to_matrix
+    from bearingsim.dynamics.bearing import BearingModel, layout
+    from bearingsim.dynamics.bearing.run import initial_coordinates
+    from bearingsim.dynamics.multibody.crv import crv_to_matrix
 
     params, start = load_step_model
     model = BearingModel(params)
@@ -70,8 +70,8 @@ def test_load_step_changes_the_inner_race_moment_at_step_time(load_step_model):
 
 
 def test_far_from_equilibrium_start(load_step_model):
-    from dynamics.bearing import layout
-    from dynamics.bearing.run import initial_coordinates
+    from bearingsim.dynamics.bearing import layout
+    from bearingsim.dynamics.bearing.run import initial_coordinates
 
     params, start = load_step_model
     q_eq, v_eq = initial_coordinates(params, start)
@@ -94,7 +94,7 @@ def test_short_case_passes_and_a_zero_budget_is_a_clear_refusal():
 def test_cli_rejects_an_unknown_case():
     from typer.testing import CliRunner
 
-    from pipeline.cli import app
+    from bearingsim.pipeline.cli import app
 
     result = CliRunner().invoke(app, ["stability", "no-such-case"])
     assert result.exit_code == 2 and "high-moment" in result.output

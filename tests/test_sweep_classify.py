@@ -7,7 +7,7 @@ import math
 
 import pytest
 
-from pipeline.sweep.classify import CageClassThresholds, classify_cage
+from bearingsim.pipeline.sweep.classify import CageClassThresholds, classify_cage
 
 
 def summary(metal=0.0, spread=None, whirl=0.0, variation=0.003, speed=143.7, duration=0.1):

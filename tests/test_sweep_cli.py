@@ -7,7 +7,7 @@ from importlib import resources
 
 from typer.testing import CliRunner
 
-from pipeline.cli import app
+from bearingsim.pipeline.cli import app
 
 runner = CliRunner()
 
@@ -25,7 +25,7 @@ crushed_spread = 0.4
 
 
 def scene_with_sweep(tmp_path):
-    text = (resources.files("pipeline") / "scenes" / "helicopter-b-given-hinge.toml").read_text(encoding="utf-8")
+    text = (resources.files("bearingsim.pipeline") / "scenes" / "helicopter-b-given-hinge.toml").read_text(encoding="utf-8")
     path = tmp_path / "with-sweep.toml"
     path.write_text(text + SWEEP_TABLE, encoding="utf-8")
     return path

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import pytest
 
-from pipeline.sweep.classify import CageClassThresholds
-from pipeline.sweep.points import SweepPoint
-from pipeline.sweep.stability_map import axis_label, map_axes, plot_stability_map
-from pipeline.sweep.table import read_table, result_row, write_table
+from bearingsim.pipeline.sweep.classify import CageClassThresholds
+from bearingsim.pipeline.sweep.points import SweepPoint
+from bearingsim.pipeline.sweep.stability_map import axis_label, map_axes, plot_stability_map
+from bearingsim.pipeline.sweep.table import read_table, result_row, write_table
 
 
 def test_map_axes_prefer_moment_and_speed():

@@ -11,12 +11,12 @@ import math
 
 import pytest
 
-from pipeline.artefacts import atomic_write_json
-from pipeline.runner import Stage
-from pipeline.sweep.classify import CAGE_CLASSES
-from pipeline.sweep.driver import gather, plan_sweep, run_sweep
-from pipeline.sweep.point_runner import RECORD_FILE, run_point
-from pipeline.sweep.table import read_table
+from bearingsim.pipeline.artefacts import atomic_write_json
+from bearingsim.pipeline.runner import Stage
+from bearingsim.pipeline.sweep.classify import CAGE_CLASSES
+from bearingsim.pipeline.sweep.driver import gather, plan_sweep, run_sweep
+from bearingsim.pipeline.sweep.point_runner import RECORD_FILE, run_point
+from bearingsim.pipeline.sweep.table import read_table
 
 distributed = pytest.importorskip("distributed")
 

@@ -7,12 +7,12 @@ import copy
 
 import pytest
 
-from pipeline.scene import read_scene_table, resolve
-from pipeline.schema import SceneError
-from pipeline.stages import STAGES
-from pipeline.runner import stage_key
-from pipeline.sweep.points import SweepPoint, expand, point_table
-from pipeline.sweep.spec import build_sweep_section, parse_vary, with_command_line
+from bearingsim.pipeline.scene import read_scene_table, resolve
+from bearingsim.pipeline.schema import SceneError
+from bearingsim.pipeline.stages import STAGES
+from bearingsim.pipeline.runner import stage_key
+from bearingsim.pipeline.sweep.points import SweepPoint, expand, point_table
+from bearingsim.pipeline.sweep.spec import build_sweep_section, parse_vary, with_command_line
 
 
 @pytest.fixture(scope="module")
@@ -112,7 +112,7 @@ def test_bad_point_value_names_key_and_point(base):
 def test_fe_identification_key_is_shared_by_load_and_speed_points(tmp_path):
     """Issue 10: the FE identification is computed once when the sweep does not change its
     inputs — every moment/speed point has the same identify key, a mesh-size point not."""
-    from pipeline.sweep.driver import plan_sweep
+    from bearingsim.pipeline.sweep.driver import plan_sweep
 
     identify = next(s for s in STAGES if s.name == "identify")
     plan = plan_sweep("helicopter-b", [], ["load.moment=0,600", "speed.inner_rpm=2000,6000"], out=tmp_path)

@@ -5,8 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from dynamics import traction
-from dynamics.lubricant import load_builtin_lubricant
+from bearingsim.dynamics.traction import quadrature as traction
+from bearingsim.dynamics.lubrication.lubricant import load_builtin_lubricant
 
 REF_GRID = (128, 1024)  # converged reference grid (see test_quadrature_converges_with_grid)
 
@@ -116,4 +116,4 @@ def test_grid_kernel_equals_py_func_on_random_inputs(o156):
         assert np.allclose(fast[3], slow[3], rtol=1e-11, atol=0)
 
 
-# The fast path (dynamics.traction_fast) is tested in tests/test_traction_fast.py.
+# The fast path (dynamics.traction.fast) is tested in tests/test_traction_fast.py.

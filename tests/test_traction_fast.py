@@ -17,9 +17,11 @@ import math
 import numpy as np
 import pytest
 
-from dynamics import film, traction, traction_nodes
-from dynamics.lubricant import load_builtin_lubricant
-from dynamics.traction_fast import (
+from bearingsim.dynamics.lubrication import film
+from bearingsim.dynamics.traction import nodes as traction_nodes
+from bearingsim.dynamics.traction import quadrature as traction
+from bearingsim.dynamics.lubrication.lubricant import load_builtin_lubricant
+from bearingsim.dynamics.traction.fast import (
     FLAG_NO_CONTACT, FLAG_OK, FLAG_PRESSURE_CLAMPED, FLAG_SLIP_CLAMPED, FLAG_UNVALIDATED, FastTraction, _accumulate,
     _accumulate_force, _eyring_argument, _slip_and_table_index, _viscosity_lookup, log_ge1, traction_fast,
 )

@@ -12,14 +12,14 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from dynamics._kernel_options import NO_REFCOUNT
-from dynamics.journal import N_JOURNAL_OUT
-from dynamics.multibody.crv import crv_to_matrix
-from dynamics.multibody.hinge import hinge_energy, hinge_forces
-from dynamics.multibody.joints import prescribe_velocity_residual
-from dynamics.multibody.small import mtv, mv
-from dynamics.multibody.rigid_body import gyroscopic_moment, material_moment_of_spatial_moment
-from dynamics.pocket_contact import (
+from bearingsim.dynamics._kernel_options import NO_REFCOUNT
+from bearingsim.dynamics.journal.hybrid import N_JOURNAL_OUT
+from bearingsim.dynamics.multibody.crv import crv_to_matrix
+from bearingsim.dynamics.multibody.hinge import hinge_energy, hinge_forces
+from bearingsim.dynamics.multibody.joints import prescribe_velocity_residual
+from bearingsim.dynamics.multibody.small import mtv, mv
+from bearingsim.dynamics.multibody.rigid_body import gyroscopic_moment, material_moment_of_spatial_moment
+from bearingsim.dynamics.contact.pocket import (
     N_POCKET_OUT, P_OUT_APPROACH, P_OUT_DFN_DRATE, P_OUT_FRICTION_POWER, P_OUT_IN_CONTACT,
 )
 

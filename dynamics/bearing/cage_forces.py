@@ -1,19 +1,19 @@
 """Cage contacts of the dynamic model: ball–pocket (§7) and cage–guiding-race hybrid short
-journal (§8), with their tangent contributions. Kernels from dynamics.pocket_contact and
-dynamics.journal; this file only places their results into g, the tangents and diag."""
+journal (§8), with their tangent contributions. Kernels from dynamics.contact.pocket and
+dynamics.journal.hybrid; this file only places their results into g, the tangents and diag."""
 
 from __future__ import annotations
 
 import numba
 import numpy as np
 
-from dynamics._kernel_options import NO_REFCOUNT
-from dynamics.journal import (
+from bearingsim.dynamics._kernel_options import NO_REFCOUNT
+from bearingsim.dynamics.journal.hybrid import (
     J_OUT_CONTACT_AZIMUTH, J_OUT_DF_DOMEGA_CAGE, J_OUT_DF_DPOS, J_OUT_DF_DVEL,
     J_OUT_DT_DOMEGA_CAGE, J_OUT_DT_DPOS, J_OUT_DT_DVEL, J_OUT_EPS, J_OUT_FORCE,
     J_OUT_FRICTION_POWER, J_OUT_METAL_FORCE, J_OUT_TORQUE, cage_race_journal,
 )
-from dynamics.pocket_contact import (
+from bearingsim.dynamics.contact.pocket import (
     P_MU, P_OUT_APPROACH, P_OUT_DFN_DDELTA, P_OUT_DFN_DRATE, P_OUT_FN, P_OUT_FORCE_BALL,
     P_OUT_FORCE_CAGE, P_OUT_FRICTION_POWER, P_OUT_IN_CONTACT, P_OUT_MOMENT_BALL,
     P_OUT_MOMENT_CAGE, P_OUT_NORMAL, P_OUT_ORBITAL_POSITION, P_OUT_POINT, P_OUT_SLIDING_SPEED,

@@ -10,8 +10,8 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from dynamics.multibody.joints import prescribe_velocity_block_arrow
-from dynamics.multibody.linear_solvers import BlockArrowMatrix
+from bearingsim.dynamics.multibody.joints import prescribe_velocity_block_arrow
+from bearingsim.dynamics.multibody.linear_solvers import BlockArrowMatrix
 
 from . import layout
 from .assembly import (

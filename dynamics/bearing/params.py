@@ -8,8 +8,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from dynamics.geometry import BearingGeometry, CageGeometry, Material, effective_modulus
-from dynamics.hertz import race_hertz_table
+from bearingsim.dynamics.geometry import BearingGeometry, CageGeometry, Material, effective_modulus
+from bearingsim.dynamics.contact.hertz import race_hertz_table
 
 from . import layout
 
@@ -63,7 +63,7 @@ class BearingModelParams:
     hertz_inner: np.ndarray  # Hertz, film and semi-axis columns (params._race_table)
     hertz_outer: np.ndarray
     eta_table: np.ndarray
-    traction_rule: np.ndarray   # fast-path quadrature rule (dynamics.traction_nodes)
+    traction_rule: np.ndarray   # fast-path quadrature rule (dynamics.traction.nodes)
     traction_work: np.ndarray   # fast-path scratch (9, n) and (n,) int
     traction_iwork: np.ndarray
     pocket: np.ndarray
@@ -118,7 +118,7 @@ def _race_table(bearing: BearingGeometry, e_eff: float, outer: bool) -> np.ndarr
 
 def _traction_tables(lubricant):
     """(eta table, rule, work, iwork, pressure step) of the Eyring fast path."""
-    from dynamics.traction_fast import FastTraction
+    from bearingsim.dynamics.traction.fast import FastTraction
 
     ft = FastTraction.build(lubricant)
     work, iwork = ft.workspace()
@@ -166,7 +166,7 @@ def build_model_params(
     pocket, journal, psi, clearance = np.zeros(1), np.zeros(1), np.zeros(Z), float("nan")
     if cage is not None:
         pocket, journal, clearance = _cage_params(bearing, cage, ball, race, cage_material, lubricant, options, fp, ip)
-        from dynamics.pocket_contact import pocket_azimuths
+        from bearingsim.dynamics.contact.pocket import pocket_azimuths
 
         psi = pocket_azimuths(Z)
     if hinge is not None:
@@ -191,8 +191,8 @@ def build_model_params(
 
 
 def _cage_params(bearing, cage, ball, race, cage_material, lubricant, options, fp, ip):
-    from dynamics.journal import journal_parameters_for_cage
-    from dynamics.pocket_contact import pocket_parameters_for_cage
+    from bearingsim.dynamics.journal.hybrid import journal_parameters_for_cage
+    from bearingsim.dynamics.contact.pocket import pocket_parameters_for_cage
 
     if cage_material is None:
         raise ValueError("a bearing with a cage needs the cage material (materials.cage)")

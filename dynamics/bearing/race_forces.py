@@ -16,15 +16,15 @@ import math
 import numba
 import numpy as np
 
-from dynamics._kernel_options import NO_REFCOUNT
-from dynamics.film import film_central_nvm_terms, film_hamrock_dowson, nvm_geometry_terms
-from dynamics.hertz import TAB_KH, TABLE_COLUMNS, hermite, table_position
-from dynamics.race_contact import (
+from bearingsim.dynamics._kernel_options import NO_REFCOUNT
+from bearingsim.dynamics.lubrication.film import film_central_nvm_terms, film_hamrock_dowson, nvm_geometry_terms
+from bearingsim.dynamics.contact.hertz import TAB_KH, TABLE_COLUMNS, hermite, table_position
+from bearingsim.dynamics.contact.race import (
     OUT_ALPHA, OUT_DELTA, OUT_EX, OUT_EY, OUT_LEVER, OUT_N, OUT_P, OUT_SLIDE, OUT_SPIN,
     OUT_SRR, OUT_U_SUM, ball_race_contact_kernel,
 )
 
-from .traction_adapter import eyring_traction
+from bearingsim.dynamics.traction.fast import traction_fast
 from .params import (
     FP_ALPHA_P, FP_D, FP_DI, FP_DM, FP_DO, FP_E_EFF, FP_ETA0, FP_MB, FP_MIN_FILM,
     FP_MU_DRY, FP_P_STEP, FP_RI, FP_RO, FP_TAU0, FP_V_REG, FP_ZETA, FILM_HD, FILM_NONE,
@@ -103,7 +103,7 @@ def semi_axis_columns(hertz: np.ndarray) -> np.ndarray:
     """Columns appended after the film columns: a/sqrt(delta) = c_a k_h^(1/3) and
     b/sqrt(delta) = c_b k_h^(1/3) [m^(1/2)] with their slopes (Hertz: a = c_a F^(1/3) and
     F = k_h delta^(3/2)), so that the time loop needs no cube root per contact."""
-    from dynamics.hertz import TAB_CA, TAB_CB, TAB_DCA, TAB_DCB, TAB_DKH
+    from bearingsim.dynamics.contact.hertz import TAB_CA, TAB_CB, TAB_DCA, TAB_DCB, TAB_DKH
 
     k13 = np.cbrt(hertz[:, TAB_KH])
     dk13 = hertz[:, TAB_DKH] * k13 / (3.0 * hertz[:, TAB_KH])
@@ -188,7 +188,7 @@ def race_contact(x_b, v_b, w_b, x_r, R_r, v_r, w_r, is_outer, fp, ip, table,
         h = _film(F_el, cbuf[OUT_ALPHA], is_outer, cbuf[OUT_U_SUM], fp, ip[IP_FILM], table, j, t, step)
     # traction T = tbuf[0:3] and dT/ds = tbuf[3:12] (row-major), on the ball
     if mode == TRACTION_EYRING:
-        res[RC_FLAG] = eyring_traction(a_x, b_y, p_max, h, fp[FP_TAU0], du0, dv0, w_s, eta_table,
+        res[RC_FLAG] = traction_fast(a_x, b_y, p_max, h, fp[FP_TAU0], du0, dv0, w_s, eta_table,
                                        fp[FP_P_STEP], rule, work, iwork, tbuf, want_tangent)
     elif mode == TRACTION_COULOMB:
         _coulomb(F_n, a_x, b_y, du0, dv0, w_s, fp[FP_MU_DRY], fp[FP_V_REG], tbuf)

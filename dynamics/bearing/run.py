@@ -14,10 +14,10 @@ from typing import Callable
 
 import numpy as np
 
-from dynamics.multibody.crv import crv_from_rotation_vector
-from dynamics.multibody.integrate import integrate
-from dynamics.multibody.linear_solvers import BlockArrowSolver
-from dynamics.multibody.settings import HHTSettings
+from bearingsim.dynamics.multibody.crv import crv_from_rotation_vector
+from bearingsim.dynamics.multibody.integrate import integrate
+from bearingsim.dynamics.multibody.linear_solvers import BlockArrowSolver
+from bearingsim.dynamics.multibody.settings import HHTSettings
 
 from . import layout
 from .model import IMPACT_FIELDS, BearingModel
@@ -25,7 +25,7 @@ from .params import FP_OMEGA_I, BearingModelParams
 
 
 def initial_coordinates(params: BearingModelParams, start: dict) -> tuple[np.ndarray, np.ndarray]:
-    """q0, v0 from `dynamics.quasistatic_result.initial_state(...)`: balls at their
+    """q0, v0 from `dynamics.quasistatic.result.initial_state(...)`: balls at their
     equilibrium positions in pure rolling, cage centred at the mean orbital speed, inner
     race displaced and tilted as in equilibrium and spinning at its prescribed speed."""
     Z = params.ball_count

@@ -35,7 +35,7 @@ class FigureWorker:
 
     def __init__(self) -> None:
         self._proc = subprocess.Popen(
-            [sys.executable, "-m", "pipeline.figures.worker"], stdin=subprocess.PIPE,
+            [sys.executable, "-m", "bearingsim.pipeline.figures.worker"], stdin=subprocess.PIPE,
             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
 
     def draw(self, figure: str, data: dict, path: Path, timeout: float = 120.0, **options) -> None:

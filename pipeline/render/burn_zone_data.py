@@ -142,9 +142,9 @@ def outer_contact_points(ball_xyz: np.ndarray, outer_angle: np.ndarray,
 
 def outer_semi_major_axis(bearing, ball, race, outer_angle: np.ndarray, outer_load: np.ndarray) -> np.ndarray:
     """Hertz semi-major axis a = c_a(alpha) Q^{1/3} [m] of the ball–outer contacts, along
-    the groove (§6.2, exact constants tabulated in alpha by `dynamics.hertz`)."""
-    from dynamics.geometry import effective_modulus
-    from dynamics.hertz import TAB_CA, race_hertz_table
+    the groove (§6.2, exact constants tabulated in alpha by `dynamics.contact.hertz`)."""
+    from bearingsim.dynamics.geometry import effective_modulus
+    from bearingsim.dynamics.contact.hertz import TAB_CA, race_hertz_table
 
     table = race_hertz_table(bearing, effective_modulus(ball, race), outer=True)
     nodes = np.linspace(0.0, 0.5 * math.pi, table.shape[0])

@@ -16,7 +16,7 @@ from .timeseries import Series, write_timeseries
 
 def _crv_to_matrix(c: np.ndarray) -> np.ndarray:
     """Rotation matrices (n, 3, 3) of the CRVs c (n, 3): S.4b, by the dynamics' own kernel."""
-    from dynamics.multibody.crv import crv_to_matrix
+    from bearingsim.dynamics.multibody.crv import crv_to_matrix
 
     c = np.ascontiguousarray(c, dtype=float)
     return np.array([crv_to_matrix(ci) for ci in c]).reshape(-1, 3, 3)
@@ -24,8 +24,8 @@ def _crv_to_matrix(c: np.ndarray) -> np.ndarray:
 
 def collect_series(run, params) -> dict[str, Series]:
     """Name, unit and describe every saved variable (see README 'Results')."""
-    from dynamics.bearing import assembly as A
-    from dynamics.bearing import layout
+    from bearingsim.dynamics.bearing import assembly as A
+    from bearingsim.dynamics.bearing import layout
 
     Z = params.ball_count
     o = layout.inner_offset(Z)

@@ -18,7 +18,7 @@ RING_KEYS = ("inner_bore_diameter", "inner_shoulder_diameter", "outer_outside_di
 
 def ring_seat(scene: Scene):
     """The bearing dimensions the FE geometry needs, as fe_model's plain-number type."""
-    from fe_model import RingSeat
+    from bearingsim.fe_model import RingSeat
 
     b = scene.bearing
     missing = [k for k in RING_KEYS if getattr(b, k) is None]
@@ -42,7 +42,7 @@ def identify_inputs(scene: Scene) -> dict:
 
 
 def compute(ctx: StageContext) -> dict:
-    from fe_model import identify_hinge
+    from bearingsim.fe_model import identify_hinge
 
     from ..system_libraries import require_libraries
 

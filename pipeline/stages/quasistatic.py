@@ -26,7 +26,7 @@ def quasistatic_inputs(scene: Scene) -> dict:
 
 def solve(scene: Scene):
     """Solve the quasi-static equilibrium of `scene` (no files)."""
-    from dynamics.quasistatic import solve_quasistatic
+    from bearingsim.dynamics.quasistatic.solver import solve_quasistatic
 
     return solve_quasistatic(
         scene.bearing, scene.materials.ball, scene.materials.race,

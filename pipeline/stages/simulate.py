@@ -34,21 +34,21 @@ def hinge_matrices(scene: Scene, identify_dir) -> tuple | None:
         return None
     if h.source == "given":
         return np.array(h.stiffness_matrix()), np.array(h.bending), h.damping_ratio_time
-    from fe_model import read_hinge
+    from bearingsim.fe_model import read_hinge
 
     H_u, H_psi, _ = read_hinge(identify_dir / HINGE_FILE)
     return np.asarray(H_u, float), np.asarray(H_psi, float), h.damping_ratio_time
 
 
 def model_options(scene: Scene):
-    from dynamics.bearing import ModelOptions
+    from bearingsim.dynamics.bearing import ModelOptions
 
     names = {f.name for f in dataclasses.fields(ModelOptions)}
     return ModelOptions(**{k: v for k, v in dataclasses.asdict(scene.physics).items() if k in names})
 
 
 def hht_settings(scene: Scene):
-    from dynamics.multibody.settings import HHTSettings
+    from bearingsim.dynamics.multibody.settings import HHTSettings
 
     s = scene.solver
     return HHTSettings(alpha=s.alpha, first_step=s.first_step, min_step=s.min_step,
@@ -57,8 +57,8 @@ def hht_settings(scene: Scene):
 
 def build_model(scene: Scene, identify_dir=None):
     """(model parameters, quasi-static start) for `scene` — shared with `bench`."""
-    from dynamics.bearing import build_model_params
-    from dynamics.quasistatic_result import initial_state
+    from bearingsim.dynamics.bearing import build_model_params
+    from bearingsim.dynamics.quasistatic.result import initial_state
 
     from .quasistatic import solve
 
@@ -74,7 +74,7 @@ def build_model(scene: Scene, identify_dir=None):
 
 
 def compute(ctx: StageContext) -> dict:
-    from dynamics.bearing import simulate_bearing
+    from bearingsim.dynamics.bearing import simulate_bearing
 
     from ..results.simulation_output import write_simulation_results
 

@@ -1,0 +1,91 @@
+"""Benchmark: block-arrow Schur solver vs dense LU, and the integrator's per-step overhead.
+
+Run: python -m benchmarks.block_arrow
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+import scipy.linalg as sla
+
+from bearingsim.dynamics.multibody import (BlockArrowMatrix, BlockArrowSolver, DenseSolver, HHTSettings,
+                                integrate)
+from bearingsim.dynamics.multibody.example_problems import ArrowSprings, Pendulum
+from benchmarks import best_time
+
+
+def random_arrow(Z: int, m: int, nb: int, rng) -> BlockArrowMatrix:
+    A = BlockArrowMatrix.zeros(Z, m, nb)
+    A.D[:] = rng.normal(size=A.D.shape) + 4 * np.eye(m)
+    A.E[:] = rng.normal(size=A.E.shape)
+    A.F[:] = rng.normal(size=A.F.shape)
+    A.B[:] = rng.normal(size=A.B.shape) + (4 * np.sqrt(Z) + 2) * np.eye(nb)
+    return A
+
+
+def solver_table(m: int = 6, nb: int = 12) -> None:
+    rng = np.random.default_rng(0)
+    print(f"block-arrow (m = {m}, border nb = {nb}) vs dense; times per factor+solve [us]")
+    print(f"{'Z':>5} {'n':>6} {'block':>10} {'block/Z':>9} {'dense(numba)':>13} "
+          f"{'scipy LU':>10} {'max|x-x_ref|':>13}")
+    for Z in (10, 22, 44, 88, 176):
+        A = random_arrow(Z, m, nb, rng)
+        n = Z * m + nb
+        b = rng.normal(size=n)
+        x = np.empty(n)
+        blk = BlockArrowSolver(Z, m, nb)
+        dense = A.to_dense()
+        dns = DenseSolver()
+
+        def run_block():
+            blk.factor(A)
+            blk.solve(b, x)
+
+        def run_dense():
+            dns.factor(dense)
+            dns.solve(b, x)
+
+        def run_scipy():
+            sla.lu_solve(sla.lu_factor(dense, check_finite=False), b, check_finite=False)
+
+        run_block()
+        run_dense()
+        t_blk, t_dns = best_time(run_block), best_time(run_dense, number=3)
+        t_sp = best_time(run_scipy, number=5)
+        run_block()
+        err = np.abs(x - np.linalg.solve(dense, b)).max()
+        print(f"{Z:5d} {n:6d} {t_blk * 1e6:10.1f} {t_blk * 1e6 / Z:9.2f} {t_dns * 1e6:13.1f} "
+              f"{t_sp * 1e6:10.1f} {err:13.2e}")
+
+
+def overhead_table() -> None:
+    print("\nintegrator cost per accepted step (Python loop + numba kernels) [us]")
+    print(f"{'problem':>28} {'n':>4} {'steps':>7} {'Newton/step':>12} {'us/step':>9} "
+          f"{'us/iter':>8} {'factor/step':>12}")
+    cases = [
+        ("pendulum (dense)", Pendulum(2.0), None, np.array([1.0]), np.zeros(1),
+         HHTSettings(alpha=0.1, first_step=1e-3, min_step=1e-8, max_step=1e-3, rtol=0.0,
+                     atol=1e-7), 20.0),
+        ("arrow Z=22 (block-arrow)", ArrowSprings(22), BlockArrowSolver(22, 3, 3),
+         np.full(69, 1e-4), np.zeros(69),
+         HHTSettings(alpha=0.1, first_step=1e-6, min_step=1e-9, max_step=2e-6, rtol=0.0,
+                     atol=1e-9), 0.02),
+        ("arrow Z=22 (dense)", ArrowSprings(22, "dense"), DenseSolver(), np.full(69, 1e-4),
+         np.zeros(69), HHTSettings(alpha=0.1, first_step=1e-6, min_step=1e-9, max_step=2e-6,
+                                   rtol=0.0, atol=1e-9), 0.02),
+    ]
+    for name, problem, solver, q0, v0, settings, T in cases:
+        integrate(problem, 0.0, T / 100, q0, v0, settings, linear_solver=solver)  # warm up
+        sol = integrate(problem, 0.0, T, q0, v0, settings, linear_solver=solver)
+        st = sol.stats
+        print(f"{name:>28} {problem.n_dof:4d} {st.steps:7d} "
+              f"{st.newton_iterations / st.steps:12.2f} {st.wall_time / st.steps * 1e6:9.1f} "
+              f"{st.wall_time / st.newton_iterations * 1e6:8.1f} "
+              f"{st.factorizations / st.steps:12.3f}")
+
+
+if __name__ == "__main__":
+    solver_table()
+    overhead_table()

@@ -1,0 +1,328 @@
+"""Ball–pocket contact: a sphere in a cylindrical cage pocket (MODEL.md §7).
+
+Each pocket is a cylinder of radius r_p whose axis is radial in the cage frame, through the
+pocket centre on the cage's mean circle at azimuth psi_k. The ball (radius r_b) penetrates
+the wall by
+
+    delta = rho - (r_p - r_b),    rho = distance of the ball centre from the pocket axis,
+
+along n, the unit vector from the axis to the ball centre in the plane normal to the axis.
+The contact point is on the wall, p = foot of the ball centre on the axis + r_p n.
+
+Normal force (Hertz with hysteresis damping, Hunt–Crossley family):
+
+    F_n = k_h delta^(3/2) (1 + c_d delta_dot / v_0),   clamped at >= 0 (no adhesion)
+
+k_h is the Hertz constant of a sphere in a concave cylinder (curvatures 2/D, 2/D against
+-2/d_p, 0), computed once per scene (`pocket_hertz_constant`, exact elliptic integrals).
+c_d comes from the restitution coefficient e: by default Flores et al. (2011),
+c_d = 8(1-e)/(5e), which reproduces e over 0.3–1 better than the Hunt–Crossley
+3(1-e)/2 or Lankarani–Nikravesh 3(1-e^2)/4 factors (both offered).
+v_0 is the impact (approach) speed, which the hysteresis law needs; the kernel takes it
+as an argument. `update_impact_speeds` keeps it: while a pocket is open it stores the
+current approach speed, so when contact starts the speed it hit with is already known.
+v_0 is floored at a reference speed (scene value) so that a slow, persistent contact
+(a ball pushing the cage) is not given unbounded damping; a caller that does not track
+it passes 0 and gets the velocity-independent law with v_0 = the reference speed.
+
+Friction is Coulomb's, regularised: F_f = -mu F_n tanh(|v_s|/v_reg) v_s/|v_s| with v_s
+the sliding velocity of the ball over the cage at p.
+
+Kernels are pure (floats, contiguous float64 arrays, SI units, global frame); results
+come back in one array whose layout is given by the P_OUT_* indices.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from bearingsim.dynamics._kernel_options import NO_REFCOUNT
+
+# --- parameter vector layout -----------------------------------------------------------
+P_BALL_RADIUS = 0  # r_b [m]
+P_POCKET_RADIUS = 1  # r_p [m]
+P_PITCH_RADIUS = 2  # radius of the pocket-centre circle in the cage frame [m]
+P_POCKET_Z = 3  # axial position of the pocket centres in the cage frame [m]
+P_K_H = 4  # Hertz constant k_h [N/m^1.5]
+P_DAMPING = 5  # hysteresis factor c_d [-]
+P_IMPACT_SPEED_REF = 6  # floor / default of the impact speed v_0 [m/s]
+P_MU = 7  # friction coefficient [-]
+P_V_REG = 8  # friction regularisation speed [m/s]
+N_POCKET_PARAMS = 9
+
+# --- output vector layout ----------------------------------------------------------------
+P_OUT_DELTA = 0  # penetration delta [m] (negative: gap)
+P_OUT_APPROACH = 1  # approach velocity d delta/dt [m/s] (+: closing)
+P_OUT_IN_CONTACT = 2  # 1.0 if delta > 0 else 0.0
+P_OUT_FN = 3  # normal force magnitude F_n >= 0 [N]
+P_OUT_NORMAL = 4  # 3: unit normal n, pocket axis -> ball centre
+P_OUT_POINT = 7  # 3: contact point on the pocket wall [m]
+P_OUT_FORCE_BALL = 10  # 3: total force on the ball [N]
+P_OUT_MOMENT_BALL = 13  # 3: moment on the ball about its centre [N m]
+P_OUT_FORCE_CAGE = 16  # 3: force on the cage (= -force on the ball) [N]
+P_OUT_MOMENT_CAGE = 19  # 3: moment on the cage about the cage centre [N m]
+P_OUT_FRICTION = 22  # 3: friction force on the ball [N]
+P_OUT_DFN_DDELTA = 25  # dF_n/d delta [N/m]
+P_OUT_DFN_DRATE = 26  # dF_n/d delta_dot [N s/m]
+P_OUT_SLIDING_SPEED = 27  # |v_s| [m/s]
+P_OUT_FRICTION_POWER = 28  # |F_f| |v_s| [W]
+P_OUT_ORBITAL_POSITION = 29  # azimuth of the ball centre, atan2(y, x) [rad]
+N_POCKET_OUT = 30
+
+DAMPING_MODELS = ("flores", "hunt-crossley", "lankarani-nikravesh")
+
+
+@numba.njit(cache=True)
+def _cross(ax, ay, az, bx, by, bz):
+    return ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx
+
+
+@numba.njit(**NO_REFCOUNT)
+def _column_mix(rot, u, v, w):
+    """rot @ (u, v, w) as three floats."""
+    return (rot[0, 0] * u + rot[0, 1] * v + rot[0, 2] * w,
+            rot[1, 0] * u + rot[1, 1] * v + rot[1, 2] * w,
+            rot[2, 0] * u + rot[2, 1] * v + rot[2, 2] * w)
+
+
+@numba.njit(cache=True)
+def pocket_normal_force(delta, delta_dot, impact_speed, k_h, c_d):
+    """Damped Hertz normal force of MODEL.md §7 and its slopes.
+
+    F_n = k_h delta^1.5 (1 + c_d delta_dot / v_0), clamped at 0; delta [m], delta_dot
+    [m/s] (+ closing), v_0 = impact_speed [m/s] > 0, k_h [N/m^1.5], c_d [-].
+    Returns (F_n [N], dF_n/d delta [N/m], dF_n/d delta_dot [N s/m]); all 0 for delta <= 0.
+    """
+    if delta <= 0.0:
+        return 0.0, 0.0, 0.0
+    root = math.sqrt(delta)
+    elastic = k_h * delta * root
+    damping = 1.0 + c_d * delta_dot / impact_speed
+    f_n = elastic * damping
+    if f_n <= 0.0:  # fast separation: the law would pull, a contact cannot
+        return 0.0, 0.0, 0.0
+    return f_n, 1.5 * k_h * root * damping, elastic * c_d / impact_speed
+
+
+@numba.njit(cache=True)
+def pocket_contact(x_ball, v_ball, w_ball, x_cage, rot_cage, v_cage, w_cage, psi, impact_speed, params):
+    """Ball–pocket contact of one ball in pocket psi (MODEL.md §7).
+
+    x_ball, v_ball, w_ball (3,): ball centre [m], velocity [m/s], angular velocity [rad/s];
+    x_cage (3,), rot_cage (3, 3) (cage-to-global rotation), v_cage (3,), w_cage (3,): the
+    cage; psi [rad]: pocket azimuth in the cage frame; impact_speed [m/s]: v_0 of the
+    hysteresis law (0 if not tracked; floored at params[P_IMPACT_SPEED_REF]);
+    params (N_POCKET_PARAMS,). All vectors in the global frame.
+    Returns out (N_POCKET_OUT,), layout P_OUT_*.
+    """
+    out = np.zeros(N_POCKET_OUT)
+    _pocket_contact_into(out, x_ball, v_ball, w_ball, x_cage, rot_cage, v_cage, w_cage, psi, impact_speed, params)
+    return out
+
+
+@numba.njit(**NO_REFCOUNT)
+def _pocket_contact_into(out, x_ball, v_ball, w_ball, x_cage, rot_cage, v_cage, w_cage, psi, impact_speed, params):
+    """`pocket_contact` writing into a zeroed row `out`; scalar arithmetic, no temporaries."""
+    r_b, r_p = params[P_BALL_RADIUS], params[P_POCKET_RADIUS]
+    c, s = math.cos(psi), math.sin(psi)
+    lx, ly, lz = params[P_PITCH_RADIUS] * c, params[P_PITCH_RADIUS] * s, params[P_POCKET_Z]
+    ax, ay, az = _column_mix(rot_cage, c, s, 0.0)  # pocket axis, global
+    ox, oy, oz = _column_mix(rot_cage, lx, ly, lz)  # pocket centre - cage centre, global
+    dx, dy, dz = x_ball[0] - x_cage[0] - ox, x_ball[1] - x_cage[1] - oy, x_ball[2] - x_cage[2] - oz
+    along = dx * ax + dy * ay + dz * az
+    px, py, pz = dx - along * ax, dy - along * ay, dz - along * az
+    rho = math.sqrt(px * px + py * py + pz * pz)
+    if rho > 1e-12 * r_p:
+        nx, ny, nz = px / rho, py / rho, pz / rho
+    else:  # on the axis any direction normal to it will do; the cage axis is one
+        nx, ny, nz = rot_cage[0, 2], rot_cage[1, 2], rot_cage[2, 2]
+    delta = rho - (r_p - r_b)
+    # contact point on the wall, relative to the ball centre and to the cage centre
+    gap = r_p - rho
+    bx, by, bz = gap * nx, gap * ny, gap * nz
+    cx, cy, cz = x_ball[0] - x_cage[0] + bx, x_ball[1] - x_cage[1] + by, x_ball[2] - x_cage[2] + bz
+    wbx, wby, wbz = _cross(w_ball[0], w_ball[1], w_ball[2], bx, by, bz)
+    wcx, wcy, wcz = _cross(w_cage[0], w_cage[1], w_cage[2], cx, cy, cz)
+    vx = v_ball[0] + wbx - v_cage[0] - wcx
+    vy = v_ball[1] + wby - v_cage[1] - wcy
+    vz = v_ball[2] + wbz - v_cage[2] - wcz
+    delta_dot = vx * nx + vy * ny + vz * nz
+    sx, sy, sz = vx - delta_dot * nx, vy - delta_dot * ny, vz - delta_dot * nz
+    speed = math.sqrt(sx * sx + sy * sy + sz * sz)
+    out[P_OUT_DELTA], out[P_OUT_APPROACH], out[P_OUT_SLIDING_SPEED] = delta, delta_dot, speed
+    out[P_OUT_NORMAL], out[P_OUT_NORMAL + 1], out[P_OUT_NORMAL + 2] = nx, ny, nz
+    out[P_OUT_POINT] = x_cage[0] + cx
+    out[P_OUT_POINT + 1] = x_cage[1] + cy
+    out[P_OUT_POINT + 2] = x_cage[2] + cz
+    out[P_OUT_ORBITAL_POSITION] = math.atan2(x_ball[1], x_ball[0])
+    if delta <= 0.0:
+        return
+    out[P_OUT_IN_CONTACT] = 1.0
+    v_0 = max(impact_speed, params[P_IMPACT_SPEED_REF])
+    f_n, dfn_dd, dfn_drate = pocket_normal_force(delta, delta_dot, v_0, params[P_K_H], params[P_DAMPING])
+    ratio = 0.0  # friction = -ratio * v_s
+    if speed > 0.0:
+        f_t = params[P_MU] * f_n * math.tanh(speed / params[P_V_REG])
+        ratio = f_t / speed
+        out[P_OUT_FRICTION_POWER] = f_t * speed
+    fx, fy, fz = -ratio * sx - f_n * nx, -ratio * sy - f_n * ny, -ratio * sz - f_n * nz
+    mbx, mby, mbz = _cross(bx, by, bz, fx, fy, fz)
+    mcx, mcy, mcz = _cross(cx, cy, cz, -fx, -fy, -fz)
+    out[P_OUT_FN], out[P_OUT_DFN_DDELTA], out[P_OUT_DFN_DRATE] = f_n, dfn_dd, dfn_drate
+    out[P_OUT_FORCE_BALL], out[P_OUT_FORCE_BALL + 1], out[P_OUT_FORCE_BALL + 2] = fx, fy, fz
+    out[P_OUT_MOMENT_BALL], out[P_OUT_MOMENT_BALL + 1], out[P_OUT_MOMENT_BALL + 2] = mbx, mby, mbz
+    out[P_OUT_FORCE_CAGE], out[P_OUT_FORCE_CAGE + 1], out[P_OUT_FORCE_CAGE + 2] = -fx, -fy, -fz
+    out[P_OUT_MOMENT_CAGE], out[P_OUT_MOMENT_CAGE + 1], out[P_OUT_MOMENT_CAGE + 2] = mcx, mcy, mcz
+    out[P_OUT_FRICTION], out[P_OUT_FRICTION + 1], out[P_OUT_FRICTION + 2] = -ratio * sx, -ratio * sy, -ratio * sz
+
+
+@numba.njit(cache=True)
+def pocket_contacts(x_balls, v_balls, w_balls, x_cage, rot_cage, v_cage, w_cage, psi, impact_speeds, params):
+    """`pocket_contact` for all Z balls: ball k in pocket psi[k] (MODEL.md §7).
+
+    x_balls, v_balls, w_balls (Z, 3); psi, impact_speeds (Z,); the rest as in
+    `pocket_contact`. Returns out (Z, N_POCKET_OUT); the cage's resultant is the column
+    sum of P_OUT_FORCE_CAGE and P_OUT_MOMENT_CAGE.
+    """
+    z = x_balls.shape[0]
+    out = np.zeros((z, N_POCKET_OUT))
+    for k in range(z):
+        _pocket_contact_into(out[k], x_balls[k], v_balls[k], w_balls[k], x_cage, rot_cage, v_cage,
+                             w_cage, psi[k], impact_speeds[k], params)
+    return out
+
+
+@numba.njit(cache=True)
+def update_impact_speeds(out, stored):
+    """Impact speeds v_0 (Z,) [m/s] to use from the next step on.
+
+    While pocket k is open its approach speed max(d delta/dt, 0) is stored, so at the
+    step contact starts the speed it hit with is known; during contact it is held.
+    Call once per *accepted* step with that step's `pocket_contacts` result.
+    """
+    new = np.empty_like(stored)
+    for k in range(out.shape[0]):
+        if out[k, P_OUT_IN_CONTACT] > 0.0:
+            new[k] = stored[k]
+        else:
+            new[k] = max(out[k, P_OUT_APPROACH], 0.0)
+    return new
+
+
+# --- scene-level set-up (Python side, once per scene) ------------------------------------
+def check_pocket_clearance(ball_diameter: float, pocket_diameter: float) -> float:
+    """Diametral pocket clearance d_p - D [m]; a pocket that cannot hold the ball is an error."""
+    if not ball_diameter > 0.0:
+        raise ValueError(f"bearing.ball_diameter = {ball_diameter!r} m must be > 0")
+    if not pocket_diameter > ball_diameter:
+        raise ValueError(
+            f"cage.pocket_diameter = {pocket_diameter!r} m must exceed bearing.ball_diameter = "
+            f"{ball_diameter!r} m: a cylindrical pocket needs a clearance (typically 1–6 % of D; "
+            f"the reference cage has d_p = 0.02023 m for D = 0.01905 m)"
+        )
+    return pocket_diameter - ball_diameter
+
+
+def hertz_point_contact(curvature_sum: float, curvature_difference: float, effective_modulus: float):
+    """Exact Hertz point-contact constant (MODEL.md §6.2, also used by §7).
+
+    curvature_sum = sum of the four principal curvatures [1/m] (convex +, concave -),
+    curvature_difference F(rho) in [0, 1) [-], effective_modulus E' [Pa] =
+    2 / ((1-nu_a^2)/E_a + (1-nu_b^2)/E_b). Solves F(rho) = ((k^2+1)E(m) - 2K(m)) /
+    ((k^2-1)E(m)), m = 1 - 1/k^2, for the ellipticity k = a/b, then
+    delta* = (2K/pi)(pi/(2 k^2 E))^(1/3), k_h = (2 sqrt2 / 3) E' sum^(-1/2) delta*^(-3/2).
+    Returns (kappa [-], k_h [N/m^1.5]), with F_n = k_h delta^1.5.
+    """
+    from scipy.optimize import brentq
+    from scipy.special import ellipe, ellipk
+
+    if not curvature_sum > 0.0:
+        raise ValueError(f"Hertz contact: curvature sum {curvature_sum!r} 1/m must be > 0 (bodies must touch convexly)")
+    if not 0.0 <= curvature_difference < 1.0:
+        raise ValueError(f"Hertz contact: curvature difference F(rho) = {curvature_difference!r} must be in [0, 1)")
+    kappa = 1.0
+    if curvature_difference > 1e-14:
+        def mismatch(k):
+            m = 1.0 - 1.0 / (k * k)
+            return ((k * k + 1.0) * ellipe(m) - 2.0 * ellipk(m)) / ((k * k - 1.0) * ellipe(m)) - curvature_difference
+
+        kappa = brentq(mismatch, 1.0 + 1e-9, 1e4, xtol=1e-14, rtol=1e-15)
+    m = 1.0 - 1.0 / kappa**2
+    big_k, big_e = float(ellipk(m)), float(ellipe(m))
+    delta_star = (2.0 * big_k / math.pi) * (math.pi / (2.0 * kappa**2 * big_e)) ** (1.0 / 3.0)
+    k_h = (2.0 * math.sqrt(2.0) / 3.0) * effective_modulus * curvature_sum**-0.5 * delta_star**-1.5
+    return kappa, k_h
+
+
+def pocket_hertz_constant(ball_diameter: float, pocket_diameter: float, effective_modulus: float):
+    """(kappa, k_h) of a ball of diameter D in a cylindrical pocket of diameter d_p (§7).
+
+    Curvatures: ball 2/D, 2/D; pocket -2/d_p round the cylinder, 0 along its axis.
+    """
+    check_pocket_clearance(ball_diameter, pocket_diameter)
+    curvature_sum = 4.0 / ball_diameter - 2.0 / pocket_diameter
+    return hertz_point_contact(curvature_sum, (2.0 / pocket_diameter) / curvature_sum, effective_modulus)
+
+
+def hysteresis_factor(restitution: float, model: str = "flores") -> float:
+    """c_d in F_n = k delta^1.5 (1 + c_d delta_dot / v_0) from the restitution e.
+
+    flores: 8(1-e)/(5e) (Flores, Machado, Silva & Martins, Multibody Syst. Dyn. 25 (2011)
+    357–375); hunt-crossley: 3(1-e)/2 (Hunt & Crossley, J. Appl. Mech. 42 (1975) 440);
+    lankarani-nikravesh: 3(1-e^2)/4 (J. Mech. Des. 112 (1990) 369).
+    """
+    if not 0.0 < restitution <= 1.0:
+        raise ValueError(f"pocket contact: restitution = {restitution!r} must be in (0, 1]")
+    if model == "flores":
+        return 8.0 * (1.0 - restitution) / (5.0 * restitution)
+    if model == "hunt-crossley":
+        return 1.5 * (1.0 - restitution)
+    if model == "lankarani-nikravesh":
+        return 0.75 * (1.0 - restitution**2)
+    raise ValueError(f"pocket contact: damping model {model!r}; allowed: {', '.join(DAMPING_MODELS)}")
+
+
+def pocket_parameters(*, ball_diameter: float, pocket_diameter: float, pitch_radius: float,
+                      effective_modulus: float, restitution: float, friction_coefficient: float,
+                      reference_impact_speed: float = 0.1, regularisation_speed: float = 1e-3,
+                      damping_model: str = "flores", pocket_axial_offset: float = 0.0) -> np.ndarray:
+    """Pack and check the pocket parameters (SI) for `pocket_contact` / `pocket_contacts`.
+
+    pitch_radius [m]: radius of the pocket-centre circle (cage mean radius);
+    reference_impact_speed [m/s]: floor and default of v_0; regularisation_speed [m/s].
+    """
+    _, k_h = pocket_hertz_constant(ball_diameter, pocket_diameter, effective_modulus)
+    for name, value in {"pitch_radius [m]": pitch_radius, "reference_impact_speed [m/s]": reference_impact_speed,
+                        "regularisation_speed [m/s]": regularisation_speed}.items():
+        if not value > 0.0:
+            raise ValueError(f"pocket contact: {name} = {value!r} must be > 0")
+    if not friction_coefficient >= 0.0:
+        raise ValueError(f"pocket contact: friction_coefficient = {friction_coefficient!r} must be >= 0")
+    params = np.zeros(N_POCKET_PARAMS)
+    params[P_BALL_RADIUS], params[P_POCKET_RADIUS] = 0.5 * ball_diameter, 0.5 * pocket_diameter
+    params[P_PITCH_RADIUS], params[P_POCKET_Z], params[P_K_H] = pitch_radius, pocket_axial_offset, k_h
+    params[P_DAMPING] = hysteresis_factor(restitution, damping_model)
+    params[P_IMPACT_SPEED_REF], params[P_MU], params[P_V_REG] = (
+        reference_impact_speed, friction_coefficient, regularisation_speed)
+    return params
+
+
+def pocket_parameters_for_cage(bearing, cage, ball_material, cage_material, *, restitution: float,
+                               friction_coefficient: float, **options) -> np.ndarray:
+    """`pocket_parameters` from dynamics.geometry objects (D, d_p, d_c/2, E' ball–cage)."""
+    from bearingsim.dynamics.geometry import effective_modulus
+
+    return pocket_parameters(
+        ball_diameter=bearing.ball_diameter, pocket_diameter=cage.pocket_diameter,
+        pitch_radius=0.5 * cage.mean_diameter,
+        effective_modulus=effective_modulus(ball_material, cage_material),
+        restitution=restitution, friction_coefficient=friction_coefficient, **options,
+    )
+
+
+def pocket_azimuths(ball_count: int) -> np.ndarray:
+    """psi_k = 2 pi k / Z [rad], the pocket azimuths in the cage frame (MODEL.md §1)."""
+    return 2.0 * np.pi * np.arange(ball_count) / ball_count

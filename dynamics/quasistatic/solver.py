@@ -1,0 +1,384 @@
+"""Quasi-static equilibrium of a ball bearing (MODEL.md §10): the solver.
+
+Unknowns: inner-race displacement and tilt q = (u_x, u_y, u_z, θ_x, θ_y) and each ball's
+centre (r, z) in its azimuth plane. Balls are equilibrated one by one (2×2 Newton, see
+`dynamics.quasistatic.kernels`), the inner race by Newton on the five loads with the
+exact condensed tangent; the condensed tangent at the solution is the bearing stiffness.
+Start: a one-dimensional search along the load direction (rigid-ring estimate that takes
+up the clearance), then Newton with line search, then load continuation if needed.
+Ball orbital speed, centrifugal force and gyroscopic friction use pure-rolling
+kinematics with race control, updated by fixed-point passes until they settle.
+
+Example::
+
+    from bearingsim.dynamics.geometry import BearingGeometry, Material
+    from bearingsim.dynamics.quasistatic.solver import solve_quasistatic
+    res = solve_quasistatic(geometry, steel, steel, axial=34000.0, moment=430.0,
+                            inner_speed=320.4)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from bearingsim.dynamics.geometry import BearingGeometry, Material, effective_modulus
+from bearingsim.dynamics.contact.hertz import (DEFAULT_TABLE_NODES, TAB_DKH, TAB_KH, hertz_table_eval, max_pressure,
+                            race_hertz_table)
+from bearingsim.dynamics.quasistatic.kernels import (BALL_COLUMNS, B_AI, B_AO, B_DI, B_DO, B_FR, B_FZ, B_QI, B_QO,
+                                          B_STATUS, STATUS_FAILED, ball_kinematics, bearing_equilibrium)
+from bearingsim.dynamics.quasistatic.result import QuasiStaticResult, tilt_rotation_matrix
+
+
+class QuasiStaticError(RuntimeError):
+    """The quasi-static equilibrium could not be found; the message says why and what to try."""
+
+
+@dataclass
+class _Problem:
+    """Arrays packed once for the kernels (SI)."""
+
+    psi: np.ndarray
+    R_ci: float
+    R_co: float
+    gap_i: float
+    gap_o: float
+    tab_i: np.ndarray
+    tab_o: np.ndarray
+    m_om2: np.ndarray
+    g_i: np.ndarray
+    g_o: np.ndarray
+    xb: np.ndarray
+    linear_kinematics: bool = False
+
+    @property
+    def lever(self) -> float:
+        """Length that turns tilts into displacements and moments into forces [m]."""
+        return self.R_ci
+
+    def inner_centres(self, q: np.ndarray):
+        """Inner curvature centres C_i = u + R(θ) (d_i/2) e_r(ψ) in each ball's azimuth plane.
+
+        Exact rigid rotation (rotation vector (θ_x, θ_y, 0)) rather than the small-angle
+        (Jones) form, so moment arms include the tilt-induced axial offset of C_i.
+        Returns ((Z, 2) centres (r, z), (Z, 2, 5) G = ∂C_i/∂q, (Z, 3) rotated R C0).
+        """
+        c, s = np.cos(self.psi), np.sin(self.psi)
+        if self.linear_kinematics:  # Jones / ISO/TS 16281: C_i = C0 + u + θ × C0, moment arm d_i/2
+            ci = np.column_stack([self.R_ci + q[0] * c + q[1] * s, q[2] + self.R_ci * (q[3] * s - q[4] * c)])
+            g = np.zeros((self.psi.size, 2, 5))
+            g[:, 0, 0], g[:, 0, 1], g[:, 1, 2], g[:, 1, 3], g[:, 1, 4] = c, s, 1.0, self.R_ci * s, -self.R_ci * c
+            return ci, g, np.zeros((self.psi.size, 3))
+        c0 = self.R_ci * np.column_stack([c, s, np.zeros_like(c)])
+        v = c0 @ tilt_rotation_matrix(q[3:]).T
+        centre = v + q[:3]
+        ci = np.column_stack([c * centre[:, 0] + s * centre[:, 1], centre[:, 2]])
+        # δ(R c0) = (J_l δθ) × (R c0): columns for δθ_x, δθ_y
+        jl = _left_jacobian(np.array([q[3], q[4], 0.0]))
+        dv = np.stack([np.cross(jl[:, a], v) for a in range(2)], axis=2)  # (Z, 3, 2)
+        g = np.zeros((self.psi.size, 2, 5))
+        g[:, 0, 0], g[:, 0, 1], g[:, 1, 2] = c, s, 1.0
+        g[:, 0, 3:] = c[:, None] * dv[:, 0, :] + s[:, None] * dv[:, 1, :]
+        g[:, 1, 3:] = dv[:, 2, :]
+        return ci, g, v
+
+    def contact(self, q: np.ndarray, warm: bool = True):
+        """(generalised contact force on the inner race (5), stiffness (5×5), ball table, failures).
+
+        Stiffness = Σ Gᵀ K_c G (balls re-equilibrated) − Σ f·∂²C_i/∂θ² (geometric term of the
+        rotation, small-angle form), i.e. the Hessian of the contact energy: symmetric when
+        k_h is constant.
+        """
+        ci, g, v = self.inner_centres(q)
+        force, stiff = np.zeros(5), np.zeros((5, 5))
+        balls = np.zeros((self.psi.size, BALL_COLUMNS))
+        failed = bearing_equilibrium(ci, g, self.R_co, self.gap_i, self.gap_o, self.tab_i, self.tab_o,
+                                     self.m_om2, self.g_i, self.g_o, self.xb, warm, force, stiff, balls)
+        e_r = np.column_stack([np.cos(self.psi), np.sin(self.psi)])
+        for a in range(2):
+            for b in range(2):
+                # ∂²(R v)/∂θ_a∂θ_b at θ = 0: ½[e_b (e_a·v) + e_a (e_b·v)] − v δ_ab
+                sv = -v * (a == b)
+                sv[:, b] += 0.5 * v[:, a]
+                sv[:, a] += 0.5 * v[:, b]
+                proj_r = np.sum(e_r * sv[:, :2], axis=1)
+                stiff[3 + a, 3 + b] -= np.sum(balls[:, B_FR] * proj_r + balls[:, B_FZ] * sv[:, 2])
+        return force, stiff, balls, failed
+
+
+def _left_jacobian(theta: np.ndarray) -> np.ndarray:
+    """SO(3) left Jacobian J_l(θ): δ(R(θ)) = (J_l δθ)~ R (rotation-vector parameters)."""
+    phi = float(np.linalg.norm(theta))
+    t = np.array([[0.0, -theta[2], theta[1]], [theta[2], 0.0, -theta[0]], [-theta[1], theta[0], 0.0]])
+    if phi < 1e-8:
+        return np.eye(3) + 0.5 * t
+    return np.eye(3) + (1.0 - math.cos(phi)) / phi**2 * t + (phi - math.sin(phi)) / phi**3 * t @ t
+
+
+def _scale(problem: _Problem) -> np.ndarray:
+    """q̂ = q / scale has metres everywhere; residual·scale has newtons everywhere."""
+    return np.array([1.0, 1.0, 1.0, 1.0 / problem.lever, 1.0 / problem.lever])
+
+
+def _initial_guess(problem: _Problem, load: np.ndarray) -> np.ndarray:
+    """Move the inner race along the (scaled) load direction until the contact load's
+    component along it balances the applied one: takes up the clearance and gives a
+    rigid-ring-like start that is in contact (Newton needs a non-zero tangent)."""
+    sc = _scale(problem)
+    load_hat = load * sc
+    norm = np.linalg.norm(load_hat)
+    if norm == 0.0:
+        return np.zeros(5)
+    d_hat = load_hat / norm
+
+    def balance(s: float) -> float:
+        force, _, _, _ = problem.contact(s * d_hat * sc, warm=False)
+        return norm + d_hat @ (force * sc)
+
+    lo, hi = 0.0, 1e-6
+    while balance(hi) > 0.0:
+        lo, hi = hi, 2.0 * hi
+        if hi > 1.0:
+            raise QuasiStaticError(
+                "the contacts cannot balance the applied load even after a 1 m displacement of "
+                "the inner race: check the geometry (groove radii, diameters) and the load units (N, N·m)")
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if balance(mid) > 0.0:
+            lo = mid
+        else:
+            hi = mid
+    return hi * d_hat * sc
+
+
+def _newton(problem: _Problem, load: np.ndarray, q0: np.ndarray, tol: float, max_iter: int):
+    """Newton with backtracking on the inner-race equilibrium. Returns (q, iters, ok, res)."""
+    sc = _scale(problem)
+    cap = 0.5 * (problem.gap_i + problem.gap_o)  # largest step [m]: half the groove play
+    q = q0.copy()
+    force, stiff, balls, failed = problem.contact(q)
+    res = (load + force) * sc
+    for it in range(1, max_iter + 1):
+        # residual scale: applied load, or the internal (preload) ball loads, or 1 N
+        ref = max(np.max(np.abs(load * sc)), np.sum(balls[:, B_QI]), 1.0)
+        if failed == 0 and np.max(np.abs(res)) <= tol * ref:
+            return q, it - 1, True, float(np.max(np.abs(res)))
+        k_hat = stiff * sc[:, None] * sc[None, :]
+        k_hat = k_hat + np.eye(5) * 1e-12 * max(np.trace(k_hat), 1.0)  # zero-load directions
+        try:
+            step = np.linalg.solve(k_hat, res) * sc
+        except np.linalg.LinAlgError:
+            return q, it, False, float(np.max(np.abs(res)))
+        step_len = np.max(np.abs(step / sc))
+        if step_len > cap:
+            step *= cap / step_len
+        merit0, lam = np.linalg.norm(res), 1.0
+        for _ in range(30):
+            f_new, k_new, balls, failed = problem.contact(q + lam * step)
+            res_new = (load + f_new) * sc
+            if failed == 0 and np.linalg.norm(res_new) < merit0:
+                break
+            lam *= 0.5
+        else:
+            return q, it, False, float(np.max(np.abs(res)))
+        q, force, stiff, res = q + lam * step, f_new, k_new, res_new
+    ref = max(np.max(np.abs(load * sc)), np.sum(balls[:, B_QI]), 1.0)
+    ok = failed == 0 and np.max(np.abs(res)) <= tol * ref
+    return q, max_iter, ok, float(np.max(np.abs(res)))
+
+
+def _solve_load(problem: _Problem, load: np.ndarray, q0, tol: float, max_iter: int):
+    """Newton from q0 (or from the rigid-ring start), then load continuation if needed."""
+    start = _initial_guess(problem, load) if q0 is None else q0
+    q, its, ok, res = _newton(problem, load, start, tol, max_iter)
+    if ok:
+        return q, its, res
+    total, frac, step = its, 0.0, 0.1
+    q_prev = _initial_guess(problem, 0.1 * load)
+    while frac < 1.0:
+        trial = min(1.0, frac + step)
+        q_new, its, ok, res = _newton(problem, trial * load, q_prev, tol, max_iter)
+        total += its
+        if ok:
+            frac, q_prev, step = trial, q_new, min(2.0 * step, 0.5)
+        else:
+            step *= 0.5
+            if step < 1e-4:
+                raise QuasiStaticError(
+                    f"Newton diverged at {100 * trial:.2f} % of the load (residual {res:.3g} N): the "
+                    "bearing probably cannot carry it (contact angles near the groove limit). "
+                    "Try a smaller load, check the clearance and groove radii, or loosen `tol`.")
+    return q_prev, total, res
+
+
+def _kinematics(problem, balls, D, inner_speed, outer_speed, inner_control):
+    """Per-ball pure-rolling (ω_m, ω_r, ω_z) [rad/s] at the current contact angles."""
+    out = np.zeros((problem.psi.size, 3))
+    for k in range(problem.psi.size):
+        out[k] = ball_kinematics(balls[k, B_AI], balls[k, B_AO], problem.xb[k, 0], D,
+                                 inner_speed, outer_speed, inner_control)
+    return out
+
+
+def _validate(geometry, race_control, kinematics, loads):
+    if kinematics not in ("exact", "linear"):
+        raise ValueError(f"kinematics = {kinematics!r}: allowed values are 'exact' and 'linear'")
+    if race_control not in ("outer", "inner"):
+        raise ValueError(f"race_control = {race_control!r}: allowed values are 'outer' and 'inner'")
+    for name, value in loads.items():
+        if not math.isfinite(value):
+            raise ValueError(f"{name} = {value}: must be a finite number (N, N·m or rad/s)")
+    if geometry.curvature_center_distance <= 0.0:
+        raise ValueError(
+            f"groove radii too small: r_i + r_o − D = {geometry.curvature_center_distance:.3e} m must be > 0")
+
+
+def _hertz_tables(geometry, e_eff, contact_constants, nodes):
+    tab_i = race_hertz_table(geometry, e_eff, outer=False, n_nodes=nodes)
+    tab_o = race_hertz_table(geometry, e_eff, outer=True, n_nodes=nodes)
+    if contact_constants is not None:
+        # fixed k_h (e.g. to reproduce a textbook that used one value); ellipse data stays exact
+        for tab, k in zip((tab_i, tab_o), contact_constants):
+            tab[:, TAB_KH], tab[:, TAB_DKH] = float(k), 0.0
+    return tab_i, tab_o
+
+
+def solve_quasistatic(
+    geometry: BearingGeometry,
+    ball_material: Material,
+    race_material: Material,
+    *,
+    axial: float = 0.0,
+    radial: float = 0.0,
+    moment: float = 0.0,
+    inner_speed: float = 0.0,
+    outer_speed: float = 0.0,
+    centrifugal: bool = True,
+    gyroscopic: bool = False,
+    race_control: str = "outer",
+    tol: float = 1e-10,
+    max_iter: int = 50,
+    contact_constants: tuple[float, float] | None = None,
+    kinematics: str = "exact",
+    table_nodes: int = DEFAULT_TABLE_NODES,
+) -> QuasiStaticResult:
+    """Quasi-static equilibrium of the bearing under loads on the inner race (MODEL.md §10).
+
+    axial [N] along +z, radial [N] along +x, moment [N·m] about +y; inner_speed,
+    outer_speed [rad/s] about +z. centrifugal: ball centrifugal force m_b ω_c² r at the
+    cage speed ω_c. gyroscopic: the gyroscopic moment J_b ω_c ω_r (Jones) is resisted by
+    friction at the controlling race (race_control "outer" | "inner", λ = 2 there, 0 at the
+    other). tol: relative residual of the five loads (moments divided by d_i/2).
+    contact_constants: (k_i, k_o) [N/m^1.5] to replace the exact α-dependent Hertz
+    constants (for comparisons with references that used fixed values).
+    kinematics: "exact" (rigid rotation of the inner race; moment arms include the
+    tilt-induced axial offset of the groove) or "linear" (small-rotation Jones /
+    ISO/TS 16281 form; differs by O(θ cot α) in the moment balance).
+    Raises QuasiStaticError when no equilibrium is found or a contact rides over a land.
+    """
+    loads = {"axial": axial, "radial": radial, "moment": moment, "inner_speed": inner_speed,
+             "outer_speed": outer_speed}
+    _validate(geometry, race_control, kinematics, loads)
+    e_eff = effective_modulus(ball_material, race_material)
+    tab_i, tab_o = _hertz_tables(geometry, e_eff, contact_constants, table_nodes)
+    Z, D = geometry.ball_count, geometry.ball_diameter
+    problem = _Problem(
+        psi=2.0 * np.pi * np.arange(Z) / Z, R_ci=0.5 * geometry.inner_groove_center_diameter,
+        R_co=0.5 * geometry.outer_groove_center_diameter, gap_i=geometry.inner_groove_radius - 0.5 * D,
+        gap_o=geometry.outer_groove_radius - 0.5 * D, tab_i=tab_i, tab_o=tab_o, m_om2=np.zeros(Z),
+        g_i=np.zeros(Z), g_o=np.zeros(Z), xb=np.full((Z, 2), np.nan), linear_kinematics=kinematics == "linear")
+    load = np.array([radial, 0.0, axial, 0.0, moment], dtype=float)
+    mass, inertia = geometry.ball_mass(ball_material), geometry.ball_inertia(ball_material)
+    inner_control = race_control == "inner"
+    moving = inner_speed != 0.0 or outer_speed != 0.0
+
+    q, iterations, residual = _solve_load(problem, load, None, tol, max_iter)
+    for _ in range(30):  # kinematic fixed point: ω_c, centrifugal force, gyroscopic friction
+        _, _, balls, _ = problem.contact(q)
+        kin = _kinematics(problem, balls, D, inner_speed, outer_speed, inner_control)
+        if not moving or not (centrifugal or gyroscopic):
+            break
+        w_c = float(np.mean(kin[:, 0]))
+        m_om2 = np.full(Z, mass * w_c**2 if centrifugal else 0.0)
+        friction = 2.0 * inertia * w_c * kin[:, 1] / D if gyroscopic else np.zeros(Z)
+        g_i, g_o = (friction, np.zeros(Z)) if inner_control else (np.zeros(Z), friction)
+        change = max(np.max(np.abs(m_om2 - problem.m_om2)) * D, np.max(np.abs(g_i - problem.g_i)),
+                     np.max(np.abs(g_o - problem.g_o)))
+        if change <= 1e-9 * max(1.0, np.max(np.abs(load))):
+            break
+        problem.m_om2, problem.g_i, problem.g_o = m_om2, g_i, g_o
+        q, its, residual = _solve_load(problem, load, q, tol, max_iter)
+        iterations += max(its, 1)
+    return _build_result(geometry, problem, q, load, kin, iterations, residual, inner_speed, outer_speed)
+
+
+def _shoulder_angle(land_diameter, center_radius, groove_radius, outer: bool) -> float:
+    """Angle from the radial plane at which the groove meets the land [rad] (NaN: no land)."""
+    if land_diameter is None:
+        return math.nan
+    depth = (0.5 * land_diameter - center_radius) if outer else (center_radius - 0.5 * land_diameter)
+    return math.acos(max(-1.0, min(1.0, depth / groove_radius)))
+
+
+def _ellipse(tab, loads, angles):
+    """(p_max [Pa], semi-major a [m]) per ball from the Hertz table."""
+    p, a = np.zeros(loads.size), np.zeros(loads.size)
+    for k in range(loads.size):
+        _, _, _, c_a, c_b = hertz_table_eval(tab, angles[k])
+        p[k] = max_pressure(loads[k], c_a, c_b)
+        a[k] = c_a * max(loads[k], 0.0) ** (1.0 / 3.0)
+    return p, a
+
+
+def _truncation(geometry, problem, balls, a_i, a_o):
+    """Margins r(θ_land − |α|) − a [m]; raise if a loaded contact centre passes a land."""
+    margins, notes = [], []
+    for side, land, rc, r, col_q, col_a, a in (
+            ("inner", geometry.inner_shoulder_diameter, problem.R_ci, geometry.inner_groove_radius, B_QI, B_AI, a_i),
+            ("outer", geometry.outer_shoulder_diameter, problem.R_co, geometry.outer_groove_radius, B_QO, B_AO, a_o)):
+        theta = _shoulder_angle(land, rc, r, side == "outer")
+        margin = r * (theta - np.abs(balls[:, col_a])) - a
+        loaded = balls[:, col_q] > 0.0
+        over = np.flatnonzero(loaded & (np.abs(balls[:, col_a]) >= theta))
+        if over.size:
+            k = int(over[0])
+            raise QuasiStaticError(
+                f"ball {k}: the {side} contact angle {math.degrees(abs(balls[k, col_a])):.2f}° reaches the "
+                f"{side} land at {math.degrees(theta):.2f}° ({side}_shoulder_diameter = {land} m): the ball "
+                f"rides over the shoulder and the contact ellipse is cut off by the land, so the groove "
+                f"cannot carry this load. Reduce the axial load or moment, or check the shoulder diameter.")
+        for k in np.flatnonzero(loaded & (margin < 0.0)):
+            notes.append(f"ball {int(k)}: {side} contact ellipse truncated by the land by "
+                         f"{-margin[k] * 1e3:.3f} mm (semi-axis a = {a[k] * 1e3:.3f} mm)")
+        margins.append(np.where(loaded, margin, r * (theta - np.abs(balls[:, col_a]))))
+    return margins[0], margins[1], tuple(notes)
+
+
+def _build_result(geometry, problem, q, load, kin, iterations, residual, inner_speed, outer_speed):
+    force, stiffness, balls, failed = problem.contact(q)
+    if failed or np.any(balls[:, B_STATUS] == STATUS_FAILED):
+        raise QuasiStaticError("a ball's equilibrium did not converge at the final inner-race position; "
+                               "try a smaller load or check the geometry")
+    p_i, a_i = _ellipse(problem.tab_i, balls[:, B_QI], balls[:, B_AI])
+    p_o, a_o = _ellipse(problem.tab_o, balls[:, B_QO], balls[:, B_AO])
+    margin_i, margin_o, notes = _truncation(geometry, problem, balls, a_i, a_o)
+    psi = problem.psi
+    xb = problem.xb
+    positions = np.column_stack([xb[:, 0] * np.cos(psi), xb[:, 0] * np.sin(psi), xb[:, 1]])
+    spin = np.column_stack([kin[:, 1] * np.cos(psi), kin[:, 1] * np.sin(psi), kin[:, 2]])
+    norm = np.linalg.norm(stiffness)
+    return QuasiStaticResult(
+        converged=True, iterations=int(iterations), inner_displacement=q[:3].copy(),
+        inner_tilt=q[3:].copy(), azimuth=psi.copy(), inner_load=balls[:, B_QI].copy(),
+        outer_load=balls[:, B_QO].copy(), inner_contact_angle=balls[:, B_AI].copy(),
+        outer_contact_angle=balls[:, B_AO].copy(), inner_deflection=balls[:, B_DI].copy(),
+        outer_deflection=balls[:, B_DO].copy(), max_pressure_inner=p_i, max_pressure_outer=p_o,
+        semi_major_inner=a_i, semi_major_outer=a_o, truncation_margin_inner=margin_i,
+        truncation_margin_outer=margin_o, stiffness=stiffness, ball_positions=positions,
+        ball_angular_velocity=spin, ball_orbital_speed=kin[:, 0].copy(), cage_speed=float(np.mean(kin[:, 0])),
+        inner_speed=float(inner_speed), outer_speed=float(outer_speed), applied_load=load.copy(),
+        residual=float(residual),
+        stiffness_asymmetry=float(np.linalg.norm(stiffness - stiffness.T) / norm) if norm > 0 else 0.0,
+        warnings=notes)

@@ -1,0 +1,343 @@
+"""Fast Eyring traction for the time loop: pole-centred quadrature, SIMD evaluation (MODEL.md §6.4).
+
+Same physics and sign convention as `dynamics.traction.quadrature` (force and spin moment ON THE BALL,
+Jacobian d(F_x, F_y, M_z)/d(du0, dv0, w_s)); the nodes come from `dynamics.traction.nodes`
+(rules centred on the spin pole, 200-320 nodes). What makes it fast is how the nodes are
+evaluated: in short passes over contiguous scratch arrays that LLVM turns into AVX-512 code
+(numba `fastmath`, `error_model="numpy"` so that `/` carries no zero-division branch), with
+asinh(x) = log(x + sqrt(1 + x^2)) and a branch-free log of our own (`log_ge1`) because
+numba's `math.log` is a scalar libm call that blocks vectorisation (no SVML in this
+llvmlite). The one scalar pass is the viscosity table lookup (AMD gathers are not emitted).
+Measured on the 2-core dev box: ~2.5-3 ns per node, see `python -m benchmarks.traction`.
+
+Viscosity comes from a table of eta on a uniform pressure grid (linear interpolation;
+relative error ~1e-4 with 4096 points to 5 GPa), built once per lubricant and temperature
+by `FastTraction.build`. Flags (bits, OR-ed): FLAG_PRESSURE_CLAMPED when p_h is above the
+table (eta is held at its last value), FLAG_NO_CONTACT when a, b, p_h or h <= 0 (zero force),
+FLAG_UNVALIDATED when the input lies outside the range where the 2 % accuracy was checked
+(a/b or p_h outside VALIDATED_*; the result is still finite), FLAG_SLIP_CLAMPED when a
+slip speed exceeds SLIP_MAX (clamped there). No input gives NaN.
+
+Accuracy against the (128, 1024) quadrature of `dynamics.traction.quadrature`, default rule, two samples
+of 240 random operating points of the reference scene (tests/test_traction_fast.py, -m slow):
+|dF|/|F| <= 0.74 %, |dM_z|/max(|M_z|, |F| b) <= 0.76 %, max|dJ|/max|J| <= 1.4 %; edge cases
+(slip 1e-5 and 0.3, pure spin, pure roll, 20 N, pole at 0.97 / 1.03 ellipse radii) <= 0.7 %.
+Cost ~0.58 us per contact over that sample with the Jacobian; without it (a residual-only
+evaluation) ~27 us for the 44 contacts of the reference bearing 20 ms into a run
+(2026-11-21, benchmarks/traction.py and bench/contacts.py); 8 radial nodes: ~0.53 us
+at <= 1.1 %.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numba
+import numpy as np
+
+from bearingsim.dynamics.lubrication import rheology
+from bearingsim.dynamics._kernel_options import NO_REFCOUNT
+from bearingsim.dynamics.traction.nodes import max_nodes, pack_rule, place_nodes
+
+FLAG_OK = 0
+FLAG_PRESSURE_CLAMPED = 1
+FLAG_NO_CONTACT = 2
+FLAG_UNVALIDATED = 4
+FLAG_SLIP_CLAMPED = 8
+SLIP_MAX = 1.0e4  # m/s: |du0|, |dv0|, |w_s| b beyond this are clamped (their squares must not overflow)
+VALIDATED_ASPECT = (0.05, 0.25)  # a/b (a along entrainment) checked in tests
+VALIDATED_P_H = (2.0e8, 3.0e9)  # Pa, maximum Hertz pressure checked in tests
+EYRING_ARG_MAX = 1e100  # eta|s|/(tau0 h) is clamped here so that x^2 cannot overflow
+SMALL_ARG = 1e-2  # below this the series of asinh(x)/x is used (cancellation in c otherwise)
+
+_LN2 = math.log(2.0)
+_MANTISSA = 0x000FFFFFFFFFFFFF
+_EXP_ONE = 0x3FF0000000000000
+_SQRT2_MANTISSA = 0x6A09E667F3BCD  # mantissa bits of sqrt(2)
+_WORK_ROWS = 9
+# fast-math without nnan/ninf: pole_position returns inf for "no pole", which must compare correctly
+_VEC = {"fastmath": {"nsz", "arcp", "contract", "afn", "reassoc"}, "error_model": "numpy", **NO_REFCOUNT}
+
+
+@numba.njit(**_VEC)
+def log_ge1(z, n, exponent, mantissa_bits, out):
+    """out[m] = ln z[m] for z >= 1 (finite), m < n; |error| < 1e-13 (tested against math.log).
+
+    z = 2^e m with m in [sqrt(1/2), sqrt(2)) taken apart through an int64 view of the bits;
+    ln m = 2 atanh(s), s = (m - 1)/(m + 1), |s| <= 0.172, series to s^15 (next term
+    2 s^17/17 < 1.2e-14). Branch-free so that the loop vectorises.
+    """
+    zi = z.view(np.int64)
+    for m in range(n):
+        bits = zi[m]
+        mant = bits & _MANTISSA
+        up = np.int64(mant > _SQRT2_MANTISSA)
+        exponent[m] = float((bits >> 52) - 1023 + up)
+        mantissa_bits[m] = mant | (_EXP_ONE - (up << 52))
+    mf = mantissa_bits.view(np.float64)
+    for m in range(n):
+        x = mf[m]
+        s = (x - 1.0) / (x + 1.0)
+        s2 = s * s
+        p = 1.0 / 15.0
+        p = p * s2 + 1.0 / 13.0
+        p = p * s2 + 1.0 / 11.0
+        p = p * s2 + 1.0 / 9.0
+        p = p * s2 + 1.0 / 7.0
+        p = p * s2 + 1.0 / 5.0
+        p = p * s2 + 1.0 / 3.0
+        p = p * s2 + 1.0
+        out[m] = exponent[m] * _LN2 + 2.0 * s * p
+
+
+@numba.njit(**_VEC)
+def _slip_and_table_index(X, Y, n, a, b, p_h, du0, dv0, w_s, inv_p_step, f_index, r):
+    """Per node: fractional index of p = p_h sqrt(1 - X^2 - Y^2) in the eta table, |s| [m/s]."""
+    for m in range(n):
+        q = 1.0 - X[m] * X[m] - Y[m] * Y[m]
+        f_index[m] = p_h * math.sqrt(max(q, 0.0)) * inv_p_step
+        sx = du0 - w_s * b * Y[m]
+        sy = dv0 + w_s * a * X[m]
+        r[m] = math.sqrt(sx * sx + sy * sy)
+
+
+@numba.njit(**_VEC)
+def _viscosity_lookup(f_index, n, eta_table, inv_tau0_h, k):
+    """k[m] = eta(p)/(tau0 h) [s/m] by linear interpolation (scalar: gathers do not vectorise).
+
+    eta_table rows are (eta_i, eta_(i+1) - eta_i): one row is one 16-byte load, ~20 % faster
+    than reading eta_i and eta_(i+1) from a plain table (2026-11-21, 240 nodes: 157 vs 200 ns).
+    """
+    last = eta_table.shape[0] - 1.000001
+    for m in range(n):
+        f = min(f_index[m], last)
+        i = int(f)
+        k[m] = (eta_table[i, 0] + (f - i) * eta_table[i, 1]) * inv_tau0_h
+
+
+@numba.njit(**_VEC)
+def _eyring_argument(k, r, n, x, z):
+    """x = k |s| (clamped at EYRING_ARG_MAX) and z = x + sqrt(1 + x^2) >= 1, so asinh x = ln z."""
+    for m in range(n):
+        xm = min(k[m] * r[m], EYRING_ARG_MAX)
+        x[m] = xm
+        z[m] = xm + math.sqrt(1.0 + xm * xm)
+
+
+@numba.njit(cache=True, inline="always")
+def _node_slip(X, Y, m, a, b, du0, dv0, w_s):
+    """Node m's position (x, y) [m] and sliding velocity (s_x, s_y) = (du0 - w_s y, dv0 + w_s x)."""
+    xp = a * X[m]
+    yp = b * Y[m]
+    return xp, yp, du0 - w_s * yp, dv0 + w_s * xp
+
+
+@numba.njit(**_VEC)
+def _accumulate(X, Y, W, n, a, b, du0, dv0, w_s, k, r, x, z, ash, out):
+    """Sum tau = g s over the nodes into out[0:3] and its Jacobian into out[3:12] (tau0 = 1).
+
+    g = asinh(x)/|s|, c = (x/sqrt(1+x^2) - asinh x)/|s|^3, d tau/d s = g I + c s s^T; below
+    SMALL_ARG the series g = k(1 - x^2/6), c = k^3(-1/3 + 3x^2/10) (asinh Taylor series).
+    """
+    Fx = Fy = Mz = 0.0
+    j00 = j01 = j02 = j11 = j12 = j20 = j21 = j22 = 0.0
+    for m in range(n):
+        xp, yp, sx, sy = _node_slip(X, Y, m, a, b, du0, dv0, w_s)
+        km = k[m]
+        xm = x[m]
+        x2 = xm * xm
+        small = xm < SMALL_ARG
+        inv_r = 1.0 / (1.0 if small else r[m])
+        root = z[m] - xm
+        g = km * (1.0 - x2 / 6.0) if small else ash[m] * inv_r
+        c = km * km * km * (-1.0 / 3.0 + 0.3 * x2) if small else (xm / root - ash[m]) * inv_r * inv_r * inv_r
+        wgt = W[m]
+        tx = g * sx
+        ty = g * sy
+        axx = g + c * sx * sx
+        axy = c * sx * sy
+        ayy = g + c * sy * sy
+        dtx_dw = -axx * yp + axy * xp
+        dty_dw = -axy * yp + ayy * xp
+        Fx -= wgt * tx
+        Fy -= wgt * ty
+        Mz -= wgt * (xp * ty - yp * tx)
+        j00 -= wgt * axx
+        j01 -= wgt * axy
+        j02 -= wgt * dtx_dw
+        j11 -= wgt * ayy
+        j12 -= wgt * dty_dw
+        j20 -= wgt * (xp * axy - yp * axx)
+        j21 -= wgt * (xp * ayy - yp * axy)
+        j22 -= wgt * (xp * dty_dw - yp * dtx_dw)
+    out[0] = Fx
+    out[1] = Fy
+    out[2] = Mz
+    out[3] = j00
+    out[4] = j01
+    out[5] = j02
+    out[6] = j01  # d F_y / d du0 = d F_x / d dv0: d tau/d s is symmetric
+    out[7] = j11
+    out[8] = j12
+    out[9] = j20
+    out[10] = j21
+    out[11] = j22
+
+
+@numba.njit(**_VEC)
+def _accumulate_force(X, Y, W, n, a, b, du0, dv0, w_s, k, r, x, ash, out):
+    """`_accumulate` without the Jacobian: out[0:3] = (F_x, F_y, M_z) (tau0 = 1), out[3:12] = 0.
+
+    A residual-only evaluation needs no d tau/d s: skipping it saves one division and two
+    thirds of the arithmetic per node."""
+    Fx = Fy = Mz = 0.0
+    for m in range(n):
+        xp, yp, sx, sy = _node_slip(X, Y, m, a, b, du0, dv0, w_s)
+        xm = x[m]
+        small = xm < SMALL_ARG
+        g = k[m] * (1.0 - xm * xm / 6.0) if small else ash[m] / (1.0 if small else r[m])
+        wgt = W[m] * g
+        Fx -= wgt * sx
+        Fy -= wgt * sy
+        Mz -= wgt * (xp * sy - yp * sx)
+    out[0] = Fx
+    out[1] = Fy
+    out[2] = Mz
+    for m in range(3, 12):
+        out[m] = 0.0
+
+
+@numba.njit(**NO_REFCOUNT)
+def traction_fast(a, b, p_h, h, tau0, du0, dv0, w_s, eta_table, p_step, rule, work, iwork, out, jacobian=True):
+    """Eyring traction on the ball by pole-centred quadrature (MODEL.md §6.4).
+
+    a, b [m] Hertz semi-axes (x = entrainment), p_h [Pa], h [m] central film, tau0 [Pa]
+    Eyring stress, du0, dv0 [m/s] sliding velocity ball - race at the centre, w_s [rad/s]
+    spin (ball - race, along the normal). eta_table (n, 2): eta [Pa.s] at p = i p_step [Pa]
+    and its step to the next row (`FastTraction.build`);
+    rule: packed quadrature rule (`traction_nodes.pack_rule`); work (9, n_max) float64 and iwork (n_max,) int64
+    scratch. Writes out[0:3] = (F_x [N], F_y [N], M_z [N.m]) and out[3:12] =
+    d(F_x, F_y, M_z)/d(du0, dv0, w_s) row-major (zeros when jacobian is False: a
+    residual-only evaluation, ~20 % cheaper); returns the flag bits (FLAG_*).
+    """
+    for m in range(12):
+        out[m] = 0.0
+    if not (a > 0.0 and b > 0.0 and p_h > 0.0 and h > 0.0):
+        return FLAG_NO_CONTACT
+    flag = FLAG_OK
+    if p_h > p_step * (eta_table.shape[0] - 1):
+        flag |= FLAG_PRESSURE_CLAMPED
+    aspect = a / b
+    if not (VALIDATED_ASPECT[0] <= aspect <= VALIDATED_ASPECT[1] and VALIDATED_P_H[0] <= p_h <= VALIDATED_P_H[1]):
+        flag |= FLAG_UNVALIDATED
+    if max(abs(du0), abs(dv0), abs(w_s) * b) > SLIP_MAX:
+        flag |= FLAG_SLIP_CLAMPED
+        du0 = min(max(du0, -SLIP_MAX), SLIP_MAX)
+        dv0 = min(max(dv0, -SLIP_MAX), SLIP_MAX)
+        w_s = min(max(w_s, -SLIP_MAX / b), SLIP_MAX / b)
+    X, Y, W = work[0], work[1], work[2]
+    n = place_nodes(a, b, du0, dv0, w_s, rule, X, Y, W, work[3:8])  # rows 3..7 are free until the next pass
+    f_index, r, k, x, z, ash = work[3], work[4], work[5], work[6], work[7], work[8]
+    _slip_and_table_index(X, Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / p_step, f_index, r)
+    _viscosity_lookup(f_index, n, eta_table, 1.0 / (tau0 * h), k)
+    _eyring_argument(k, r, n, x, z)
+    log_ge1(z, n, f_index, iwork, ash)  # f_index is spent: reuse it for the exponents
+    if jacobian:
+        _accumulate(X, Y, W, n, a, b, du0, dv0, w_s, k, r, x, z, ash, out)
+    else:
+        _accumulate_force(X, Y, W, n, a, b, du0, dv0, w_s, k, r, x, ash, out)
+    for m in range(12):
+        out[m] *= tau0
+    return flag
+
+
+@numba.njit(cache=True)
+def traction_fast_batch(a, b, p_h, h, du0, dv0, w_s, tau0, eta_table, p_step, rule, work, iwork, F, J, flags):
+    """traction_fast over n contacts: inputs (n,) arrays (units as traction_fast).
+
+    Writes F[i] = (F_x, F_y, M_z) [N, N, N.m], J[i] = d(F_x, F_y, M_z)/d(du0, dv0, w_s)
+    (3 x 3) and flags[i]. One call per residual evaluation of the bearing (44 ball-race contacts).
+    """
+    out = np.empty(12)
+    for i in range(a.shape[0]):
+        flags[i] = traction_fast(a[i], b[i], p_h[i], h[i], tau0, du0[i], dv0[i], w_s[i],
+                                 eta_table, p_step, rule, work, iwork, out)
+        for c in range(3):
+            F[i, c] = out[c]
+            for d in range(3):
+                J[i, c, d] = out[3 + 3 * c + d]
+
+
+@dataclass(frozen=True)
+class FastTraction:
+    """Viscosity table and quadrature rule for `traction_fast`: one per lubricant and temperature.
+
+    Build with `FastTraction.build(lubricant)`. From Python call `evaluate(...)` (one contact)
+    or `evaluate_batch(...)` (arrays of contacts); from other kernels pass `args()` -- the
+    trailing arguments of `traction_fast` after (..., w_s), including a fresh workspace.
+    """
+
+    eta_table: np.ndarray  # (n, 2): eta [Pa.s] at p = i p_step, and eta_(i+1) - eta_i (0 in the last row)
+    p_step: float  # [Pa]
+    tau0: float  # Eyring stress [Pa]
+    rule: np.ndarray  # packed quadrature rule, `traction_nodes.pack_rule`
+
+    @classmethod
+    def build(cls, lubricant, p_max: float = 5.0e9, n_table: int = 4096, n_radial: int = 10,
+              n_angle: tuple[int, int, int] = (20, 24, 32), n_cone: tuple[int, int] = (16, 24),
+              n_far: tuple[int, int] = (8, 12), far_ratio: float = 4.0,
+              edge: tuple[float, float] = (0.85, 1.2), centre: float = 0.5) -> "FastTraction":
+        """Tabulate eta(p) on [0, p_max] Pa and set up the node counts of the rules.
+
+        Spin pole at |P| ellipse radii from the centre: n_radial x n_angle[0] nodes for
+        |P| < centre, n_radial x n_angle[1] up to edge[0], n_radial x n_angle[2] up to 1
+        (pole near the edge, inside), n_radial x n_cone[1] up to edge[1], n_radial x
+        n_cone[0] up to far_ratio, n_far = (radial, angular) beyond. The defaults meet the
+        2 % target with margin (tests/test_traction_fast.py); see benchmarks/traction.py
+        for other settings.
+        """
+        counts = (n_radial, *n_angle, *n_cone, *n_far)
+        if len(n_angle) != 3 or min(counts) < 2 or not 1.0 < far_ratio \
+                or not 0.0 < centre <= edge[0] <= 1.0 <= edge[1] <= far_ratio or p_max <= 0.0 or n_table < 2:
+            raise ValueError(
+                f"FastTraction.build: node counts {counts} must be >= 2 (three ray counts), 0 < centre <= "
+                f"edge[0] <= 1 <= edge[1] <= far_ratio (got centre = {centre}, edge = {edge}, far_ratio = "
+                f"{far_ratio}), p_max = {p_max} Pa > 0, n_table = {n_table} >= 2.")
+        p = np.linspace(0.0, p_max, n_table)
+        eta = rheology.viscosity_array(p, lubricant.model_code, lubricant.rheology_params())
+        table = np.ascontiguousarray(np.stack([eta, np.append(np.diff(eta), 0.0)], axis=1))
+        return cls(eta_table=table, p_step=float(p[1] - p[0]),
+                   tau0=float(lubricant.eyring_stress),
+                   rule=pack_rule(n_radial, tuple(n_angle), tuple(n_cone), tuple(n_far), float(far_ratio),
+                                  tuple(edge), float(centre)))
+
+    @property
+    def max_nodes(self) -> int:
+        """Largest node count of the three rules (workspace length)."""
+        return max_nodes(self.rule)
+
+    def workspace(self) -> tuple[np.ndarray, np.ndarray]:
+        """Fresh scratch (work, iwork) for one thread."""
+        return np.empty((_WORK_ROWS, self.max_nodes)), np.empty(self.max_nodes, dtype=np.int64)
+
+    def args(self) -> tuple:
+        """Trailing arguments of traction_fast after (a, b, p_h, h, tau0, du0, dv0, w_s), except `out`."""
+        return (self.eta_table, self.p_step, self.rule, *self.workspace())
+
+    def evaluate(self, a, b, p_h, h, du0, dv0, w_s) -> tuple[np.ndarray, np.ndarray, int]:
+        """(F = [F_x, F_y, M_z], J[3, 3], flag) on the ball; units as traction_fast."""
+        out = np.empty(12)
+        flag = traction_fast(float(a), float(b), float(p_h), float(h), self.tau0, float(du0), float(dv0),
+                             float(w_s), *self.args(), out)
+        return out[:3].copy(), out[3:].reshape(3, 3).copy(), int(flag)
+
+    def evaluate_batch(self, a, b, p_h, h, du0, dv0, w_s) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(F (n, 3), J (n, 3, 3), flags (n,)) for arrays of n contacts; units as traction_fast."""
+        cols = [np.ascontiguousarray(np.atleast_1d(v), dtype=np.float64) for v in (a, b, p_h, h, du0, dv0, w_s)]
+        n = cols[0].shape[0]
+        if any(c.shape != (n,) for c in cols):
+            raise ValueError(f"evaluate_batch: all inputs must be 1-D of one length; got shapes {[c.shape for c in cols]}.")
+        F, J, flags = np.empty((n, 3)), np.empty((n, 3, 3)), np.empty(n, dtype=np.int64)
+        traction_fast_batch(*cols, self.tau0, self.eta_table, self.p_step, self.rule, *self.workspace(), F, J, flags)
+        return F, J, flags

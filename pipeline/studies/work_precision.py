@@ -1,0 +1,236 @@
+"""Work–precision of the dynamic solver: error against wall time (issue 9).
+
+    python -m pipeline.studies.work_precision [SCENE] [--quick] [--out DIR]
+    bearingsim bench SCENE [--quick]
+
+For a scene, the bearing is integrated over a fixed window from its quasi-static start by
+several methods, each over a range of tolerances, and compared with a tight reference run
+(HHT-α, alpha 0.1, fixed step `reference_step`) on the quantities of `wp_metrics`:
+
+* HHT-α fixed step h (what the built-in scenes do: the controller never shrinks the step
+  below max_step at rtol 1e-4, so max_step sets the accuracy);
+* HHT-α adaptive with a pure absolute tolerance atol [m] (rtol = 0: rtol multiplies the
+  absolute position of a ball, ~0.08 m, which is not a useful scale), alpha 0.1, 0 and 0.3;
+* HHT-α adaptive with a finite-difference ("exact") tangent instead of the model's
+  approximate analytic one (`instrumented.fd_tangent`);
+* scipy `solve_ivp` Radau and BDF on the same residual as a first-order ODE (the baseline
+  of `benchmarks.bearing`, dense finite-difference Jacobian).
+
+The fixed-step sequence also gives the observed order of HHT-α (2 expected: Hilber, Hughes
+& Taylor 1977). Wall times are on whatever else the machine runs: the load average is
+recorded with the table.
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import math
+import os
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from . import wp_metrics as wm
+
+
+@dataclass(frozen=True)
+class Method:
+    """One point of a work–precision curve: a curve label and its solver settings."""
+
+    curve: str
+    setting: str                 # the swept parameter, as text (e.g. "h = 1e-06 s")
+    hht: dict = field(default_factory=dict)   # HHTSettings overrides
+    exact_tangent: bool = False
+    ivp: dict | None = None      # {"method", "rtol", "atol"} for solve_ivp
+
+
+def method_grid(quick: bool) -> list[Method]:
+    """The methods and tolerances of the study (`quick`: CI-sized subset)."""
+    steps = (4e-6, 2e-6, 1e-6) if quick else (4e-6, 2e-6, 1e-6, 5e-7)
+    atols = (1e-8, 1e-10) if quick else (1e-7, 1e-8, 1e-9, 1e-10, 1e-11)
+    short = (1e-8, 1e-10)
+    adaptive = {"rtol": 0.0, "max_step": 1e-4, "first_step": 1e-6, "min_step": 1e-9}
+    grid = [Method("HHT a=0.1 fixed h", f"h = {h:g} s",
+                   {"adaptive": False, "first_step": h, "max_step": h, "min_step": min(h, 1e-8)})
+            for h in steps]
+    grid += [Method("HHT a=0.1 adaptive", f"atol = {a:g} m", {**adaptive, "atol": a}) for a in atols]
+    if not quick:
+        for alpha in (0.0, 0.3):
+            grid += [Method(f"HHT a={alpha:g} adaptive", f"atol = {a:g} m", {**adaptive, "atol": a, "alpha": alpha})
+                     for a in short]
+    grid += [Method("HHT a=0.1 adaptive, FD tangent", f"atol = {a:g} m", {**adaptive, "atol": a}, True)
+             for a in (short[:1] if quick else short)]
+    ivp = [("Radau", 1e-3), ("Radau", 1e-4), ("BDF", 1e-3)] if not quick else [("Radau", 1e-3)]
+    if not quick:
+        ivp += [("Radau", 1e-5), ("BDF", 1e-4)]
+    grid += [Method(f"solve_ivp {m}", f"rtol = {r:g}", ivp={"method": m, "rtol": r, "atol": r * 1e-5})
+             for m, r in ivp]
+    return grid
+
+
+@dataclass(frozen=True)
+class StudyConfig:
+    window: float          # simulated window [s]
+    sample_interval: float  # comparison grid [s]
+    reference_step: float  # fixed HHT step of the reference [s]
+    wall_budget: float     # per run [s]
+
+    @classmethod
+    def for_mode(cls, quick: bool) -> "StudyConfig":
+        # the first pocket impacts come at ~5 ms, the cage reaches the land at ~8.5 ms (case b)
+        return cls(0.006, 1e-5, 2.5e-7, 60.0) if quick else cls(0.015, 5e-6, 1e-7, 240.0)
+
+
+def run_method(method: Method, params, start, base_settings, cfg: StudyConfig) -> dict:
+    """Run one method over the window: samples (t, q, v), wall time, counters, error text."""
+    if method.ivp is not None:
+        return _run_solve_ivp(method.ivp, params, start, cfg)
+    from .instrumented import bearing_window
+
+    settings = dataclasses.replace(base_settings, **method.hht)
+    run, _ = bearing_window(params, start, settings, cfg.window, cfg.sample_interval,
+                            exact_tangent=method.exact_tangent, wall_budget=cfg.wall_budget)
+    s = run.stats
+    return {"t": run.t, "q": run.q, "v": run.v, "wall": run.wall, "error": run.error,
+            "steps": s.get("steps"), "newton_iterations": s.get("newton_iterations"),
+            "factorizations": s.get("factorizations"), "rejected": s.get("rejected_steps"),
+            "h_history": run.history[:, :2]}
+
+
+def _run_solve_ivp(opts: dict, params, start, cfg: StudyConfig) -> dict:
+    """scipy's Radau/BDF stepped by hand, so that the model's accepted-step hook runs after
+    every step as in HHT-α: the pocket contacts' hysteresis remembers the approach speed of
+    each impact there (`BearingModel.on_accepted_step`); without it the ODE is another model."""
+    from scipy import integrate as si
+
+    from bearingsim.dynamics.bearing import BearingModel, layout
+    from bearingsim.dynamics.bearing.run import initial_coordinates
+
+    from .scipy_baseline import ode_rhs
+    from .instrumented import WallClockExceeded
+
+    model = BearingModel(params)
+    q0, v0 = initial_coordinates(params, start)
+    rhs, _ = ode_rhs(model, model.rotation_slots, layout.spin_row(params.ball_count))
+    n = model.n_dof
+    y0 = np.concatenate([q0, v0])
+    rhs(0.0, y0)  # compile / load before timing
+    dt = cfg.sample_interval  # the comparison grid of instrumented.run_window: [0, window)
+    t_eval = dt * np.arange(int(math.floor((cfg.window - 0.5 * dt) / dt * (1 + 1e-12))) + 1)
+    y = np.full((t_eval.size, 2 * n), np.nan)
+    y[0], k, steps, error = y0, 1, 0, None
+    t0 = time.perf_counter()
+    solver = getattr(si, opts["method"])(rhs, 0.0, y0, cfg.window, rtol=opts["rtol"], atol=opts["atol"])
+    zero = np.zeros(n)
+    while solver.status == "running":
+        if time.perf_counter() - t0 > cfg.wall_budget:
+            error = str(WallClockExceeded(solver.t, cfg.wall_budget))
+            break
+        t_old = solver.t
+        message = solver.step()
+        if solver.status == "failed":
+            error = f"solve_ivp {opts['method']} failed at t = {solver.t:.6g} s: {message}"
+            break
+        steps += 1
+        qs, vs = np.array(solver.y[:n]), np.array(solver.y[n:])
+        model.evaluate(solver.t, qs, vs, zero, np.zeros(n), np.zeros(n))
+        model.on_accepted_step(solver.t, qs, vs, zero)
+        if k < t_eval.size and t_eval[k] <= solver.t:
+            dense = solver.dense_output()
+            while k < t_eval.size and t_old < t_eval[k] <= solver.t:
+                y[k] = dense(t_eval[k])
+                k += 1
+    return {"t": t_eval, "q": y[:, :n], "v": y[:, n:], "wall": time.perf_counter() - t0, "error": error,
+            "steps": steps, "newton_iterations": solver.nfev, "factorizations": solver.nlu, "rejected": None}
+
+
+def run_study(params, start, base_settings, quick: bool, progress=print,
+              methods: list[Method] | None = None, cfg: StudyConfig | None = None) -> dict:
+    """Reference run, then every method; returns {"config", "reference", "rows", "load"}."""
+    from .instrumented import bearing_window
+
+    cfg = cfg or StudyConfig.for_mode(quick)
+    methods = method_grid(quick) if methods is None else methods
+    h = cfg.reference_step
+    ref_settings = dataclasses.replace(base_settings, adaptive=False, first_step=h, max_step=h,
+                                       min_step=min(h, base_settings.min_step))
+    bearing_window(params, start, ref_settings, 4 * h, 2 * h)  # numba compile / cache load
+    progress(f"reference: HHT alpha {ref_settings.alpha}, fixed h = {h:g} s over {cfg.window * 1e3:g} ms")
+    ref_run, _ = bearing_window(params, start, ref_settings, cfg.window, cfg.sample_interval)
+    if not ref_run.completed:
+        raise RuntimeError(f"the reference run failed, so no error can be measured: {ref_run.error}")
+    ref = wm.reference_data(params, ref_run.t, ref_run.q, ref_run.v)
+    rows = []
+    for m in methods:
+        progress(f"{m.curve}: {m.setting}")
+        out = run_method(m, params, start, base_settings, cfg)
+        errs = wm.run_errors(params, out["t"], out["q"], out["v"], ref) if out["error"] is None else {}
+        rows.append({"curve": m.curve, "setting": m.setting, "wall": out["wall"], "error_text": out["error"],
+                     **{k: out.get(k) for k in ("steps", "newton_iterations", "factorizations", "rejected")},
+                     **{q: errs.get(q, math.inf) for q in wm.QUANTITIES},
+                     "impacts_matched": errs.get("impacts_matched")})
+    fixed = [r for r in rows if r["curve"].endswith("fixed h")]
+    # the inner race moves from t = 0 (the cage only after the first impacts): its error is
+    # the cleanest measure of the order
+    order = wm.observed_order([float(r["setting"].split()[2]) for r in fixed], [r["inner_race"] for r in fixed])
+    return {"config": dataclasses.asdict(cfg), "reference": {"wall": ref_run.wall, "impacts": int(ref["impacts"].shape[0]),
+            "steps": ref_run.stats.get("steps"), "alpha": ref_settings.alpha},
+            "rows": rows, "observed_order_fixed_h": order, "load_average": os.getloadavg()[0]}
+
+
+def markdown_table(study: dict) -> str:
+    """The study as a markdown table (what `bearingsim bench` prints)."""
+    head = ("| method | setting | wall [s] | steps | Newton it. / nfev | LU | cage centre [um] | "
+            "cage speed [rad/s] | inner race [nm] | impact peaks [%] |")
+    lines = [head, "|" + "---|" * 10]
+    for r in study["rows"]:
+        if r["error_text"]:
+            lines.append(f"| {r['curve']} | {r['setting']} | {r['wall']:.2f} | failed: {r['error_text'][:80]} |||||||")
+            continue
+        cells = [f"{r[q] * wm.DISPLAY_SCALE[q]:.3g}" for q in wm.QUANTITIES]
+        lines.append(f"| {r['curve']} | {r['setting']} | {r['wall']:.2f} | {_int(r['steps'])} | "
+                     f"{_int(r['newton_iterations'])} | {_int(r['factorizations'])} | " + " | ".join(cells) + " |")
+    c, ref = study["config"], study["reference"]
+    lines.append("")
+    lines.append(f"Window {c['window'] * 1e3:g} ms, compared every {c['sample_interval'] * 1e6:g} us against "
+                 f"HHT alpha {ref['alpha']} at fixed h = {c['reference_step']:g} s ({ref['wall']:.1f} s wall, "
+                 f"{ref['impacts']} pocket impacts). Observed order of HHT fixed-h (inner-race error): "
+                 f"{study['observed_order_fixed_h']:.2f} (2 expected). Load average {study['load_average']:.1f}.")
+    return "\n".join(lines)
+
+
+def _int(x) -> str:
+    return "-" if x is None else str(int(x))
+
+
+def write_study(study: dict, out_dir: Path) -> list[Path]:
+    """work_precision.json, .md and .png in `out_dir` (atomic writes)."""
+    from . import write_study_files
+    from .wp_plots import plot_work_precision
+
+    return write_study_files(study, out_dir, "work_precision", markdown_table(study),
+                             lambda path: plot_work_precision(study, path))
+
+
+def main(argv: list[str] | None = None) -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("scene", nargs="?", default="helicopter-b-given-hinge")
+    ap.add_argument("--quick", action="store_true", help="CI-sized variant (short window, few tolerances)")
+    ap.add_argument("--out", type=Path, default=Path("runs/bench"))
+    ap.add_argument("--set", action="append", default=[], dest="overrides")
+    args = ap.parse_args(argv)
+    from bearingsim.pipeline.scene import load_scene
+    from bearingsim.pipeline.stages.simulate import build_model, hht_settings
+
+    scene = load_scene(args.scene, args.overrides)
+    params, start = build_model(scene, None)
+    study = run_study(params, start, hht_settings(scene), args.quick)
+    write_study(study, args.out)
+    print(markdown_table(study))
+
+
+if __name__ == "__main__":
+    main()

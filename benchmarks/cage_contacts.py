@@ -2,7 +2,7 @@
 
 Run: python -m benchmarks.cage_contacts [--repeats N]
 
-Reference scene of MODEL.md §2 (bronze cage, steel balls and races), a state near the
+Reference scene of docs/model.md §2 (bronze cage, steel balls and races), a state near the
 paper's operating point: cage at 0.44 of the inner-race speed, every other ball touching
 its pocket, cage pressed into the land at eps = 1.02 (inside the hybrid blend, the most
 expensive branch: film terms plus the Lundberg Newton solve).

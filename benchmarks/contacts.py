@@ -1,4 +1,4 @@
-"""Time to evaluate every contact of the reference bearing once (issue 3 target: <= 50 us).
+"""Time to evaluate every contact of the reference bearing once (target <= 50 us).
 
     python -m benchmarks.contacts [SCENE]
     taskset -c 1 python -m benchmarks.contacts     # steadier on a shared machine
@@ -96,7 +96,7 @@ def main(scene_name: str = "helicopter-b-given-hinge") -> None:
         t0 = _time_kernel(model, q, v, ip, tangent, number)
         t1 = _time_kernel(model, q_mid, v_mid, ip, tangent, number)
         print(f"{label:70s} {t0 * 1e6:6.1f} us {t1 * 1e6:6.1f} us")
-    print("target (issue 3): contacts incl. traction <= 50 us on one core")
+    print("target: contacts incl. traction <= 50 us on one core")
 
 
 if __name__ == "__main__":

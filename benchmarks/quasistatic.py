@@ -1,4 +1,4 @@
-"""Timing of the quasi-static solver on the helicopter scenes (MODEL.md §2).
+"""Timing of the quasi-static solver on the helicopter scenes (docs/model.md §2).
 
 Run: python -m benchmarks.quasistatic   (first call includes numba compile or cache load)
 """

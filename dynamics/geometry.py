@@ -1,4 +1,4 @@
-"""Bearing and cage geometry in SI units, with the derived quantities of MODEL.md §2.
+"""Bearing and cage geometry in SI units, with the derived quantities of docs/model.md §2.
 
 One internal geometry serves every stage. It is built either from the paper's Table-1
 form (groove curvature-centre circle diameters and groove radii) or from catalogue data
@@ -15,9 +15,9 @@ from dataclasses import dataclass, field
 class Material:
     """Isotropic linear-elastic material."""
 
-    youngs_modulus: float = field(metadata={"unit": "Pa", "gt": 0.0})
-    poisson_ratio: float = field(metadata={"unit": "-", "gt": -1.0, "lt": 0.5})
-    density: float = field(metadata={"unit": "kg/m^3", "gt": 0.0})
+    youngs_modulus: float = field(metadata={"unit": "Pa", "gt": 0.0, "doc": "Young's modulus E"})
+    poisson_ratio: float = field(metadata={"unit": "-", "gt": -1.0, "lt": 0.5, "doc": "Poisson's ratio"})
+    density: float = field(metadata={"unit": "kg/m^3", "gt": 0.0, "doc": "mass density"})
 
     @property
     def plane_strain_modulus(self) -> float:
@@ -28,14 +28,14 @@ class Material:
 def effective_modulus(a: Material, b: Material) -> float:
     """Hertz effective modulus E' = 2 / ((1-nu_a^2)/E_a + (1-nu_b^2)/E_b) [Pa].
 
-    For equal materials this is E/(1-nu^2) (MODEL.md §6.2).
+    For equal materials this is E/(1-nu^2) (docs/model.md §6.2).
     """
     return 2.0 / (1.0 / a.plane_strain_modulus + 1.0 / b.plane_strain_modulus)
 
 
 @dataclass(frozen=True)
 class BearingGeometry:
-    """Ball-bearing geometry (MODEL.md §2), SI units.
+    """Ball-bearing geometry (docs/model.md §2), SI units.
 
     `inner_groove_center_diameter` (d_i) and `outer_groove_center_diameter` (d_o) are the
     diameters of the circles on which the groove curvature centres lie; `*_groove_radius`
@@ -43,17 +43,17 @@ class BearingGeometry:
     that use them (ellipse truncation, FE geometry, renders) require them.
     """
 
-    ball_diameter: float = field(metadata={"unit": "m", "gt": 0.0})
-    ball_count: int = field(metadata={"unit": "-", "ge": 3})
-    inner_groove_center_diameter: float = field(metadata={"unit": "m", "gt": 0.0})
-    outer_groove_center_diameter: float = field(metadata={"unit": "m", "gt": 0.0})
-    inner_groove_radius: float = field(metadata={"unit": "m", "gt": 0.0})
-    outer_groove_radius: float = field(metadata={"unit": "m", "gt": 0.0})
-    inner_shoulder_diameter: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0})
-    outer_shoulder_diameter: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0})
-    inner_bore_diameter: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0})
-    outer_outside_diameter: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0})
-    width: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0})
+    ball_diameter: float = field(metadata={"unit": "m", "gt": 0.0, "doc": "ball diameter D"})
+    ball_count: int = field(metadata={"unit": "-", "ge": 3, "doc": "number of balls Z"})
+    inner_groove_center_diameter: float = field(metadata={"unit": "m", "gt": 0.0, "doc": "d_i: diameter of the circle of inner-groove curvature centres"})
+    outer_groove_center_diameter: float = field(metadata={"unit": "m", "gt": 0.0, "doc": "d_o: diameter of the circle of outer-groove curvature centres"})
+    inner_groove_radius: float = field(metadata={"unit": "m", "gt": 0.0, "doc": "r_i: inner groove (raceway) cross-section radius"})
+    outer_groove_radius: float = field(metadata={"unit": "m", "gt": 0.0, "doc": "r_o: outer groove cross-section radius"})
+    inner_shoulder_diameter: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0, "doc": "inner-ring land diameter (ellipse truncation; land of an inner-guided cage)"})
+    outer_shoulder_diameter: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0, "doc": "outer-ring land diameter (ellipse truncation; land of an outer-guided cage)"})
+    inner_bore_diameter: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0, "doc": "inner-ring bore (inner-ring mass of the dynamic model, FE seat)"})
+    outer_outside_diameter: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0, "doc": "outer-ring outside diameter (FE seat, renders)"})
+    width: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0, "doc": "ring width B"})
 
     def __post_init__(self) -> None:
         """Reject geometry that cannot be built; messages name the scene keys."""
@@ -129,7 +129,7 @@ class BearingGeometry:
             **optional,
         )
 
-    # --- derived quantities (MODEL.md §2) -------------------------------------------
+    # --- derived quantities (docs/model.md §2) -------------------------------------------
     @property
     def inner_groove_bottom_diameter(self) -> float:
         """d_i - 2 r_i [m]."""
@@ -191,12 +191,12 @@ class BearingGeometry:
 
 @dataclass(frozen=True)
 class CageGeometry:
-    """Ball-guided/land-guided cage with cylindrical radial pockets (MODEL.md §2, §7, §8)."""
+    """Ball-guided/land-guided cage with cylindrical radial pockets (docs/model.md §2, §7, §8)."""
 
-    mean_diameter: float = field(metadata={"unit": "m", "gt": 0.0})
-    pocket_diameter: float = field(metadata={"unit": "m", "gt": 0.0})
-    radial_thickness: float = field(metadata={"unit": "m", "gt": 0.0})
-    width: float = field(metadata={"unit": "m", "gt": 0.0})
+    mean_diameter: float = field(metadata={"unit": "m", "gt": 0.0, "doc": "cage mean diameter (pocket centres)"})
+    pocket_diameter: float = field(metadata={"unit": "m", "gt": 0.0, "doc": "cylindrical pocket diameter (pocket clearance = pocket_diameter - D)"})
+    radial_thickness: float = field(metadata={"unit": "m", "gt": 0.0, "doc": "cage radial thickness (outside diameter = mean + thickness)"})
+    width: float = field(metadata={"unit": "m", "gt": 0.0, "doc": "ring width B"})
     guidance: str = field(default="outer", metadata={"choices": ("outer", "inner"),
                                                      "doc": "which race's lands guide the cage"})
 

@@ -1,4 +1,4 @@
-"""Stage 1 (MODEL.md §3): FE identification of the inner-race hinge stiffness.
+"""Stage 1 (docs/model.md §3): FE identification of the inner-race hinge stiffness.
 
 Public API: FEConfig, RingSeat, identify_hinge, HingeIdentification, read_hinge,
 convergence_study, fit_hinge, HingeFit, richardson. Never imports dynamics or pipeline.

@@ -11,7 +11,7 @@ import tomllib
 import numpy as np
 
 HEADER = """\
-# Viscoelastic hinge identified by FE (bearingsim stage 1, MODEL.md §3, fit S.2).
+# Viscoelastic hinge identified by FE (bearingsim stage 1, docs/model.md §3, fit M.2).
 # [hinge] uses the scene's [hinge] key names and can be pasted there with source = "given".
 # translational: H_u [N/m], 3x3 symmetric; bending: H_psi [N*m/rad] about x and y.
 """

@@ -19,7 +19,7 @@ def _f(default, unit: str, doc: str, **limits):
 
 @dataclass(frozen=True)
 class FEConfig:
-    """Stage-1 settings (MODEL.md §3). Defaults suit the reference bearing (§2)."""
+    """Stage-1 settings (docs/model.md §3). Defaults suit the reference bearing (§2)."""
 
     # --- numerics -----------------------------------------------------------------------
     mesh_size: float = _f(0.030, "m", "characteristic tetrahedron edge length", gt=0.0)
@@ -56,7 +56,7 @@ class FEConfig:
     housing_youngs_modulus: float = _f(71e9, "Pa", "housing alloy (aluminium; ~44e9 for magnesium)", gt=0.0)
     housing_poisson_ratio: float = _f(0.33, "-", "housing alloy", gt=-1.0, lt=0.5)
     housing_density: float = _f(2810.0, "kg/m^3", "housing alloy (not used by statics)", gt=0.0)
-    # --- perturbation loads (MODEL.md §3) ------------------------------------------------------
+    # --- perturbation loads (docs/model.md §3) ------------------------------------------------------
     perturbation_forces: tuple[float, ...] = _f(
         (-1000.0, 500.0, 1000.0), "N", "force magnitudes along x, y, z", ge=-1000.0, le=1000.0
     )

@@ -1,10 +1,10 @@
-"""Least-squares fit of the viscoelastic hinge stiffness (MODEL.md §3, S.2).
+"""Least-squares fit of the viscoelastic hinge stiffness (docs/model.md §3, M.2).
 
 The hinge answers a load (F, M) applied at the ring centre with u_eq = H_u^-1 F and
-psi_eq = H_psi^-1 (M_x, M_y) (equilibrium of S.17 with psi ~ (theta_x, theta_y) for
-small rotations, S.15). S.2 is therefore linear in the compliances C_u = H_u^-1
+psi_eq = H_psi^-1 (M_x, M_y) (equilibrium of M.17 with psi ~ (theta_x, theta_y) for
+small rotations, M.15). M.2 is therefore linear in the compliances C_u = H_u^-1
 (symmetric, 6 unknowns) and c_psi = 1/H_psi (2 unknowns): minimising over C and then
-inverting gives the exact S.2 minimiser over H.
+inverting gives the exact M.2 minimiser over H.
 """
 
 from __future__ import annotations
@@ -25,15 +25,15 @@ class HingeFit:
     H_psi: np.ndarray  # (2,) N*m/rad
     residual_u: float  # m, sqrt(sum_i |u_FE - u_eq|^2)
     residual_psi: float  # rad, sqrt(sum_i |psi_FE - psi_eq|^2)
-    relative_residual: float  # S.2 residual / norm of the FE responses
-    condition_number: float  # 2-norm condition of the S.2 least-squares design matrix
+    relative_residual: float  # M.2 residual / norm of the FE responses
+    condition_number: float  # 2-norm condition of the M.2 least-squares design matrix
     flexibility: np.ndarray  # (6, 5) unconstrained LS: [u; theta] per (Fx, Fy, Fz, Mx, My)
     coupling: dict  # dimensionless coupling ratios the hinge form cannot represent
     magnitude_spread: float  # max relative change of H fitted per magnitude vs all cases
 
 
 def _design(loads: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Design matrices of S.2 for the compliance unknowns: (3n, 6) and (2n, 2)."""
+    """Design matrices of M.2 for the compliance unknowns: (3n, 6) and (2n, 2)."""
     n = loads.shape[0]
     D_u = np.zeros((n, 3, 6))
     for k, (a, b) in enumerate(_SYM_INDEX):
@@ -50,7 +50,7 @@ def _compliances(loads, responses):
     D_u, D_psi = _design(loads)
     if np.linalg.matrix_rank(D_u) < 6 or np.linalg.matrix_rank(D_psi) < 2:
         raise ValueError(
-            "the perturbation cases do not determine the hinge: S.2 needs non-zero forces "
+            "the perturbation cases do not determine the hinge: M.2 needs non-zero forces "
             "along x, y and z and moments about x and y"
         )
     c_u = np.linalg.lstsq(D_u, responses[:, :3].ravel(), rcond=None)[0]
@@ -62,7 +62,7 @@ def _compliances(loads, responses):
 
 
 def fit_hinge(loads: np.ndarray, responses: np.ndarray, groups: np.ndarray | None = None) -> HingeFit:
-    """Fit S.2. loads: (n, 6) [Fx Fy Fz (N), Mx My Mz (N·m)] applied at the ring centre;
+    """Fit M.2. loads: (n, 6) [Fx Fy Fz (N), Mx My Mz (N·m)] applied at the ring centre;
     responses: (n, 6) [u (m), theta (rad)] from the rigid fit; groups: (n,) label of the
     magnitude set each case belongs to (for the spread), optional."""
     loads = np.asarray(loads, dtype=float)

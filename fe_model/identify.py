@@ -1,6 +1,6 @@
-"""Stage 1 end to end: mesh, assemble, factor once, solve all perturbation cases, fit S.2.
+"""Stage 1 end to end: mesh, assemble, factor once, solve all perturbation cases, fit M.2.
 
-What is loaded and what is measured (MODEL.md §3). The hinge of §5 ties the inner race
+What is loaded and what is measured (docs/model.md §3). The hinge of §5 ties the inner race
 to a fixed frame while the outer race is fixed, so it must carry the compliance of
 everything between the two raceways except the balls: inner ring -> shaft -> support
 bearings -> housing -> outer-ring seat. With `load_reaction = "outer_seat"` (default)

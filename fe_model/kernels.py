@@ -11,7 +11,7 @@ def element_stiffness_upper(grads, dx, lam, mu):
     """Upper triangles of the element stiffness matrices of isotropic linear elasticity.
 
     K_e[3a+i, 3b+j] = sum_q dx_q (lam g_ai g_bj + mu g_aj g_bi + mu (g_a . g_b) delta_ij),
-    the weak form a(u, v) = int lam div u div v + 2 mu eps(u):eps(v) dV (MODEL.md §3
+    the weak form a(u, v) = int lam div u div v + 2 mu eps(u):eps(v) dV (docs/model.md §3
     stage 1, static linear elasticity), with g_a the gradient of scalar shape function a.
 
     grads: (E, Q, A, 3) shape-function gradients [1/m] at the quadrature points;

@@ -1,4 +1,4 @@
-"""RBE3-like load distribution and least-squares rigid-body fit over a region (MODEL.md §3).
+"""RBE3-like load distribution and least-squares rigid-body fit over a region (docs/model.md §3).
 
 Both are linear maps built from the same integrals of the shape functions phi_n over
 a region (a volume or a set of facets) with r = x - c about the ring centre c:
@@ -56,7 +56,7 @@ def distributed_load_matrix(region: RegionMoments) -> np.ndarray:
     Column k is for the k-th unit generalised load (F_x, F_y, F_z, M_x, M_y, M_z) applied
     at the centre c. The traction t(x) = F/A + a x (x - x_bar) (RBE3 with area weights)
     has resultant F and, with a = J^-1 (M - d x F), moment M about c, where
-    d = x_bar - c and J = int (|r'|^2 I - r' r'^T), r' = x - x_bar (MODEL.md §3).
+    d = x_bar - c and J = int (|r'|^2 I - r' r'^T), r' = x - x_bar (docs/model.md §3).
     The consistent nodal load is f_n = int t phi_n.
     """
     A = region.measure
@@ -77,7 +77,7 @@ def rigid_fit_operator(region: RegionMoments) -> np.ndarray:
     """(6, 3N) matrix L with [t; theta] = L u: the least-squares rigid motion of a region.
 
     Minimises int |u - t - theta x r|^2 over the region (the "average mean displacement
-    element" of MODEL.md §3): t is the mean translation at the centre c, theta the mean
+    element" of docs/model.md §3): t is the mean translation at the centre c, theta the mean
     (small) rotation. Normal equations G q = B^T u with G the Gram matrix of the six
     rigid modes and B^T u = [int u; int r x u].
     """

@@ -1,6 +1,6 @@
 """gmsh session handling and mesh extraction into `MeshData`.
 
-gmsh is imported inside the functions (STYLE.md §6): importing it loads X11/GL
+gmsh is imported inside the functions (docs/contributing.md §6): importing it loads X11/GL
 libraries that a bare machine may lack (see pipeline/system_libraries.py).
 """
 

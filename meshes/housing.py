@@ -1,4 +1,4 @@
-"""Parametric shaft / inner ring / supports / housing geometry (MODEL.md §3), gmsh OCC.
+"""Parametric shaft / inner ring / supports / housing geometry (docs/model.md §3), gmsh OCC.
 
 Axisymmetric about z, built from tubes and fragmented so that every interface is
 conforming (the ring is tied to the shaft, the supports to shaft and housing):
@@ -26,7 +26,7 @@ from bearingsim.meshes.mesh_data import MeshData
 
 # Graded refinement (see build_housing_mesh): the edges that set the axial stiffness get
 # SINGULAR_EDGE_FACTOR x the size of the other circular edges; sizes grow back to
-# mesh_size within EDGE_REACH x mesh_size. Chosen by the convergence study of issue 5:
+# mesh_size within EDGE_REACH x mesh_size. Chosen by the convergence study:
 # with the [fe] defaults (0.030 m, 0.25) H_u_zz is +1.9 % and H_psi +1.6 % above their
 # Richardson limits at 482k P2 dofs; all edges at 0.3 x 0.020 m gave +2.9 % at 354k.
 SINGULAR_EDGE_FACTOR = 0.32
@@ -173,7 +173,7 @@ def _named_surfaces(gmsh, g: HousingGeometry) -> dict[str, list[int]]:
 
     rules = {
         "inner_ring_bore": cylinder(r_b, -half_b, half_b),
-        "inner_ring_seat": cylinder(r_b, -half_b, half_b),  # MODEL.md's name: same facets as the bore
+        "inner_ring_seat": cylinder(r_b, -half_b, half_b),  # docs/model.md's name: same facets as the bore
         "inner_ring_race": cylinder(0.5 * g.ring.inner_outer_diameter, -half_b, half_b),
         "outer_ring_seat": cylinder(g.seat_radius, -half_b, half_b),
         "support_a": cylinder(r_b, g.support_a_position - half_w, g.support_a_position + half_w),
@@ -192,7 +192,7 @@ def _singular_curves(gmsh, g: HousingGeometry) -> list[int]:
     """Circular edges where the axial load path has singular stresses: the four corners
     of each soft support annulus (bonded to shaft and web), the re-entrant corners where
     the webs meet the housing shell, and the edges of the outer-ring seat (end of the
-    seat traction). Refining these moves H_u_zz most per degree of freedom (issue 5)."""
+    seat traction). Refining these moves H_u_zz most per degree of freedom."""
     tol = 1e-5 * g.housing_flange_diameter
     r_b, r_s, R = 0.5 * g.ring.inner_bore_diameter, g.support_outer_radius, g.seat_radius
     half_b, half_w = 0.5 * g.ring.width, 0.5 * g.support_width

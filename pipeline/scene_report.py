@@ -35,7 +35,7 @@ def _section(table: Table, title: str, obj) -> None:
 
 
 def derived_geometry(scene: Scene) -> list[tuple[str, float, str]]:
-    """Derived quantities of MODEL.md §2 in engineering units (mm, deg, g, kg)."""
+    """Derived quantities of docs/model.md §2 in engineering units (mm, deg, g, kg)."""
     b, m = scene.bearing, scene.materials
     rows = [
         ("pitch diameter d_m", b.pitch_diameter * 1e3, "mm"),
@@ -109,3 +109,24 @@ def print_quasistatic(result: dict, console: Console) -> None:
     t = ", ".join(f"{v * 1e3:.4f}" for v in ir["tilt"])
     console.print(f"inner race displacement \\[µm]: ({d})   tilt \\[mrad]: ({t})   "
                   f"converged: {result.get('converged')}")
+    if result.get("cage_screen"):
+        console.print(cage_screen_text(result["cage_screen"]))
+
+
+def cage_screen_text(s: dict) -> str:
+    """One paragraph on the crush screen (docs/model.md §10.1) for the console."""
+    um = 1e6
+    head = {"free": "free: the balls' excursion fits in the pocket clearance, no steady push on the cage",
+            "pressed": "pressed: the balls push the cage off-centre onto one sector of its land",
+            "crushed": "CRUSHED: the balls need more room than pocket and guide clearance give; "
+                       "they force the cage onto its land (metal contact)"}[s["regime"]]
+    text = (f"cage crush screen: {head}.\n"
+            f"  ball excursion against a rigid cage {s['excursion_peak_to_peak'] * um:.0f} µm peak to peak "
+            f"vs pocket clearance {s['pocket_clearance'] * um:.0f} µm; guide clearance {s['guide_clearance'] * um:.0f} µm\n"
+            f"  balls lead the cage most at {s['front_wall_azimuth_deg']:.0f}° and lag most at "
+            f"{s['rear_wall_azimuth_deg']:.0f}° (orbital position)")
+    if s["regime"] != "free":
+        text += (f"\n  push towards {round(s['push_azimuth_deg']) % 360}°; required cage offset "
+                 f"{s['required_eccentricity'] * um:.0f} µm = {s['required_eccentricity_ratio']:.2f} of the "
+                 f"guide clearance (crush margin {s['crush_margin']:.2f})")
+    return text

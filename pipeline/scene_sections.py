@@ -1,4 +1,4 @@
-"""The sections of a scene file (SCENE.md), one frozen dataclass each, SI units.
+"""The sections of a scene file (docs/scenes.md), one frozen dataclass each, SI units.
 
 Physical sections (`[bearing]`, `[cage]`, `[materials]`) reuse the dynamics' own types;
 the ones below are the scene-only sections. Field metadata gives unit and range; the
@@ -17,19 +17,19 @@ from bearingsim.dynamics.geometry import Material
 class CatalogueBearing:
     """`[bearing]` form 2: catalogue data (resolved to BearingGeometry)."""
 
-    ball_diameter: float = field(metadata={"unit": "m", "gt": 0.0})
-    ball_count: int = field(metadata={"unit": "-", "ge": 3})
-    pitch_diameter: float = field(metadata={"unit": "m", "gt": 0.0})
+    ball_diameter: float = field(metadata={"unit": "m", "gt": 0.0, "doc": "ball diameter D"})
+    ball_count: int = field(metadata={"unit": "-", "ge": 3, "doc": "number of balls Z"})
+    pitch_diameter: float = field(metadata={"unit": "m", "gt": 0.0, "doc": "pitch diameter d_m"})
     inner_conformity: float = field(metadata={"unit": "-", "gt": 0.5, "le": 1.0, "doc": "r_i / D"})
     outer_conformity: float = field(metadata={"unit": "-", "gt": 0.5, "le": 1.0, "doc": "r_o / D"})
     diametral_clearance: float = field(
         default=0.0, metadata={"unit": "m", "doc": "unmounted radial play x 2; negative = preload"}
     )
-    inner_shoulder_diameter: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0})
-    outer_shoulder_diameter: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0})
-    inner_bore_diameter: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0})
-    outer_outside_diameter: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0})
-    width: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0})
+    inner_shoulder_diameter: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0, "doc": "inner-ring land diameter"})
+    outer_shoulder_diameter: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0, "doc": "outer-ring land diameter"})
+    inner_bore_diameter: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0, "doc": "inner-ring bore"})
+    outer_outside_diameter: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0, "doc": "outer-ring outside diameter"})
+    width: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0, "doc": "ring width B"})
 
 
 @dataclass(frozen=True)
@@ -43,9 +43,9 @@ class Materials:
 class Load:
     """Loads on the inner race: axial along +z, radial along +x, moment about +y."""
 
-    axial: float = field(default=0.0, metadata={"unit": "N"})
-    radial: float = field(default=0.0, metadata={"unit": "N", "ge": 0.0})
-    moment: float = field(default=0.0, metadata={"unit": "N.m"})
+    axial: float = field(default=0.0, metadata={"unit": "N", "doc": "axial load on the inner race along +z"})
+    radial: float = field(default=0.0, metadata={"unit": "N", "ge": 0.0, "doc": "radial load on the inner race along +x"})
+    moment: float = field(default=0.0, metadata={"unit": "N.m", "doc": "moment on the inner race about +y"})
     step_time: float | None = field(default=None, metadata={
         "unit": "s", "ge": 0.0, "doc": "time of a sudden moment step (dynamic run only; with step_moment)"})
     step_moment: float | None = field(default=None, metadata={
@@ -64,8 +64,8 @@ class Load:
 
 @dataclass(frozen=True)
 class Speed:
-    inner_rpm: float = field(default=0.0, metadata={"unit": "rev/min"})
-    outer_rpm: float = field(default=0.0, metadata={"unit": "rev/min"})
+    inner_rpm: float = field(default=0.0, metadata={"unit": "rev/min", "doc": "inner-race speed about +z"})
+    outer_rpm: float = field(default=0.0, metadata={"unit": "rev/min", "doc": "outer-race speed about +z (the dynamic model keeps the outer race fixed)"})
 
     @property
     def inner(self) -> float:
@@ -79,9 +79,9 @@ class Speed:
 
 @dataclass(frozen=True)
 class Hinge:
-    """Viscoelastic hinge of the inner race (MODEL.md §5); H given or identified by FE."""
+    """Viscoelastic hinge of the inner race (docs/model.md §5); H given or identified by FE."""
 
-    source: str = field(default="none", metadata={"choices": ("fe", "given", "none")})
+    source: str = field(default="none", metadata={"choices": ("fe", "given", "none"), "doc": "'fe': identified by the FE stage; 'given': translational and bending below; 'none': inner race free"})
     translational: tuple[float, ...] | None = field(
         default=None, metadata={"unit": "N/m", "doc": "diagonal of H_u (3), or H_u as 3x3 / row-major (9)"}
     )
@@ -123,15 +123,15 @@ class Hinge:
 
 @dataclass(frozen=True)
 class SolverSettings:
-    """Numerical settings of the dynamic stage (MODEL.md §9)."""
+    """Numerical settings of the dynamic stage (docs/model.md §9)."""
 
-    alpha: float = field(default=0.1, metadata={"unit": "-", "ge": 0.0, "le": 1.0 / 3.0, "doc": "HHT"})
-    duration: float = field(default=0.8, metadata={"unit": "s", "gt": 0.0})
-    first_step: float = field(default=1e-6, metadata={"unit": "s", "gt": 0.0})
-    min_step: float = field(default=1e-8, metadata={"unit": "s", "gt": 0.0})
-    max_step: float = field(default=2e-6, metadata={"unit": "s", "gt": 0.0})
-    rtol: float = field(default=1e-4, metadata={"unit": "-", "gt": 0.0, "lt": 1.0})
-    atol: float = field(default=1e-9, metadata={"unit": "m", "gt": 0.0})
+    alpha: float = field(default=0.1, metadata={"unit": "-", "ge": 0.0, "le": 1.0 / 3.0, "doc": "HHT-alpha numerical damping (0: trapezoidal rule)"})
+    duration: float = field(default=0.8, metadata={"unit": "s", "gt": 0.0, "doc": "simulated time"})
+    first_step: float = field(default=1e-6, metadata={"unit": "s", "gt": 0.0, "doc": "first time step"})
+    min_step: float = field(default=1e-8, metadata={"unit": "s", "gt": 0.0, "doc": "smallest step before the run gives up"})
+    max_step: float = field(default=2e-6, metadata={"unit": "s", "gt": 0.0, "doc": "largest step"})
+    rtol: float = field(default=1e-4, metadata={"unit": "-", "gt": 0.0, "lt": 1.0, "doc": "relative tolerance of the step controller (of the position coordinates)"})
+    atol: float = field(default=1e-9, metadata={"unit": "m", "gt": 0.0, "doc": "absolute tolerance of the step controller (positions)"})
 
     def __post_init__(self) -> None:
         if not self.min_step <= self.first_step <= self.max_step:
@@ -149,11 +149,14 @@ class SolverSettings:
 class Physics:
     """Switches and contact parameters: what a scene does not need is not computed."""
 
-    ehd_film: bool = True
-    traction: str = field(default="eyring", metadata={"choices": ("eyring", "coulomb", "none")})
-    cage_race: str = field(default="hybrid", metadata={"choices": ("hybrid", "hydrodynamic", "dry", "none")})
-    centrifugal: bool = True
-    gyroscopic: bool = True
+    ehd_film: bool = field(default=True, metadata={
+        "doc": "compute the EHD central film of every ball-race contact (needs [lubricant])"})
+    traction: str = field(default="eyring", metadata={"choices": ("eyring", "coulomb", "none"), "doc": "ball-race traction: Eyring lubricant (film needed), Coulomb (dry) or none"})
+    cage_race: str = field(default="hybrid", metadata={"choices": ("hybrid", "hydrodynamic", "dry", "none"), "doc": "cage-land law: hybrid film/metal (paper eqs. 25-31), film only, metal only, or no contact"})
+    centrifugal: bool = field(default=True, metadata={
+        "doc": "ball centrifugal force in the quasi-static solve; the dynamic model's inertia always has it, so a dynamic run refuses false"})
+    gyroscopic: bool = field(default=True, metadata={
+        "doc": "gyroscopic moments: of the balls in the quasi-static solve (race control), of every body in the dynamics"})
     film_formula: str = field(default="nvm", metadata={
         "choices": ("nvm", "hamrock-dowson"), "doc": "central film: Nijenbanning-Venner-Moes or Hamrock-Dowson"})
     min_film: float = field(default=5e-8, metadata={
@@ -162,14 +165,24 @@ class Physics:
         "unit": "-", "ge": 0.0, "le": 1.0, "doc": "ball-race Coulomb coefficient (traction = 'coulomb')"})
     contact_damping_ratio: float = field(default=0.05, metadata={
         "unit": "-", "ge": 0.0, "le": 1.0, "doc": "ball-race normal damping, fraction of critical for a ball on its Hertz stiffness"})
-    pocket_friction: float = field(default=0.1, metadata={"unit": "-", "ge": 0.0, "le": 1.0})
-    pocket_restitution: float = field(default=0.7, metadata={"unit": "-", "gt": 0.0, "le": 1.0})
+    pocket_friction: float = field(default=0.1, metadata={"unit": "-", "ge": 0.0, "le": 1.0, "doc": "ball-pocket Coulomb coefficient (regularised)"})
+    pocket_restitution: float = field(default=0.7, metadata={"unit": "-", "gt": 0.0, "le": 1.0, "doc": "coefficient of restitution of ball-pocket impacts (Hunt-Crossley damping)"})
     cage_race_friction: float = field(default=0.1, metadata={
         "unit": "-", "ge": 0.0, "le": 1.0, "doc": "metal-to-metal friction at the guide land"})
     cage_race_boundary: float = field(default=0.05, metadata={
         "unit": "-", "gt": 0.0, "lt": 1.0, "doc": "epsilon_0: boundary-layer width of the hybrid model / C"})
+    cage_race_film: str = field(default="dynamic", metadata={
+        "choices": ("dynamic", "static"),
+        "doc": "land film force: 'dynamic' = short bearing with the squeeze and whirl terms of the Reynolds "
+               "equation (docs/model.md M.94b-M.94e); 'static' = the paper's eq. 25 (a centre at rest)"})
+    cage_race_lands: int = field(default=2, metadata={
+        "unit": "-", "ge": 1, "le": 2,
+        "doc": "separate guide lands the cage overlap is split into: 2 = one on each side of the race groove, "
+               "which vents the film (each a short bearing of half the length); 1 = the paper's single journal"})
+    coulomb_regularisation: float = field(default=1e-3, metadata={
+        "unit": "m/s", "gt": 0.0, "doc": "slip speed over which Coulomb friction (traction = 'coulomb') reaches its full value"})
 
 
 @dataclass(frozen=True)
 class Output:
-    sample_interval: float = field(default=1e-5, metadata={"unit": "s", "gt": 0.0})
+    sample_interval: float = field(default=1e-5, metadata={"unit": "s", "gt": 0.0, "doc": "interval of the saved time series"})

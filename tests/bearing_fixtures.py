@@ -1,4 +1,4 @@
-"""Small helpers shared by the bearing-model tests: the reference bearing (MODEL.md §2)
+"""Small helpers shared by the bearing-model tests: the reference bearing (docs/model.md §2)
 built directly from dynamics types, so these tests do not depend on the pipeline."""
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Operating points of the reference bearing's ball-race contacts (MODEL.md §2), for tests.
+"""Operating points of the reference bearing's ball-race contacts (docs/model.md §2), for tests.
 
 Semi-axes from the Hamrock-Brewe closed forms (Hamrock, Fundamentals of Fluid Film
 Lubrication, NASA RP-1255, 1991, eqs. 3.40-3.42: k = 1.0339 (Ry/Rx)^0.636,

@@ -1,5 +1,5 @@
-"""Physical sanity of the dynamic bearing model on short runs (issue 7): a few hundred to a
-few thousand steps of the reference bearing (MODEL.md §2) with Eyring traction."""
+"""Physical sanity of the dynamic bearing model on short runs: a few hundred to a
+few thousand steps of the reference bearing (docs/model.md §2) with Eyring traction."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""The bearing model's residual and tangents (MODEL.md §4–§9): consistency with the
+"""The bearing model's residual and tangents (docs/model.md §4–§9): consistency with the
 quasi-static solver, action = reaction, and tangents against finite differences."""
 
 from __future__ import annotations
@@ -63,7 +63,7 @@ def _centripetal_ratio(moment: float) -> tuple[np.ndarray, np.ndarray, object, o
 
 
 def test_quasistatic_start_is_an_orbit_of_the_dynamic_model():
-    """Under pure thrust, the quasi-static equilibrium (MODEL.md §10) must leave each ball with
+    """Under pure thrust, the quasi-static equilibrium (docs/model.md §10) must leave each ball with
     exactly the centripetal force of its orbit, -m omega_c^2 rho, and the inner race in
     equilibrium with its load: the two solvers share geometry, Hertz law and load signs."""
     ratio, axial, params, g = _centripetal_ratio(moment=0.0)
@@ -128,7 +128,7 @@ def _fd_tangents(model, q, v, cols):
 
 @pytest.mark.parametrize("case", ["lubricated", "frictionless"])
 def test_tangents_agree_with_finite_differences(case, lubricated, dry):
-    """Approximate tangents are allowed (MODEL.md §9), but the stiff parts must be right:
+    """Approximate tangents are allowed (docs/model.md §9), but the stiff parts must be right:
     ball translation/rotation and the inner race, against central differences of g, for the
     reference scene's Eyring traction and without traction. (Saturated dry Coulomb friction
     is not held to this: its tilt-slip coupling is only partly in the tangent.)"""
@@ -203,7 +203,7 @@ def test_kernels_without_reference_counting_neither_leak_nor_drop_references(lub
 def test_tabulated_film_equals_the_nvm_formula(lubricated, outer):
     """The time loop's film reads R_x and the lambda-only NVM terms from the race table
     (race_forces.film_geometry_columns); it must equal film.film_central_nvm with R_x, R_y
-    computed from the contact angle (MODEL.md §6.2–§6.3) -- over the table's whole range of
+    computed from the contact angle (docs/model.md §6.2–§6.3) -- over the table's whole range of
     contact angles, between and on its nodes, for loads and speeds of the reference bearing."""
     from bearingsim.dynamics.bearing.params import FP_ALPHA_P, FP_D, FP_DM, FP_E_EFF, FP_ETA0, FP_MIN_FILM, FP_RI, FP_RO, IP_FILM
     from bearingsim.dynamics.bearing.race_forces import _curvature_radii, _film
@@ -242,7 +242,7 @@ def test_tabulated_semi_axes_equal_hertz(lubricated, outer):
 
 def test_hamrock_dowson_film_option_uses_the_contact_curvatures(lubricated):
     """With the Hamrock–Dowson option the model's film is film_hamrock_dowson's central film
-    at R_x, R_y of the contact angle (MODEL.md §6.3), not the tabulated NVM terms."""
+    at R_x, R_y of the contact angle (docs/model.md §6.3), not the tabulated NVM terms."""
     from bearingsim.dynamics.bearing.params import FILM_HD, FP_ALPHA_P, FP_D, FP_DM, FP_E_EFF, FP_ETA0, FP_MIN_FILM, FP_RI
     from bearingsim.dynamics.bearing.race_forces import _curvature_radii, _film
     from bearingsim.dynamics.lubrication.film import film_hamrock_dowson

@@ -1,4 +1,4 @@
-"""Machinery of the work-precision study (issue 9): finite-difference tangents, the
+"""Machinery of the work-precision study: finite-difference tangents, the
 instrumented window runner, error metrics and the observed order of HHT-alpha."""
 
 from __future__ import annotations
@@ -40,7 +40,7 @@ def test_fd_tangent_matches_the_exact_tangent_of_hardening_springs(structure):
 def test_fd_tangent_uses_material_rotation_increments_on_crv_slots():
     """A hinged rigid body (CRV orientation, gyroscopic terms): the FD tangent with
     multiplicative rotation increments matches the model's analytic K_t and C_t
-    (dynamics/multibody/example_problems.py RigidBody; hinge S.19-S.20)."""
+    (dynamics/multibody/example_problems.py RigidBody; hinge M.19-M.20)."""
     rng = np.random.default_rng(5)
     model = RigidBody(2.0, np.diag([0.01, 0.012, 0.02]),
                       hinge=HingeStiffness(1e7 * np.eye(3), np.array([1e4, 1e4]), 1e-5))

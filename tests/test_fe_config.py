@@ -28,11 +28,11 @@ def test_defaults_satisfy_their_own_ranges_and_validate_for_the_reference_ring()
             assert "ge" not in meta or v >= meta["ge"], f.name
             assert "lt" not in meta or v < meta["lt"], f.name
             assert "le" not in meta or v <= meta["le"], f.name
-    config.validate(RingSeat())  # reference bearing, MODEL.md §2
+    config.validate(RingSeat())  # reference bearing, docs/model.md §2
 
 
 def test_scene_example_keys_exist():
-    # SCENE.md's [fe] table shows exactly these two keys
+    # docs/scenes.md's [fe] table shows exactly these two keys
     names = {f.name for f in dataclasses.fields(FEConfig)}
     assert {"mesh_size", "element_order"} <= names
 

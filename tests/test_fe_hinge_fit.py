@@ -1,4 +1,4 @@
-"""The S.2 fit on synthetic hinge responses, and the Richardson estimate."""
+"""The M.2 fit on synthetic hinge responses, and the Richardson estimate."""
 
 import dataclasses
 import math
@@ -19,7 +19,7 @@ def _random_hinge(seed: int):
 
 
 def _hinge_responses(loads, H_u, H_psi, coupling=None):
-    """Responses of the hinge of S.17 to loads at its centre: u = H_u^-1 F, psi = M / H_psi."""
+    """Responses of the hinge of M.17 to loads at its centre: u = H_u^-1 F, psi = M / H_psi."""
     u = np.linalg.solve(H_u, loads[:, :3].T).T
     psi = loads[:, 3:5] / H_psi
     responses = np.column_stack([u, psi, np.zeros(len(loads))])

@@ -1,4 +1,4 @@
-"""EHD film thickness (MODEL.md §6.3): NVM asymptotes and agreement with Hamrock-Dowson."""
+"""EHD film thickness (docs/model.md §6.3): NVM asymptotes and agreement with Hamrock-Dowson."""
 
 import math
 
@@ -10,7 +10,7 @@ from bearingsim.dynamics.lubrication.lubricant import load_builtin_lubricant
 from tests.lubrication_points import E_EFF, curvature_radii, rolling_speed
 
 # Regimes of the Moes diagram (Nijenbanning, Venner & Moes, Wear 176 (1994), Fig. 1 and the
-# asymptotes quoted in MODEL.md §6.3): each (M, L) pair is deep in one regime, chosen so the
+# asymptotes quoted in docs/model.md §6.3): each (M, L) pair is deep in one regime, chosen so the
 # other asymptotes are at least ~50x away in the blending formula.
 REGIMES = {
     "RI": (0.01, 0.0),     # rigid-isoviscous: small load parameter, no piezoviscosity
@@ -30,7 +30,7 @@ def test_nvm_recovers_each_asymptote_in_its_regime(regime, lam):
 
 
 def test_nvm_ep_regime_has_the_moes_exponents():
-    # H_EP ~ M^-1/12 L^3/4 (MODEL.md §6.3) -> dimensional h_c ~ u_s^0.75 F^-1/12 deep in EP
+    # H_EP ~ M^-1/12 L^3/4 (docs/model.md §6.3) -> dimensional h_c ~ u_s^0.75 F^-1/12 deep in EP
     M0, L0, lam = 1e8, 1e4, 0.1
     H0 = film.nvm_central_dimensionless(M0, L0, lam)
     s = 2.0  # doubling u_s: M -> M s^-3/4, L -> L s^1/4, h -> H sqrt(s)
@@ -39,7 +39,7 @@ def test_nvm_ep_regime_has_the_moes_exponents():
 
 
 def test_nvm_within_25_percent_of_hamrock_dowson_for_reference_bearing():
-    # MODEL.md §6.3 acceptance: NVM central film within +-25 % of Hamrock & Dowson (1977)
+    # docs/model.md §6.3 acceptance: NVM central film within +-25 % of Hamrock & Dowson (1977)
     lub = load_builtin_lubricant("nato-o156")
     eta0, alpha = lub.eta0, lub.alpha_star
     worst = 0.0

@@ -1,4 +1,4 @@
-"""Hertz point contact (MODEL.md §6.2): elliptic integrals, ellipticity, constants, table, S.34."""
+"""Hertz point contact (docs/model.md §6.2): elliptic integrals, ellipticity, constants, table, M.34."""
 
 import math
 
@@ -12,7 +12,7 @@ from bearingsim.dynamics.contact.hertz import (DEFAULT_TABLE_NODES, elliptic_km,
 
 STEEL = Material(208e9, 0.3, 7850)
 E_EFF = effective_modulus(STEEL, STEEL)
-# MODEL.md §2 reference bearing (SI)
+# docs/model.md §2 reference bearing (SI)
 REF = BearingGeometry(0.01905, 22, 0.1584, 0.1573, 0.009753, 0.009906)
 
 
@@ -49,7 +49,7 @@ def test_semi_axes_match_timoshenko_table(theta_deg, m_ref, n_ref):
 
 
 def test_reference_bearing_inner_constant_at_25_degrees():
-    # MODEL.md §6.2 check: exact inner-race constant ≈ 1.5266e6 N/mm^1.5 at α = 25°
+    # docs/model.md §6.2 check: exact inner-race constant ≈ 1.5266e6 N/mm^1.5 at α = 25°
     sum_rho, f_rho = race_curvature(math.radians(25.0), REF.ball_diameter, REF.pitch_diameter,
                                     REF.inner_groove_radius, False)
     k_h = hertz_exact(sum_rho, f_rho, E_EFF)[2]
@@ -58,7 +58,7 @@ def test_reference_bearing_inner_constant_at_25_degrees():
 
 def test_sphere_on_sphere_limit_is_classical_hertz():
     # Johnson, "Contact Mechanics" (1985) eqs. 4.22–4.23: a = (3FR/(4E*))^{1/3}, δ = a²/R,
-    # with 1/R = 1/R1 + 1/R2 and E* = E'/2 (E' of MODEL.md is 2/Σ((1−ν²)/E)).
+    # with 1/R = 1/R1 + 1/R2 and E* = E'/2 (E' of docs/model.md is 2/Σ((1−ν²)/E)).
     r1, r2, force = 0.01, 0.02, 500.0
     radius = 1.0 / (1 / r1 + 1 / r2)
     sum_rho = 2 / r1 + 2 / r2
@@ -72,7 +72,7 @@ def test_sphere_on_sphere_limit_is_classical_hertz():
 
 
 def test_hamrock_brewe_is_a_few_percent_from_exact():
-    # MODEL.md §6.2: the closed forms are ~3 % off at these conformities; check they are
+    # docs/model.md §6.2: the closed forms are ~3 % off at these conformities; check they are
     # close but measurably different (the test would fail if the two paths were the same).
     for alpha in np.radians([0.0, 25.0, 45.0]):
         for outer in (False, True):
@@ -114,7 +114,7 @@ def test_table_slope_matches_finite_difference_and_py_func():
 
 
 def test_normal_tangent_matches_finite_difference():
-    # S.34 against a finite difference of F(w) = k δ^{3/2} w/|w|, δ = |w| − gap (constant k)
+    # M.34 against a finite difference of F(w) = k δ^{3/2} w/|w|, δ = |w| − gap (constant k)
     rng = np.random.default_rng(3)
     k_h, gap = 4.8e10, 2.3e-4
     for _ in range(20):

@@ -1,4 +1,4 @@
-"""Cage–race hybrid short journal (MODEL.md §8): dynamics/journal/hybrid.py, dynamics/journal/dry.py."""
+"""Cage–race hybrid short journal (docs/model.md §8): dynamics/journal/hybrid.py, dynamics/journal/dry.py."""
 
 import math
 
@@ -33,11 +33,11 @@ from bearingsim.dynamics.journal.hybrid import (
 )
 from bearingsim.dynamics.journal.dry import lundberg_compliance, lundberg_deflection, lundberg_load, palmgren_load
 
-STEEL = Material(208e9, 0.3, 7850.0)  # MODEL.md §2 scene values
+STEEL = Material(208e9, 0.3, 7850.0)  # docs/model.md §2 scene values
 BRONZE = Material(110e9, 0.34, 8800.0)
 E_BRONZE_STEEL = effective_modulus(BRONZE, STEEL)
 
-# Spec check case, MODEL.md §8 (short bearing): mu, omega, R, L, C.
+# Spec check case, docs/model.md §8 (short bearing): mu, omega, R, L, C.
 MU, OMEGA, R_S, L_S, C_S = 0.01, 100.0, 0.05, 0.01, 1e-4
 
 
@@ -56,7 +56,7 @@ def journal_at(eps, p, omega_cage=OMEGA, omega_race=0.0, azimuth=0.0, velocity=(
 
 # --- hydrodynamic part -------------------------------------------------------------------
 def test_spec_short_bearing_check_values():
-    # MODEL.md §8 check: F_n = 2.2222 N, F_t = 3.0230 N, attitude 53.68° (eps = 0.5)
+    # docs/model.md §8 check: F_n = 2.2222 N, F_t = 3.0230 N, attitude 53.68° (eps = 0.5)
     f_n, f_t, _, _ = ocvirk_force(0.5, MU, OMEGA, R_S, L_S, C_S)
     assert f_n == pytest.approx(2.2222, abs=5e-5)
     assert f_t == pytest.approx(3.0230, abs=5e-5)
@@ -131,7 +131,7 @@ def test_ocvirk_slopes_against_finite_differences():
 def test_lundberg_vs_palmgren_bronze_on_steel(l, q_agree, gap_at_1N):
     # Palmgren delta[mm] = 3.84e-5 Q^0.9 / l^0.8 (steel; Harris & Kotzalas, Essential
     # Concepts of Bearing Technology, 5th ed., ch. 6) against Lundberg's logarithmic law
-    # (MODEL.md §8), line lengths from MODEL.md §2, bronze on steel, Palmgren's load scaled
+    # (docs/model.md §8), line lengths from docs/model.md §2, bronze on steel, Palmgren's load scaled
     # by E'/E'_steel (Lundberg depends on Q/E' only). Deflections at equal load agree within
     # 5 % from q_agree to 5 kN (-4.7 % .. +3.2 % at 3.8 mm); below, the logarithm grows as
     # Q -> 0 (at 1 N: 8.7 % for 3.8 mm, 16 % for 7.6 mm; Palmgren's power law is an empirical
@@ -151,7 +151,7 @@ def test_lundberg_vs_palmgren_bronze_on_steel(l, q_agree, gap_at_1N):
 
 
 def test_dry_loads_below_palmgrens_range_are_negligible_in_the_blend():
-    # Reference cage land (MODEL.md §2: R = 83 mm, one journal of L = 7.6 mm, radial guide
+    # Reference cage land (docs/model.md §2: R = 83 mm, one journal of L = 7.6 mm, radial guide
     # clearance C = 0.29 mm; NATO O-156 at 100 degC, 4.9 mPa s (dynamics/data/nato-o156.toml);
     # cage at ~140 rad/s), eps0 = 0.05. Where Lundberg's load is under 13 N (interference
     # under 100 nm, the first 0.7 % of the eps0 band) the blend's dry part (1 - f_F) Q is under
@@ -170,7 +170,7 @@ def test_dry_loads_below_palmgrens_range_are_negligible_in_the_blend():
 
 def test_palmgren_formula_in_its_own_units():
     # Q = 1000 N, l = 10 mm, steel: delta = 3.84e-5 * 1000^0.9 / 10^0.8 mm = 3.050e-3 mm
-    # (hand evaluation of Palmgren's formula as quoted in MODEL.md §8).
+    # (hand evaluation of Palmgren's formula as quoted in docs/model.md §8).
     from bearingsim.dynamics.journal.dry import PALMGREN_E_EFF_STEEL
 
     q = palmgren_load(3.84e-5 * 1000**0.9 / 10**0.8 * 1e-3, 10e-3, PALMGREN_E_EFF_STEEL)
@@ -418,7 +418,7 @@ def reference_geometry():
 
 
 def test_reference_cage_parameters():
-    # MODEL.md §2: R = 83 mm, C = 0.29 mm, L ≈ 7.6 mm (two lands of ≈ 3.80 mm)
+    # docs/model.md §2: R = 83 mm, C = 0.29 mm, L ≈ 7.6 mm (two lands of ≈ 3.80 mm)
     bearing, cage = reference_geometry()
     p = journal_parameters_for_cage(bearing, cage, BRONZE, STEEL, viscosity=5e-3, friction_coefficient=0.1)
     assert p[0] == pytest.approx(0.083) and p[J_CLEARANCE] == pytest.approx(0.29e-3)

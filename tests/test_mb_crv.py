@@ -1,4 +1,4 @@
-"""Conformal rotation vector kinematics (MODEL.md S.4a–d).
+"""Conformal rotation vector kinematics (docs/model.md M.4a–d).
 
 References: Bauchau & Trainelli, Nonlinear Dyn. 32 (2003) 71–92 (CRV, rescaling
 c* = -16 c/(c.c)); the rotation matrix of a rotation vector is Rodrigues' formula, taken
@@ -21,7 +21,7 @@ def random_rotation_vectors(n, max_angle=np.pi):
 
 
 def test_crv_matrix_matches_rodrigues():
-    # R(c) of S.4b with c = 4 tan(phi/4) n must equal the rotation by phi about n.
+    # R(c) of M.4b with c = 4 tan(phi/4) n must equal the rotation by phi about n.
     for theta in random_rotation_vectors(50):
         c = crv.crv_from_rotation_vector(theta)
         assert np.linalg.norm(c) <= 4.0 + 1e-12
@@ -38,7 +38,7 @@ def test_rotation_vector_round_trip_including_small_angles():
 
 
 def test_tangent_operator_by_finite_differences():
-    # S.4c: the spatial angular velocity omega~ = R_dot R^T equals H(c) c_dot.
+    # M.4c: the spatial angular velocity omega~ = R_dot R^T equals H(c) c_dot.
     for _ in range(20):
         c = RNG.normal(size=3) * 1.5
         c_dot = RNG.normal(size=3)
@@ -48,7 +48,7 @@ def test_tangent_operator_by_finite_differences():
         W = R_dot @ crv.crv_to_matrix(c).T
         omega = np.array([W[2, 1], W[0, 2], W[1, 0]])
         np.testing.assert_allclose(crv.crv_H(c) @ c_dot, omega, atol=1e-8)
-        # S.4d: material Omega = H^T c_dot = R^T omega, and H^-1 is the inverse of H.
+        # M.4d: material Omega = H^T c_dot = R^T omega, and H^-1 is the inverse of H.
         np.testing.assert_allclose(crv.crv_H(c).T @ c_dot, crv.crv_to_matrix(c).T @ omega,
                                    atol=1e-8)
         np.testing.assert_allclose(crv.crv_H_inv(c) @ crv.crv_H(c), np.eye(3), atol=1e-13)

@@ -1,4 +1,4 @@
-"""HHT-α integrator (MODEL.md §9): convergence order, numerical dissipation, energy
+"""HHT-α integrator (docs/model.md §9): convergence order, numerical dissipation, energy
 conservation, step control, sampling, failures, and the block-arrow path."""
 
 import numpy as np

@@ -1,5 +1,5 @@
-"""Viscoelastic hinge joint (MODEL.md §5, S.15–S.20): forces are -grad V (finite
-differences), damping dissipates, tangents match finite differences, and the literal S.16
+"""Viscoelastic hinge joint (docs/model.md §5, M.15–M.20): forces are -grad V (finite
+differences), damping dissipates, tangents match finite differences, and the literal M.16
 strain rates agree with the kernel's form."""
 
 import numpy as np
@@ -64,7 +64,7 @@ def test_damping_dissipates_and_matches_S16_rates():
                             G_psi)[0]
         g_nc = g_all - g_el
         power = g_nc @ np.concatenate([x_dot, Omega])
-        # S.16 literally: psi_dot = ((mu2~ xi3)^T R_B Omega, -(mu1~ xi3)^T R_B Omega)
+        # M.16 literally: psi_dot = ((mu2~ xi3)^T R_B Omega, -(mu1~ xi3)^T R_B Omega)
         mu1, mu2, xi3 = R_A[:, 0], R_A[:, 1], R_B[:, 2]
         psi_dot = np.array([(skew(mu2) @ xi3) @ (R_B @ Omega),
                             -(skew(mu1) @ xi3) @ (R_B @ Omega)])

@@ -1,4 +1,4 @@
-"""Linear solvers of the Newton iteration (MODEL.md §9): the block-arrow Schur-complement
+"""Linear solvers of the Newton iteration (docs/model.md §9): the block-arrow Schur-complement
 solver against a dense solve (numpy.linalg.solve, LAPACK gesv, as the independent twin)."""
 
 import numpy as np

@@ -1,8 +1,8 @@
-"""Rigid bodies with CRV orientation in the HHT-α integrator (MODEL.md §4, §5, §9).
+"""Rigid bodies with CRV orientation in the HHT-α integrator (docs/model.md §4, §5, §9).
 
 Orientation is a CRV updated multiplicatively with material angular velocities (the
 "equivalent choice" of §4); `test_equivalent_to_paper_crv_coordinates` checks it against the
-paper's coordinates (c, c_dot = H^-T Omega, S.4c–d) integrated by an independent method.
+paper's coordinates (c, c_dot = H^-T Omega, M.4c–d) integrated by an independent method.
 """
 
 import numpy as np
@@ -78,7 +78,7 @@ def test_torque_free_asymmetric_body_conserves_energy_and_momentum():
 
 
 def test_equivalent_to_paper_crv_coordinates():
-    # Reference: the paper's coordinates (S.4c–d), c_dot = H^-T Omega with Euler's equations,
+    # Reference: the paper's coordinates (M.4c–d), c_dot = H^-T Omega with Euler's equations,
     # integrated by DOP853 (rtol 1e-12); rescaled by c* = -16c/(c.c) whenever |c| reaches 4.
     J = np.diag([1.0, 2.0, 3.0])
     Omega0 = np.array([1.0, 0.5, 2.0])

@@ -1,4 +1,4 @@
-"""Ball–pocket contact (MODEL.md §7): dynamics/contact/pocket.py."""
+"""Ball–pocket contact (docs/model.md §7): dynamics/contact/pocket.py."""
 
 import math
 
@@ -38,9 +38,9 @@ from bearingsim.dynamics.contact.pocket import (
     update_impact_speeds,
 )
 
-STEEL = Material(208e9, 0.3, 7850.0)  # MODEL.md §2 scene values
+STEEL = Material(208e9, 0.3, 7850.0)  # docs/model.md §2 scene values
 BRONZE = Material(110e9, 0.34, 8800.0)
-D, D_P, R_PITCH = 0.01905, 0.02023, 0.079  # ball, pocket diameters, cage mean radius (MODEL.md §2)
+D, D_P, R_PITCH = 0.01905, 0.02023, 0.079  # ball, pocket diameters, cage mean radius (docs/model.md §2)
 E_BALL_CAGE = effective_modulus(STEEL, BRONZE)
 CLEARANCE = 0.5 * (D_P - D)  # radial: distance the ball centre may leave the axis
 
@@ -73,8 +73,8 @@ def test_hertz_sphere_on_flat_limit():
 
 
 def test_hertz_solver_reproduces_spec_ball_race_constant():
-    # MODEL.md §6.2 check: exact inner-race constant of the reference bearing at alpha = 25°
-    # is 1.5266e6 N/mm^1.5. Curvatures per MODEL.md §6.2 table (Harris convention).
+    # docs/model.md §6.2 check: exact inner-race constant of the reference bearing at alpha = 25°
+    # is 1.5266e6 N/mm^1.5. Curvatures per docs/model.md §6.2 table (Harris convention).
     d_m, r_i, alpha = 0.158003, 0.009753, math.radians(25.0)
     rho = [2 / D, 2 / D, 2 * math.cos(alpha) / (d_m - D * math.cos(alpha)), -1 / r_i]
     total = sum(rho)
@@ -98,7 +98,7 @@ def test_pocket_constant_against_brewe_hamrock():
 
 
 def test_pocket_clearance_check():
-    assert check_pocket_clearance(D, D_P) == pytest.approx(1.18e-3)  # MODEL.md §2: 20.23 - 19.05 mm
+    assert check_pocket_clearance(D, D_P) == pytest.approx(1.18e-3)  # docs/model.md §2: 20.23 - 19.05 mm
     with pytest.raises(ValueError, match="pocket_diameter"):
         check_pocket_clearance(D, D)
     with pytest.raises(ValueError, match="pocket_diameter"):
@@ -218,7 +218,7 @@ def test_normal_force_slopes():
 
 # --- impacts ------------------------------------------------------------------------------
 def restitution_of_impact(params, v_in):
-    """Drop a 28.4 g ball (MODEL.md §2) on the wall of a fixed pocket; exit/entry speed."""
+    """Drop a 28.4 g ball (docs/model.md §2) on the wall of a fixed pocket; exit/entry speed."""
     mass = 0.0284
     n = np.array([0.0, 1.0, 0.0])  # round the pocket at psi = 0
 
@@ -282,7 +282,7 @@ def test_reference_scene_parameters():
     cage = CageGeometry(0.158, 0.02023, 0.00742, 0.0254)
     p = pocket_parameters_for_cage(bearing, cage, STEEL, BRONZE, restitution=0.7, friction_coefficient=0.1)
     np.testing.assert_allclose(p, make_params(reference_impact_speed=0.1), rtol=1e-14)
-    np.testing.assert_allclose(pocket_azimuths(22)[[0, 11]], [0.0, math.pi])  # psi_k = 2 pi k / Z (MODEL.md §1)
+    np.testing.assert_allclose(pocket_azimuths(22)[[0, 11]], [0.0, math.pi])  # psi_k = 2 pi k / Z (docs/model.md §1)
 
 
 @pytest.mark.parametrize("bad, word", [

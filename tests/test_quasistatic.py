@@ -1,4 +1,4 @@
-"""Quasi-static bearing solver (MODEL.md §10): references, limits, invariants, contract."""
+"""Quasi-static bearing solver (docs/model.md §10): references, limits, invariants, contract."""
 
 import json
 import math
@@ -16,7 +16,7 @@ from bearingsim.dynamics.contact.race import ball_race_contact
 
 STEEL = Material(208e9, 0.3, 7850)
 HELI = BearingGeometry(0.01905, 22, 0.1584, 0.1573, 0.009753, 0.009906,
-                       inner_shoulder_diameter=0.150, outer_shoulder_diameter=0.166)  # MODEL.md §2
+                       inner_shoulder_diameter=0.150, outer_shoulder_diameter=0.166)  # docs/model.md §2
 HELI_SPEED = 3060.0 * 2 * math.pi / 60  # rad/s
 
 # ---------------------------------------------------------------------------------------
@@ -99,7 +99,7 @@ def test_pure_axial_load_is_shared_equally():
     assert np.ptp(res.inner_load) <= 1e-9 * res.inner_load.mean()
     assert np.ptp(res.outer_contact_angle) <= 1e-9
     assert res.inner_tilt == pytest.approx(0.0, abs=1e-15)
-    # centrifugal force m ω_c² r loads the outer contacts more (MODEL.md §10)
+    # centrifugal force m ω_c² r loads the outer contacts more (docs/model.md §10)
     f_c = HELI.ball_mass(STEEL) * res.cage_speed**2 * np.hypot(*res.ball_positions[0, :2])
     assert np.all(res.outer_load > res.inner_load)
     q_o = res.outer_load[0] * np.array([math.cos(res.outer_contact_angle[0]), math.sin(res.outer_contact_angle[0])])

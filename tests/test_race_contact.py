@@ -1,4 +1,4 @@
-"""Ball–race torus–sphere contact geometry and kinematics (MODEL.md §6.1)."""
+"""Ball–race torus–sphere contact geometry and kinematics (docs/model.md §6.1)."""
 
 import math
 
@@ -9,7 +9,7 @@ from bearingsim.dynamics.contact.race import (CONTACT_OUT_SIZE, ball_race_contac
                                    ball_race_contact_reference)
 
 D = 0.01905
-D_I, R_I = 0.1584, 0.009753  # MODEL.md §2 inner race
+D_I, R_I = 0.1584, 0.009753  # docs/model.md §2 inner race
 D_O, R_O = 0.1573, 0.009906  # outer race
 
 

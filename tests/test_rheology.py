@@ -1,4 +1,4 @@
-"""Rheology kernels and the built-in lubricant (MODEL.md §6.4)."""
+"""Rheology kernels and the built-in lubricant (docs/model.md §6.4)."""
 
 import math
 
@@ -72,7 +72,7 @@ def test_kernels_equal_py_func_on_random_inputs():
 
 
 def test_nato_o156_meets_the_spec_targets(o156):
-    # targets of MODEL.md §6.4 (eta 4.8-5.0 mPa.s at 100 C, ~25 mPa.s at 40 C, rho ~920 kg/m3,
+    # targets of docs/model.md §6.4 (eta 4.8-5.0 mPa.s at 100 C, ~25 mPa.s at 40 C, rho ~920 kg/m3,
     # alpha 1.0-1.1e-8 1/Pa at 100 C, tau0 ~5 MPa)
     assert "nato-o156" in builtin_lubricant_names()
     assert o156.temperature_degC == 100.0

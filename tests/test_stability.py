@@ -1,4 +1,4 @@
-"""Stability suite (issue 9): the case scenes, the load step, the harness, and — as the slow
+"""Stability suite: the case scenes, the load step, the harness, and — as the slow
 group — every case run to its window: a pass or a clearly reported refusal, never garbage."""
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ def test_every_case_has_a_valid_scene_outside_the_builtin_list():
     assert not set(CASES) & set(builtin_scene_names())
     base = load_scene("helicopter-b-given-hinge")
     scenes = {c: load_scene(st.case_path(c)) for c in CASES}
-    # each case changes what its name says (MODEL.md §2 values for case b)
+    # each case changes what its name says (docs/model.md §2 values for case b)
     assert scenes["high-moment"].load.moment == 4 * base.load.moment
     assert scenes["high-speed"].speed.inner_rpm == 5 * base.speed.inner_rpm
     assert scenes["zero-clearance"].bearing.diametral_clearance == pytest.approx(0.0, abs=1e-12)
@@ -48,7 +48,7 @@ def load_step_model():
 
 def test_load_step_changes_the_inner_race_moment_at_step_time(load_step_model):
     """Before t_step the moment is 100 N m, after it 430 N m about +y (spatial); the kernel
-    returns material moments on the inner race, R^T M (S.4b frames)."""
+    returns material moments on the inner race, R^T M (M.4b frames)."""
     from bearingsim.dynamics.bearing import BearingModel, layout
     from bearingsim.dynamics.bearing.run import initial_coordinates
     from bearingsim.dynamics.multibody.crv import crv_to_matrix

@@ -1,4 +1,4 @@
-"""The shared stage store of `run_stages(..., store=)` (issue 10): a stage with the same key
+"""The shared stage store of `run_stages(..., store=)`: a stage with the same key
 is computed once for many run directories, even when they run at the same time."""
 
 from __future__ import annotations

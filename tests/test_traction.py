@@ -1,4 +1,4 @@
-"""Eyring traction (MODEL.md §6.4): quadrature reference and closed-form limits."""
+"""Eyring traction (docs/model.md §6.4): quadrature reference and closed-form limits."""
 
 import math
 
@@ -27,7 +27,7 @@ def _barus(eta0, alpha):
 
 
 def test_newtonian_limit_matches_closed_form():
-    # MODEL.md §6.4: Barus, no spin, tau0 -> inf: f = 3 eta0 du [e^s (s-1) + 1]/(h p_h s^2), s = alpha p_h
+    # docs/model.md §6.4: Barus, no spin, tau0 -> inf: f = 3 eta0 du [e^s (s-1) + 1]/(h p_h s^2), s = alpha p_h
     a, b, p_h, h, eta0, alpha, du = 2e-4, 1.5e-3, 1.2e9, 2e-7, 0.005, 1.5e-8, 0.01
     model, par = _barus(eta0, alpha)
     Fx, Fy, Mz, _ = traction.traction_quadrature(a, b, p_h, h, 1e15, model, par, du, 0.0, 0.0, 48, 64)
@@ -39,7 +39,7 @@ def test_newtonian_limit_matches_closed_form():
 
 
 def test_eyring_plateau_matches_closed_form():
-    # MODEL.md §6.4: f = (tau0/pbar) ln(2 eta0 du/(tau0 h)) + alpha tau0, pbar = 2 p_h/3; valid when
+    # docs/model.md §6.4: f = (tau0/pbar) ln(2 eta0 du/(tau0 h)) + alpha tau0, pbar = 2 p_h/3; valid when
     # eta0 du/(tau0 h) >> 1 everywhere (here 100: asinh x - ln 2x < 1/(4x^2) = 2.5e-5)
     a, b, p_h, h, eta0, alpha, du, tau0 = 2e-4, 1.5e-3, 1.0e9, 1e-7, 1.0, 1e-8, 10.0, 1e6
     model, par = _barus(eta0, alpha)

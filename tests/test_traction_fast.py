@@ -1,6 +1,6 @@
-"""Fast Eyring traction (MODEL.md §6.4): agreement with the quadrature reference, kernels vs twins.
+"""Fast Eyring traction (docs/model.md §6.4): agreement with the quadrature reference, kernels vs twins.
 
-Error metrics (the 2 % target of the fast path, MODEL.md §6.4):
+Error metrics (the 2 % target of the fast path, docs/model.md §6.4):
 - force: |F_fast - F_ref| / |F_ref| (vector norm, so each component is held relative to |F|);
   for pure spin (F_ref = 0 by symmetry) relative to |M_ref| / b instead;
 - spin moment: |M_fast - M_ref| / max(|M_ref|, |F_ref| b): M_z is often a small difference
@@ -30,7 +30,7 @@ from tests.lubrication_points import (
 )
 
 REF_GRID = (128, 1024)
-TOL_F = TOL_M = 0.02  # MODEL.md §6.4: the fast path must agree with the quadrature within 2 %
+TOL_F = TOL_M = 0.02  # docs/model.md §6.4: the fast path must agree with the quadrature within 2 %
 TOL_J = 0.03
 
 
@@ -114,7 +114,7 @@ def test_fast_matches_quadrature_on_240_random_points(o156, fast, seed):
 
 
 def test_newtonian_limit_matches_closed_form(o156):
-    # MODEL.md §6.4: Barus, no spin, tau0 -> inf: f = 3 eta0 du [e^s (s-1) + 1]/(h p_h s^2), s = alpha p_h
+    # docs/model.md §6.4: Barus, no spin, tau0 -> inf: f = 3 eta0 du [e^s (s-1) + 1]/(h p_h s^2), s = alpha p_h
     lub = dataclasses.replace(o156.as_barus(), eyring_stress=1e15)
     a, b, p_h, h, du = 2e-4, 1.5e-3, 1.2e9, 2e-7, 0.01
     f, _, _ = FastTraction.build(lub).evaluate(a, b, p_h, h, du, 0.0, 0.0)
@@ -126,7 +126,7 @@ def test_newtonian_limit_matches_closed_form(o156):
 
 
 def test_eyring_plateau_matches_closed_form(o156):
-    # MODEL.md §6.4: f = (tau0/pbar) ln(2 eta0 du/(tau0 h)) + alpha tau0, pbar = 2 p_h/3, valid
+    # docs/model.md §6.4: f = (tau0/pbar) ln(2 eta0 du/(tau0 h)) + alpha tau0, pbar = 2 p_h/3, valid
     # when eta0 du/(tau0 h) >> 1 everywhere (here 100: asinh x - ln 2x < 1/(4 x^2) = 2.5e-5)
     lub = dataclasses.replace(o156.as_barus(), eyring_stress=1e6, ambient_viscosity=1.0,
                               pressure_viscosity_coefficient=1e-8)

@@ -1,4 +1,4 @@
-"""The ball-bearing multibody model (MODEL.md §4–§8) on the general core of
+"""The ball-bearing multibody model (docs/model.md §4–§8) on the general core of
 `dynamics.multibody`: races, Z balls and cage, all contacts, the viscoelastic hinge.
 
 `BearingModel` implements the integrator's residual protocol; `simulate_bearing` runs it.

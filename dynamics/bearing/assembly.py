@@ -1,8 +1,8 @@
 """The bearing's residual pieces in one numba kernel: M a, g(t, q, v) and (on request) the
-block-arrow tangents K_t = -dg/dq, C_t = -dg/dv (MODEL.md §4–§9, paper eq. 8).
+block-arrow tangents K_t = -dg/dq, C_t = -dg/dv (docs/model.md §4–§9, paper eq. 8).
 
 Per evaluation: 2Z ball–race contacts (race_forces), Z ball–pocket contacts and one
-cage–race journal (cage_forces), the viscoelastic hinge (S.19–S.20), external loads on
+cage–race journal (cage_forces), the viscoelastic hinge (M.19–M.20), external loads on
 the inner race, gyroscopic terms, and the prescribed inner-race spin (row replaced).
 Every contact force acts equal and opposite on both bodies at the contact point.
 """
@@ -13,7 +13,7 @@ import numba
 import numpy as np
 
 from bearingsim.dynamics._kernel_options import NO_REFCOUNT
-from bearingsim.dynamics.journal.hybrid import N_JOURNAL_OUT
+from bearingsim.dynamics.journal.hybrid import J_OUT_FILM_POWER, J_OUT_MIN_FILM, N_JOURNAL_OUT
 from bearingsim.dynamics.multibody.crv import crv_to_matrix
 from bearingsim.dynamics.multibody.hinge import hinge_energy, hinge_forces
 from bearingsim.dynamics.multibody.joints import prescribe_velocity_residual
@@ -38,6 +38,7 @@ from .tangents import add_pair, point_map, slip_map
 # global diagnostics (diag[:N_DG]) then per ball (diag[N_DG + DB*k + ...])
 DG_EPS, DG_FX, DG_FY, DG_TORQUE, DG_METAL, DG_FRICTION_POWER, DG_AZIMUTH = 0, 1, 2, 3, 4, 5, 6
 DG_DRIVE, DG_P_DRIVE, DG_P_EXT, DG_P_DISS, DG_V_HERTZ, DG_V_HINGE, DG_FLAGS = 7, 8, 9, 10, 11, 12, 13
+DG_FILM_POWER, DG_MIN_FILM = 14, 15  # land film: viscous shear power [W], thinnest film [m]
 N_DG = 16
 DB_QI, DB_QO, DB_AI, DB_AO, DB_HI, DB_HO, DB_SRRI, DB_SRRO, DB_PMI, DB_PMO = range(10)
 DB_POCKET = 10  # 5: F_n, in contact, approach speed, orbital position, friction power
@@ -310,6 +311,8 @@ def _border(t, q, v, fp, ip, Hu, Hpsi, Gu, Gpsi, xA, RA, jp, want_tangent, ma, g
             power = journal_forces(x_c, v_c, w_c, np.zeros(3), np.zeros(3), fp[FP_OMEGA_O], jp, jres,
                                    g, o_c, R_c, want_tangent, Kb[6:12, 6:12], Cb[6:12, 6:12])
             journal_diag(jres, diag[DG_EPS:DG_EPS + 7])
+            diag[DG_FILM_POWER] = jres[J_OUT_FILM_POWER]
+            diag[DG_MIN_FILM] = jres[J_OUT_MIN_FILM]
             diag[DG_P_DISS] -= power
     drive = prescribe_velocity_residual(o_i + 5, v, fp[FP_OMEGA_I], 1.0, ma, g)
     diag[DG_DRIVE] = drive

@@ -51,6 +51,8 @@ class ModelOptions:
     pocket_restitution: float = 0.7
     cage_race_friction: float = 0.1
     cage_race_boundary: float = 0.05  # epsilon_0
+    cage_race_film: str = "dynamic"  # "dynamic" (squeeze + whirl terms) | "static" (paper eq. 25)
+    cage_race_lands: int = 2  # separate lands the land overlap L is split into (the race groove vents the film)
     coulomb_regularisation: float = 1e-3  # [m/s]
 
 
@@ -132,7 +134,7 @@ def build_model_params(
     options: ModelOptions = ModelOptions(), load_step: tuple[float, float] | None = None,
 ) -> BearingModelParams:
     """Pack a bearing. `hinge` = (H_u 3x3 [N/m], H_psi (2) [N m/rad], c_G [s]) or None
-    (inner race free); (static_x, static_R) is the hinge's static frame A (MODEL.md §5).
+    (inner race free); (static_x, static_R) is the hinge's static frame A (docs/model.md §5).
     `load_step` = (t_step [s], moment after it [N m]): a sudden change of the moment."""
     Z = bearing.ball_count
     fp = np.zeros(N_FP)
@@ -211,6 +213,7 @@ def _cage_params(bearing, cage, ball, race, cage_material, lubricant, options, f
         journal = journal_parameters_for_cage(
             bearing, cage, cage_material, race, viscosity=viscosity,
             friction_coefficient=options.cage_race_friction, eps0=options.cage_race_boundary,
-            mode=options.cage_race)
+            mode=options.cage_race, film=options.cage_race_film,
+            lands=options.cage_race_lands)
         ip[IP_JOURNAL] = 1
     return pocket, journal, cage.guide_clearance(bearing)

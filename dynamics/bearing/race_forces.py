@@ -1,10 +1,10 @@
 """One ball–race contact of the dynamic model: geometry (§6.1), Hertz normal load with
-normal damping (S.24, §6.2), EHD film (§6.3), traction (§6.4), and what the Newton matrix
+normal damping (M.24, §6.2), EHD film (§6.3), traction (§6.4), and what the Newton matrix
 needs. A numba kernel writing into a caller-owned row `res` (layout RC_*): the time loop
 calls it 2Z times per residual and allocates nothing here.
 
 Tangent ingredients (see assembly.py): the normal force depends on the relative position
-of ball centre and race point p through the 3x3 stiffness K_p (S.34) and on the relative
+of ball centre and race point p through the 3x3 stiffness K_p (M.34) and on the relative
 normal velocity through c_n n n^T; traction T = (F_x, F_y, M_z) depends on the slip
 s = (du0, dv0, w_s) through J_t = -dT/ds (positive definite-ish).
 """
@@ -71,7 +71,7 @@ def _coulomb(F_n, a_x, b_y, du0, dv0, w_s, mu, v_reg, out):
 
 
 def _curvature_radii(alpha, is_outer, D, d_m, r):
-    """(R_x, R_y) [m] of a ball-race contact at contact angle alpha (MODEL.md §6.2)."""
+    """(R_x, R_y) [m] of a ball-race contact at contact angle alpha (docs/model.md §6.2)."""
     c = math.cos(alpha)
     rho_ii1 = -2.0 * c / (d_m + D * c) if is_outer else 2.0 * c / (d_m - D * c)
     return 1.0 / (2.0 / D + rho_ii1), 1.0 / (2.0 / D - 1.0 / r)
@@ -219,11 +219,11 @@ def race_contact(x_b, v_b, w_b, x_r, R_r, v_r, w_r, is_outer, fp, ip, table,
 
 @numba.njit(**NO_REFCOUNT)
 def _contact_stiffness(k_n, F_n, delta, n, x_b, x_r, R_r, d_g, cbuf, res):
-    """K_p = -dF_ball/dx_b (3x3) of the Hertz force F_n n (S.34), with the normal's rotation
+    """K_p = -dF_ball/dx_b (3x3) of the Hertz force F_n n (M.34), with the normal's rotation
     resolved by direction: across the groove (e_y) the curvature centre C stays put and n
     turns by dx/s; along the circumference (e_g) C follows the ball's azimuth, so n turns by
     (1 - d/(2 rho)) dx/s. s = |C - x_b|, rho = distance of the ball centre from the race
-    axis, d = groove curvature-centre diameter. (S.34 neglects dk_h/dalpha; so does this.)"""
+    axis, d = groove curvature-centre diameter. (M.34 neglects dk_h/dalpha; so does this.)"""
     s = cbuf[OUT_LEVER]
     ax0, ax1, ax2 = R_r[0, 2], R_r[1, 2], R_r[2, 2]
     r0, r1, r2 = x_b[0] - x_r[0], x_b[1] - x_r[1], x_b[2] - x_r[2]

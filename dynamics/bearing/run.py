@@ -1,4 +1,4 @@
-"""Run the bearing model from its quasi-static state (MODEL.md §10) with HHT-α (§9).
+"""Run the bearing model from its quasi-static state (docs/model.md §10) with HHT-α (§9).
 
 Samples are taken at the first accepted step at or after each multiple of the sample
 interval: the saved state and every saved force are those of a converged step (no

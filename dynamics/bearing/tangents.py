@@ -1,4 +1,4 @@
-"""Assembly of approximate tangents in block-arrow form (MODEL.md §9).
+"""Assembly of approximate tangents in block-arrow form (docs/model.md §9).
 
 Every contact term has the same shape: a generalised force T (k components) acting through
 maps G_A (k x 6) on the ball and G_B (k x 6) on a border body, and depending on the

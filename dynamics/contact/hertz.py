@@ -1,4 +1,4 @@
-"""Hertz point contact of a ball in a groove (MODEL.md §6.2, S.24, S.34).
+"""Hertz point contact of a ball in a groove (docs/model.md §6.2, M.24, M.34).
 
 Kernels are pure numba functions of floats and float64 arrays, SI units:
 
@@ -8,11 +8,11 @@ Kernels are pure numba functions of floats and float64 arrays, SI units:
 - `hertz_hamrock_brewe` — the Hamrock–Brewe closed forms (comparison / fast path).
 - `race_curvature` — Σρ and F(ρ) of the ball–race contact versus contact angle α.
 - `build_hertz_table` / `hertz_table_eval` — the α-table the time loop interpolates.
-- `normal_tangent` — the 3×3 tangent of the Hertz normal force (S.34).
+- `normal_tangent` — the 3×3 tangent of the Hertz normal force (M.34).
 
 Notation (Harris & Kotzalas, "Rolling Bearing Analysis", 5th ed., vol. 1, ch. 6):
 x is the rolling direction, y the groove direction; a (along y) is the semi-major axis,
-b (along x) the semi-minor one; κ = a/b ≥ 1; F_n = k_h δ^{3/2} (S.24);
+b (along x) the semi-minor one; κ = a/b ≥ 1; F_n = k_h δ^{3/2} (M.24);
 a = c_a F_n^{1/3}, b = c_b F_n^{1/3}, p_max = 3 F_n / (2π a b).
 """
 
@@ -37,7 +37,7 @@ def elliptic_km(m):
 
     Arithmetic–geometric mean: K = π / (2 AGM(1, √(1−m))), and
     E = K (1 − Σ_n 2^{n−1} c_n²) with c_0² = m, c_{n+1} = (a_n − b_n)/2
-    (Abramowitz & Stegun 17.6). Used by the ellipticity equation of S.24's k_h.
+    (Abramowitz & Stegun 17.6). Used by the ellipticity equation of M.24's k_h.
     """
     a = 1.0
     b = math.sqrt(1.0 - m)
@@ -65,7 +65,7 @@ def _ellipticity_residual(log_kappa, f_rho):
 def ellipticity(f_rho):
     """Ellipticity κ = a/b [-] solving F(ρ) = [(κ²+1)E(m) − 2K(m)] / [(κ²−1)E(m)].
 
-    m = 1 − 1/κ² (MODEL.md §6.2). The right-hand side increases monotonically from 0
+    m = 1 − 1/κ² (docs/model.md §6.2). The right-hand side increases monotonically from 0
     (κ = 1) to 1 (κ → ∞), so bisection on ln κ is safe; 200 halvings of [0, ln 1e4]
     reach round-off. F(ρ) < 1e-12 returns κ = 1 (circular contact).
     """
@@ -85,7 +85,7 @@ def ellipticity(f_rho):
 
 @numba.njit(cache=True)
 def hertz_from_kappa(kappa, k_el, e_el, sum_rho, e_eff):
-    """(δ*, k_h, c_a, c_b) from κ and K, E at m = 1 − 1/κ² (Harris ch. 6; MODEL.md §6.2).
+    """(δ*, k_h, c_a, c_b) from κ and K, E at m = 1 − 1/κ² (Harris ch. 6; docs/model.md §6.2).
 
     δ* = (2K/π)(π/(2κ²E))^{1/3} [-]; k_h = (2√2/3) E' Σρ^{−1/2} δ*^{−3/2} [N/m^1.5];
     a = (2κ²E/π)^{1/3} X^{1/3}, b = (2E/(πκ))^{1/3} X^{1/3}, X = 3F/(2Σρ)·(2/E'), so
@@ -103,7 +103,7 @@ def hertz_from_kappa(kappa, k_el, e_el, sum_rho, e_eff):
 def hertz_exact(sum_rho, f_rho, e_eff):
     """Exact Hertz constants (κ, δ*, k_h, c_a, c_b) for curvature sum Σρ [1/m] and F(ρ).
 
-    S.24 with κ from the exact ellipticity equation. e_eff = E' [Pa].
+    M.24 with κ from the exact ellipticity equation. e_eff = E' [Pa].
     """
     kappa = ellipticity(f_rho)
     k_el, e_el = elliptic_km(1.0 - 1.0 / (kappa * kappa))
@@ -130,7 +130,7 @@ def hertz_hamrock_brewe(sum_rho, f_rho, e_eff):
 def race_curvature(alpha, ball_diameter, pitch_diameter, groove_radius, is_outer):
     """Curvature sum Σρ [1/m] and difference F(ρ) [-] of a ball–race contact at angle α.
 
-    MODEL.md §6.2 table (Harris sign convention, convex +): ρ_I1 = ρ_I2 = 2/D;
+    docs/model.md §6.2 table (Harris sign convention, convex +): ρ_I1 = ρ_I2 = 2/D;
     inner: ρ_II1 = 2cosα/(d_m − D cosα), ρ_II2 = −1/r_i;
     outer: ρ_II1 = −2cosα/(d_m + D cosα), ρ_II2 = −1/r_o.
     """
@@ -229,7 +229,7 @@ def hertz_table_eval(table, alpha):
 
 @numba.njit(cache=True)
 def max_pressure(force, c_a, c_b):
-    """p_max = 3F/(2π a b) [Pa] with a = c_a F^{1/3}, b = c_b F^{1/3} (MODEL.md §6.2)."""
+    """p_max = 3F/(2π a b) [Pa] with a = c_a F^{1/3}, b = c_b F^{1/3} (docs/model.md §6.2)."""
     if force <= 0.0:
         return 0.0
     return 3.0 * force ** (1.0 / 3.0) / (2.0 * math.pi * c_a * c_b)
@@ -237,13 +237,13 @@ def max_pressure(force, c_a, c_b):
 
 @numba.njit(cache=True)
 def normal_tangent(k_h, delta, n, lever, out):
-    """Tangent of the Hertz normal force, S.34, written into out (3×3) [N/m].
+    """Tangent of the Hertz normal force, M.34, written into out (3×3) [N/m].
 
     ΔF ≈ (3/2) k_h δ^{1/2} Δδ n + F_n Δn with Δδ = n·Δu and Δn = (I − nnᵀ) Δu / ℓ,
     where Δu [m] is the change of the vector whose length grows with δ (for ball–race:
     groove curvature centre minus ball centre, ℓ = its length) and n its unit vector.
     So ΔF = out @ Δu with out = (3/2) k_h δ^{1/2} nnᵀ + (F_n/ℓ)(I − nnᵀ). The change of
-    k_h with α is neglected, as S.34 says. lever = inf drops the rotation term.
+    k_h with α is neglected, as M.34 says. lever = inf drops the rotation term.
     """
     for i in range(3):
         for j in range(3):

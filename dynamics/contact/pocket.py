@@ -1,4 +1,4 @@
-"""Ball–pocket contact: a sphere in a cylindrical cage pocket (MODEL.md §7).
+"""Ball–pocket contact: a sphere in a cylindrical cage pocket (docs/model.md §7).
 
 Each pocket is a cylinder of radius r_p whose axis is radial in the cage frame, through the
 pocket centre on the cage's mean circle at azimuth psi_k. The ball (radius r_b) penetrates
@@ -90,7 +90,7 @@ def _column_mix(rot, u, v, w):
 
 @numba.njit(cache=True)
 def pocket_normal_force(delta, delta_dot, impact_speed, k_h, c_d):
-    """Damped Hertz normal force of MODEL.md §7 and its slopes.
+    """Damped Hertz normal force of docs/model.md §7 and its slopes.
 
     F_n = k_h delta^1.5 (1 + c_d delta_dot / v_0), clamped at 0; delta [m], delta_dot
     [m/s] (+ closing), v_0 = impact_speed [m/s] > 0, k_h [N/m^1.5], c_d [-].
@@ -109,7 +109,7 @@ def pocket_normal_force(delta, delta_dot, impact_speed, k_h, c_d):
 
 @numba.njit(cache=True)
 def pocket_contact(x_ball, v_ball, w_ball, x_cage, rot_cage, v_cage, w_cage, psi, impact_speed, params):
-    """Ball–pocket contact of one ball in pocket psi (MODEL.md §7).
+    """Ball–pocket contact of one ball in pocket psi (docs/model.md §7).
 
     x_ball, v_ball, w_ball (3,): ball centre [m], velocity [m/s], angular velocity [rad/s];
     x_cage (3,), rot_cage (3, 3) (cage-to-global rotation), v_cage (3,), w_cage (3,): the
@@ -181,7 +181,7 @@ def _pocket_contact_into(out, x_ball, v_ball, w_ball, x_cage, rot_cage, v_cage, 
 
 @numba.njit(cache=True)
 def pocket_contacts(x_balls, v_balls, w_balls, x_cage, rot_cage, v_cage, w_cage, psi, impact_speeds, params):
-    """`pocket_contact` for all Z balls: ball k in pocket psi[k] (MODEL.md §7).
+    """`pocket_contact` for all Z balls: ball k in pocket psi[k] (docs/model.md §7).
 
     x_balls, v_balls, w_balls (Z, 3); psi, impact_speeds (Z,); the rest as in
     `pocket_contact`. Returns out (Z, N_POCKET_OUT); the cage's resultant is the column
@@ -227,7 +227,7 @@ def check_pocket_clearance(ball_diameter: float, pocket_diameter: float) -> floa
 
 
 def hertz_point_contact(curvature_sum: float, curvature_difference: float, effective_modulus: float):
-    """Exact Hertz point-contact constant (MODEL.md §6.2, also used by §7).
+    """Exact Hertz point-contact constant (docs/model.md §6.2, also used by §7).
 
     curvature_sum = sum of the four principal curvatures [1/m] (convex +, concave -),
     curvature_difference F(rho) in [0, 1) [-], effective_modulus E' [Pa] =
@@ -324,5 +324,5 @@ def pocket_parameters_for_cage(bearing, cage, ball_material, cage_material, *, r
 
 
 def pocket_azimuths(ball_count: int) -> np.ndarray:
-    """psi_k = 2 pi k / Z [rad], the pocket azimuths in the cage frame (MODEL.md §1)."""
+    """psi_k = 2 pi k / Z [rad], the pocket azimuths in the cage frame (docs/model.md §1)."""
     return 2.0 * np.pi * np.arange(ball_count) / ball_count

@@ -1,4 +1,4 @@
-"""Ball–race contact geometry and kinematics: torus–sphere (MODEL.md §6.1, paper eqs. 21–23).
+"""Ball–race contact geometry and kinematics: torus–sphere (docs/model.md §6.1, paper eqs. 21–23).
 
 `ball_race_contact_kernel` is the numba kernel the dynamic model calls (2Z times per
 residual). It writes its results into a caller-owned float64 array of length
@@ -12,7 +12,7 @@ Conventions
   local), local z = race axis, groove plane z = 0. Ball centre in the race frame
   (X̂, Ŷ, Ẑ), ρ = √(X̂² + Ŷ²), γ = atan2(Ŷ, X̂).
 - Groove curvature centre C at radius d/2 in the plane through the axis and the ball.
-  s = |C − x_b|; δ = s + D/2 − r (S.24's approach; δ ≤ 0 means no contact) — the same
+  s = |C − x_b|; δ = s + D/2 − r (M.24's approach; δ ≤ 0 means no contact) — the same
   expression for inner and outer race (both grooves are concave).
 - Unit normal n = (C − x_b)/s points from the contact towards the ball centre (the
   contact lies on the far side of the ball from C). Contact point p = x_b − (D/2 − δ/2) n
@@ -21,7 +21,7 @@ Conventions
   **positive when the outer contact lies on the +z side of the ball centre and the inner
   contact on the −z side** — i.e. the contact carries a +z thrust applied to the inner
   race. Inner race: α = atan2(−Ẑ, d_i/2 − ρ); outer race: α = atan2(Ẑ, ρ − d_o/2).
-  (MODEL.md writes tan α = Ẑ/(d_i/2 − ρ) for the inner race; the sign is flipped here so
+  (docs/model.md writes tan α = Ẑ/(d_i/2 − ρ) for the inner race; the sign is flipped here so
   that inner and outer angles of one loaded ball agree in sign.)
 - Kinematics (§6.1): material velocity of each body at p, taken relative to the contact
   point itself (which moves with the ball centre and turns about the race axis at the
@@ -54,14 +54,14 @@ OUT_SPIN = 15  # ω_s [rad/s]
 OUT_SRR = 16  # slide-to-roll ratio [-]
 OUT_EX = 17  # e_x (3)
 OUT_EY = 20  # e_y (3)
-OUT_LEVER = 23  # s = |C − x_b| [m], the lever of the normal's rotation (S.34)
+OUT_LEVER = 23  # s = |C − x_b| [m], the lever of the normal's rotation (M.34)
 OUT_CENTER = 24  # groove curvature centre C (3) [m]
 CONTACT_OUT_SIZE = 27
 
 
 @numba.njit(**NO_REFCOUNT)
 def ball_race_contact_kernel(x_b, v_b, w_b, x_r, R_r, v_r, w_r, d_groove, r_groove, D, is_outer, out):
-    """Torus–sphere contact of one ball with one race (MODEL.md §6.1, eqs. 21–23).
+    """Torus–sphere contact of one ball with one race (docs/model.md §6.1, eqs. 21–23).
 
     x_b, v_b, w_b: ball centre [m], velocity [m/s], angular velocity [rad/s] (global).
     x_r, R_r, v_r, w_r: race centre [m], rotation (3×3, global ← race), velocity, angular

@@ -1,4 +1,4 @@
-"""Dry (metal-to-metal) cage–land contact: Lundberg's line-contact load–deflection (MODEL.md §8).
+"""Dry (metal-to-metal) cage–land contact: Lundberg's line-contact load–deflection (docs/model.md §8).
 
 The guide land and the cage rim touch along a line of length l. Lundberg's relation gives
 the approach delta for a load Q; the cage model needs the inverse, Q(delta), which has no
@@ -29,7 +29,7 @@ _NEWTON_RTOL = 1e-13
 
 @numba.njit(cache=True)
 def lundberg_deflection(Q, l, E_eff):
-    """Lundberg line-contact approach delta(Q) [m] (MODEL.md §8, dry part).
+    """Lundberg line-contact approach delta(Q) [m] (docs/model.md §8, dry part).
 
     delta = (2 Q / (pi E' l)) ln(pi E' l^2 / Q), Q [N] > 0 the load on a line of length
     l [m], E' [Pa] the effective modulus (E/(1-nu^2) for equal materials). Returns 0 for
@@ -68,7 +68,7 @@ def palmgren_load(delta, l, E_eff):
 def lundberg_load(delta, l, E_eff):
     """Load Q [N] and stiffness dQ/d delta [N/m] of a line contact of length l [m].
 
-    Inverts Lundberg's relation (`lundberg_deflection`, MODEL.md §8) by Newton from
+    Inverts Lundberg's relation (`lundberg_deflection`, docs/model.md §8) by Newton from
     Palmgren's guess. delta [m] is the approach; delta <= 0 gives (0, 0).
 
     delta(Q) is increasing and concave, so from any start Newton lands at or below the

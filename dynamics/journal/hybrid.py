@@ -1,4 +1,4 @@
-"""Cage–guiding-race interaction: the hybrid short journal bearing of MODEL.md §8.
+"""Cage–guiding-race interaction: the hybrid short journal bearing of docs/model.md §8.
 
 The cage rim runs on the guiding race lands like a journal in a short bearing. While the
 film carries the load (eccentricity ratio eps = e/C <= 1) the force is Ocvirk's short
@@ -7,7 +7,7 @@ bearing with Gümbel's half film (paper eqs. 25–26); once the cage touches met
 the paper's weights (eqs. 28–31) blend the two. In hybrid mode the hydrodynamic formulas
 use the clearance C + e0, e0 = eps0 C, so they stay finite through the blend.
 
-Directions (MODEL.md §8): e_r along the cage centre's offset from the race axis,
+Directions (docs/model.md §8): e_r along the cage centre's offset from the race axis,
 e_t = e_z x e_r. Force on the cage F = A e_r + B e_t with A = -(f_F F_n^hyd + (1-f_F) Q)
 and B = f_F F_t^hyd + (1-f_F) F_f^dry; torque about z on the cage
 T = f_C T^hyd + (1-f_C) T^dry. The force and torque on the race are the opposites.
@@ -42,6 +42,7 @@ import numba
 import numpy as np
 
 from bearingsim.dynamics.journal.dry import lundberg_load
+from bearingsim.dynamics.journal.squeeze_film import N_SQUEEZE_OUT, squeeze_film_force
 
 # --- parameter vector layout -----------------------------------------------------------
 J_RADIUS = 0  # R, land radius [m]
@@ -56,10 +57,15 @@ J_LANDS = 8  # number of separate lands L is split into [-]
 J_MODE = 9  # MODE_* below
 J_GUIDANCE = 10  # +1 outer-race guided (cage inside the land), -1 inner-race guided
 J_EPS_CLIP = 11  # film eccentricity clip: all film terms (hydrodynamic mode), the torque (hybrid) [-]
-N_JOURNAL_PARAMS = 12
+J_FILM = 12  # FILM_* below: the film force's form
+N_JOURNAL_PARAMS = 13
 
 MODE_HYBRID, MODE_HYDRODYNAMIC, MODE_DRY, MODE_NONE = 0.0, 1.0, 2.0, 3.0
 MODES = {"hybrid": MODE_HYBRID, "hydrodynamic": MODE_HYDRODYNAMIC, "dry": MODE_DRY, "none": MODE_NONE}
+# static: Ocvirk for a centre at rest (paper eq. 25); dynamic: with the squeeze and whirl terms
+# of the Reynolds equation (squeeze_film.py, docs/model.md M.94b-M.94e)
+FILM_STATIC, FILM_DYNAMIC = 0.0, 1.0
+FILMS = {"static": FILM_STATIC, "dynamic": FILM_DYNAMIC}
 
 # --- output vector layout ----------------------------------------------------------------
 J_OUT_FORCE = 0  # 3: force on the cage (x, y, z) [N]; z is always 0 (no axial force)
@@ -76,12 +82,14 @@ J_OUT_DF_DOMEGA_CAGE = 20  # 2: dFx/d omega_cage, dFy/d omega_cage [N s]
 J_OUT_DT_DOMEGA_CAGE = 22  # dT/d omega_cage [N m s]
 J_OUT_DF_DOMEGA_RACE = 23  # 2
 J_OUT_DT_DOMEGA_RACE = 25
-N_JOURNAL_OUT = 26
+J_OUT_FILM_POWER = 26  # viscous shear power of the land film, f_C |T_hyd omega_rel| [W]
+J_OUT_MIN_FILM = 27  # thinnest land film, C_film - e (>= 0) [m]
+N_JOURNAL_OUT = 28
 
 
 @numba.njit(cache=True)
 def ocvirk_force(eps, viscosity, omega_sum, R, L, C):
-    """Short-bearing film force on the journal, Gümbel half film (MODEL.md §8, paper eq. 25).
+    """Short-bearing film force on the journal, Gümbel half film (docs/model.md §8, paper eq. 25).
 
     F_n = mu |omega| R L^3 / C^2 * eps^2 / (1 - eps^2)^2        (pushes the journal back)
     F_t = (pi/4) mu omega R L^3 / C^2 * eps / (1 - eps^2)^(3/2)  (90° ahead, sign of omega)
@@ -100,7 +108,7 @@ def ocvirk_force(eps, viscosity, omega_sum, R, L, C):
 
 @numba.njit(cache=True)
 def ocvirk_torque(eps, viscosity, omega_rel, R, L, C):
-    """Viscous torque about z on the journal (MODEL.md §8, paper eq. 26).
+    """Viscous torque about z on the journal (docs/model.md §8, paper eq. 26).
 
     T = -pi mu omega_rel R^3 L / C * (2 + eps) / ((1 + eps) sqrt(1 - eps^2)):
     Couette shear over the full film of the converging half plus the striated film (fill
@@ -117,7 +125,7 @@ def ocvirk_torque(eps, viscosity, omega_rel, R, L, C):
 
 @numba.njit(cache=True)
 def hybrid_weights(eps, eps0):
-    """Blending weights of MODEL.md §8 (paper eqs. 28–31) and their eps-derivatives.
+    """Blending weights of docs/model.md §8 (paper eqs. 28–31) and their eps-derivatives.
 
     chi = (eps - 1)/eps0; f_F = exp(2 chi / (chi - 1)) (force), f_C = 1 - chi (torque).
     Both are 1 for eps <= 1 and 0 for eps >= 1 + eps0.
@@ -188,14 +196,16 @@ def _film_terms(e, omega_sum, omega_rel, c_film, params):
 
 @numba.njit(cache=True)
 def journal_scalars(e, v_slide, omega_sum, omega_rel, params):
-    """Polar components of the hybrid journal force and torque (MODEL.md §8) and slopes.
+    """Polar components of the hybrid journal force and torque (docs/model.md §8) and slopes.
 
     e [m] eccentricity (>= 0); v_slide [m/s] tangential sliding speed of the cage surface
     over the race at the contact point; omega_sum, omega_rel [rad/s] cage +/- race speed.
     Returns, with F = A e_r + B e_t the force on the cage and T its torque about z:
     (A, B, T [N, N, N m], dA/de, dB/de, dT/de, A/e, B/e (regular at e = 0),
     dB/dv_slide, dT/dv_slide, dA/domega_sum, dB/domega_sum, dT/domega_rel,
-    eps, metal normal force (1-f_F) Q [N], friction power [W]).
+    eps, metal normal force (1-f_F) Q [N], friction power [W], film shear power [W],
+    thinnest film C_film - e [m]). With the dynamic film (params[J_FILM]) the film force is
+    left out here: `cage_race_journal` adds it, as it depends on the centre velocity.
     """
     eps = e / params[J_CLEARANCE]
     f_f, df_f, f_c, df_c, c_film, dry_on = _mode_weights(eps, params)
@@ -204,6 +214,8 @@ def journal_scalars(e, v_slide, omega_sum, omega_rel, params):
         fn, ft, th, dfn, dft, dth, fn_e, ft_e, dfn_dw, dft_dw, dth_dw = _film_terms(
             e, omega_sum, omega_rel, c_film, params
         )
+        if params[J_FILM] == FILM_DYNAMIC:  # the force comes from squeeze_film_force (caller)
+            fn = ft = dfn = dft = fn_e = ft_e = dfn_dw = dft_dw = 0.0
     q_dry = dq_dry = q_e = 0.0
     if dry_on:
         n = params[J_LANDS]
@@ -225,14 +237,16 @@ def journal_scalars(e, v_slide, omega_sum, omega_rel, params):
     b_e = f_f * ft_e - (1.0 - f_f) * mu_d * th_v * q_e
     metal = (1.0 - f_f) * q_dry
     power = (1.0 - f_f) * abs(f_fr) * abs(v_slide)
+    film_power = abs(f_c * th * omega_rel)
     return (a, b, t, da, db, dt, a_e, b_e,
             (1.0 - f_f) * dfr_dv, (1.0 - f_c) * lever * dfr_dv,
-            -f_f * dfn_dw, f_f * dft_dw, f_c * dth_dw, eps, metal, power)
+            -f_f * dfn_dw, f_f * dft_dw, f_c * dth_dw, eps, metal, power,
+            film_power, max(c_film - e, 0.0))
 
 
 @numba.njit(cache=True)
 def cage_race_journal(offset, velocity, omega_cage, omega_race, params):
-    """Hybrid short-journal force and torque on the cage, with tangents (MODEL.md §8).
+    """Hybrid short-journal force and torque on the cage, with tangents (docs/model.md §8).
 
     offset (2,) [m]: cage centre minus guiding-race centre (x, y, global frame);
     velocity (2,) [m/s]: cage centre velocity relative to the race centre;
@@ -249,10 +263,11 @@ def cage_race_journal(offset, velocity, omega_cage, omega_race, params):
     v_r = velocity[0] * erx + velocity[1] * ery
     v_slide = velocity[0] * etx + velocity[1] * ety + lever * (omega_cage - omega_race)
     (a, b, t, da, db, dt, a_e, b_e, db_dv, dt_dv, da_dw, db_dw, dt_dwr,
-     eps, metal, power) = journal_scalars(e, v_slide, omega_cage + omega_race,
-                                          omega_cage - omega_race, params)
+     eps, metal, power, film_power, min_film) = journal_scalars(
+        e, v_slide, omega_cage + omega_race, omega_cage - omega_race, params)
     out[0], out[1], out[3] = a * erx + b * etx, a * ery + b * ety, t
     out[J_OUT_EPS], out[J_OUT_METAL_FORCE], out[J_OUT_FRICTION_POWER] = eps, metal, power
+    out[J_OUT_FILM_POWER], out[J_OUT_MIN_FILM] = film_power, min_film
     out[J_OUT_CONTACT_AZIMUTH] = math.atan2(lever * ery, lever * erx)
     # F = A e_r + B e_t; d e_r = e_t dphi, d e_t = -e_r dphi, dphi = e_t . dp / e, and
     # B depends on phi through v_slide = v . e_t + ..., d v_slide / dphi = -v . e_r.
@@ -273,7 +288,37 @@ def cage_race_journal(offset, velocity, omega_cage, omega_race, params):
         out[J_OUT_DF_DOMEGA_RACE + i] = da_dw * er[i] + (db_dw - db_dv * lever) * et[i]
     out[J_OUT_DT_DOMEGA_CAGE] = dt_dwr + dt_dv * lever
     out[J_OUT_DT_DOMEGA_RACE] = -dt_dwr - dt_dv * lever
+    if params[J_FILM] == FILM_DYNAMIC:
+        _add_squeeze_film(offset, velocity, omega_cage + omega_race, eps, erx, ery, params, out)
     return out
+
+
+@numba.njit(cache=True)
+def _add_squeeze_film(offset, velocity, omega_sum, eps, erx, ery, params, out):
+    """Add the weighted dynamic film force f_F F(e, V) (squeeze_film.py) and its exact
+    tangents to out; V = v - (omega/2) e_z x e, so dV/de = -(omega/2) e_z x and
+    dV/domega = -(1/2) e_z x e for either surface's speed."""
+    f_f, df_f, _, _, c_film, _ = _mode_weights(eps, params)
+    if f_f <= 0.0:
+        return
+    n = params[J_LANDS]
+    k_film = n * params[J_VISCOSITY] * params[J_RADIUS] * (params[J_LENGTH] / n) ** 3 / c_film**3
+    sq = np.empty(N_SQUEEZE_OUT)
+    squeeze_film_force(offset[0], offset[1], velocity[0], velocity[1], omega_sum, c_film, k_film,
+                       params[J_EPS_CLIP], sq)
+    er = (erx, ery)
+    dvw = (0.5 * offset[1], -0.5 * offset[0])  # dV/d omega = -(1/2) e_z x e
+    for i in range(2):
+        out[J_OUT_FORCE + i] += f_f * sq[i]
+        dfw = 0.0
+        for j in range(2):
+            # dF/de = f_F (D_e + D_V dV/de) + F (df_F/de) e_r^T, dV/de = -(omega/2) [[0,-1],[1,0]]
+            dv_de = -0.5 * omega_sum * sq[6 + 2 * i + 1] if j == 0 else 0.5 * omega_sum * sq[6 + 2 * i]
+            out[J_OUT_DF_DPOS + 2 * i + j] += f_f * (sq[2 + 2 * i + j] + dv_de) + sq[i] * df_f * er[j]
+            out[J_OUT_DF_DVEL + 2 * i + j] += f_f * sq[6 + 2 * i + j]
+            dfw += f_f * sq[6 + 2 * i + j] * dvw[j]
+        out[J_OUT_DF_DOMEGA_CAGE + i] += dfw
+        out[J_OUT_DF_DOMEGA_RACE + i] += dfw
 
 
 # --- packing and unpacking (Python side, outside the hot loop) ----------------------------
@@ -291,6 +336,7 @@ def journal_parameters(
     mode: str = "hybrid",
     guidance: str = "outer",
     eps_clip: float = 0.999,
+    film: str = "static",
 ) -> np.ndarray:
     """Pack and check the journal parameters (SI units) for `cage_race_journal`.
 
@@ -299,7 +345,9 @@ def journal_parameters(
     [-]; eps0 [-] boundary-layer thickness e0/C; regularisation_speed [m/s] of the dry
     friction; lands: separate lands L is split into; mode: hybrid | hydrodynamic | dry |
     none; guidance: outer | inner; eps_clip: largest film eccentricity e/C_film the
-    film formulas are evaluated at (all of them in hydrodynamic mode, the torque in hybrid).
+    film formulas are evaluated at (all of them in hydrodynamic mode, the torque in hybrid);
+    film: static (paper eq. 25, a centre at rest) | dynamic (with the squeeze and whirl
+    terms, squeeze_film.py).
     """
     positive = {
         "radius [m]": radius, "length [m]": length, "clearance [m]": clearance,
@@ -318,6 +366,8 @@ def journal_parameters(
         raise ValueError(f"cage-race journal: guidance = {guidance!r}; allowed: 'outer', 'inner'")
     if int(lands) != lands or lands < 1:
         raise ValueError(f"cage-race journal: lands = {lands!r} must be a positive integer")
+    if film not in FILMS:
+        raise ValueError(f"cage-race journal: film = {film!r}; allowed: {', '.join(FILMS)}")
     if not 0.0 < eps_clip < 1.0:
         raise ValueError(f"cage-race journal: eps_clip = {eps_clip!r} must be in (0, 1), e.g. 0.999")
     params = np.zeros(N_JOURNAL_PARAMS)
@@ -327,6 +377,7 @@ def journal_parameters(
     params[J_MODE] = MODES[mode]
     params[J_GUIDANCE] = 1.0 if guidance == "outer" else -1.0
     params[J_EPS_CLIP] = eps_clip
+    params[J_FILM] = FILMS[film]
     return params
 
 
@@ -367,4 +418,6 @@ def unpack_journal(out: np.ndarray) -> dict:
         "dtorque_domega_cage": float(out[J_OUT_DT_DOMEGA_CAGE]),
         "dforce_domega_race": out[J_OUT_DF_DOMEGA_RACE:J_OUT_DF_DOMEGA_RACE + 2].copy(),
         "dtorque_domega_race": float(out[J_OUT_DT_DOMEGA_RACE]),
+        "film_power": float(out[J_OUT_FILM_POWER]),
+        "min_film": float(out[J_OUT_MIN_FILM]),
     }

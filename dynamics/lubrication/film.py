@@ -1,4 +1,4 @@
-"""EHD film thickness of an elliptic contact (MODEL.md §6.3).
+"""EHD film thickness of an elliptic contact (docs/model.md §6.3).
 
 Two formulas, both numba kernels in SI units:
 
@@ -74,7 +74,7 @@ def nvm_central_dimensionless(M, L, lam):
 
 @numba.njit(cache=True)
 def film_central_nvm(F, Rx, Ry, E_eff, eta0, alpha_p, u_s):
-    """Central film thickness h_c [m] by Nijenbanning-Venner-Moes (MODEL.md §6.3).
+    """Central film thickness h_c [m] by Nijenbanning-Venner-Moes (docs/model.md §6.3).
 
     F [N] > 0, Rx, Ry [m], E_eff [Pa], eta0 [Pa.s], alpha_p [1/Pa], u_s [m/s] > 0 (sum of
     surface speeds). Returns 0 when F <= 0 or u_s <= 0 (no contact / no entrainment).
@@ -151,7 +151,7 @@ def hamrock_dowson_ellipticity(Rx, Ry):
 
 @numba.njit(cache=True)
 def film_hamrock_dowson(F, Rx, Ry, E_eff, eta0, alpha_p, u_s):
-    """Central and minimum film (h_c, h_min) [m] by Hamrock & Dowson (1977), MODEL.md §6.3.
+    """Central and minimum film (h_c, h_min) [m] by Hamrock & Dowson (1977), docs/model.md §6.3.
 
     h_c/Rx = 2.69 U^0.67 G^0.53 W^-0.067 (1 - 0.61 exp(-0.73 k)),
     h_min/Rx = 3.63 U^0.68 G^0.49 W^-0.073 (1 - exp(-0.68 k)),

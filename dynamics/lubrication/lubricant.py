@@ -1,4 +1,4 @@
-"""Lubricant parameter set (MODEL.md §6.4) and the built-in data files.
+"""Lubricant parameter set (docs/model.md §6.4) and the built-in data files.
 
 A `Lubricant` is a frozen dataclass with the unit and allowed range of every field in its
 metadata, so the scene loader can validate a `[lubricant]` table against it. Built-in sets
@@ -27,7 +27,7 @@ KELVIN_OFFSET = 273.15
 
 @dataclass(frozen=True)
 class Lubricant:
-    """Rheology, Eyring stress and density of a lubricant (MODEL.md §6.4)."""
+    """Rheology, Eyring stress and density of a lubricant (docs/model.md §6.4)."""
 
     name: str = field(metadata={"doc": "identifier, e.g. 'nato-o156'"})
     viscosity_model: str = field(
@@ -41,7 +41,7 @@ class Lubricant:
         default=900.0, metadata={"unit": "kg/m^3", "gt": 0.0, "doc": "at density_temperature_degC"}
     )
     density_temperature_degC: float = field(
-        default=15.0, metadata={"unit": "degC", "gt": -KELVIN_OFFSET}
+        default=15.0, metadata={"unit": "degC", "gt": -KELVIN_OFFSET, "doc": "temperature at which density is given"}
     )
     density_thermal_coefficient: float = field(
         default=0.0,
@@ -58,13 +58,13 @@ class Lubricant:
         default=None, metadata={"unit": "-", "gt": 0.0, "le": 2.0, "doc": "Roelands index, roelands only"}
     )
     # modified WLF (Yasutomi-Bair-Winer)
-    wlf_tg0_degC: float | None = field(default=None, metadata={"unit": "degC", "gt": -KELVIN_OFFSET})
-    wlf_c1: float | None = field(default=None, metadata={"unit": "-", "gt": 0.0})
-    wlf_c2_K: float | None = field(default=None, metadata={"unit": "K", "gt": 0.0})
-    wlf_a1_K: float | None = field(default=None, metadata={"unit": "K", "ge": 0.0})
-    wlf_a2_per_Pa: float | None = field(default=None, metadata={"unit": "1/Pa", "ge": 0.0})
-    wlf_b1: float | None = field(default=None, metadata={"unit": "-", "ge": 0.0})
-    wlf_b2_per_Pa: float | None = field(default=None, metadata={"unit": "1/Pa", "ge": 0.0})
+    wlf_tg0_degC: float | None = field(default=None, metadata={"unit": "degC", "gt": -KELVIN_OFFSET, "doc": "T_g0: glass transition temperature at ambient pressure (modified WLF, docs/model.md §6.4)"})
+    wlf_c1: float | None = field(default=None, metadata={"unit": "-", "gt": 0.0, "doc": "C1 of the modified WLF law"})
+    wlf_c2_K: float | None = field(default=None, metadata={"unit": "K", "gt": 0.0, "doc": "C2 of the modified WLF law"})
+    wlf_a1_K: float | None = field(default=None, metadata={"unit": "K", "ge": 0.0, "doc": "A1: T_g(p) = T_g0 + A1 ln(1 + A2 p)"})
+    wlf_a2_per_Pa: float | None = field(default=None, metadata={"unit": "1/Pa", "ge": 0.0, "doc": "A2 of T_g(p)"})
+    wlf_b1: float | None = field(default=None, metadata={"unit": "-", "ge": 0.0, "doc": "B1: F(p) = 1 - B1 ln(1 + B2 p)"})
+    wlf_b2_per_Pa: float | None = field(default=None, metadata={"unit": "1/Pa", "ge": 0.0, "doc": "B2 of F(p)"})
     description: str = field(default="", metadata={"doc": "free text"})
 
     def __post_init__(self) -> None:

@@ -1,16 +1,16 @@
-"""Low-shear viscosity of the lubricant versus pressure and temperature (MODEL.md §6.4).
+"""Low-shear viscosity of the lubricant versus pressure and temperature (docs/model.md §6.4).
 
 Three models, each a pure numba kernel in SI units (Pa, K, Pa.s):
 
 - Barus: ``eta = eta0 exp(alpha p)``;
 - Roelands: ``ln eta = (ln eta0 + 9.67) [(1 + p/p_r)^z - 1]``, ``p_r = 1.96e8 Pa``
   (Roelands 1966; the isothermal form, eta0 at the operating temperature);
-- modified WLF of Yasutomi, Bair & Winer (J. Tribol. 106, 1984), as written in MODEL.md §6.4::
+- modified WLF of Yasutomi, Bair & Winer (J. Tribol. 106, 1984), as written in docs/model.md §6.4::
 
       log10 eta = log10 eta_g - C1 (T - T_g) F / (C2 + (T - T_g) F),  eta_g = 1e12 Pa.s
       T_g(p) = T_g0 + A1 ln(1 + A2 p),   F(p) = 1 - B1 ln(1 + B2 p)
 
-MODEL.md does not number the equations of §6.4; docstrings cite "§6.4" and the model name.
+docs/model.md does not number the equations of §6.4; docstrings cite "§6.4" and the model name.
 
 Above the glass transition pressure (T <= T_g(p)) the WLF formula diverges at
 (T - T_g) F = -C2, and at very high pressure F(p) itself turns negative; the kernel clamps the
@@ -46,13 +46,13 @@ WLF_LOG10_ETA_GLASS = 12.0  # log10(eta_g / 1 Pa.s): viscosity at the glass tran
 
 @numba.njit(cache=True)
 def viscosity_barus(p, eta0, alpha):
-    """Barus viscosity eta = eta0 exp(alpha p) [Pa.s] (MODEL.md §6.4, Barus). p [Pa], alpha [1/Pa]."""
+    """Barus viscosity eta = eta0 exp(alpha p) [Pa.s] (docs/model.md §6.4, Barus). p [Pa], alpha [1/Pa]."""
     return eta0 * math.exp(alpha * p)
 
 
 @numba.njit(cache=True)
 def viscosity_roelands(p, eta0, z):
-    """Roelands viscosity [Pa.s] (MODEL.md §6.4, Roelands): ln(eta/eta0) = (ln eta0 + 9.67)((1+p/p_r)^z - 1).
+    """Roelands viscosity [Pa.s] (docs/model.md §6.4, Roelands): ln(eta/eta0) = (ln eta0 + 9.67)((1+p/p_r)^z - 1).
 
     p [Pa], eta0 [Pa.s] at ambient pressure and the operating temperature, z [-].
     """
@@ -61,7 +61,7 @@ def viscosity_roelands(p, eta0, z):
 
 @numba.njit(cache=True)
 def viscosity_wlf(p, T, Tg0, A1, A2, B1, B2, C1, C2):
-    """Modified WLF (Yasutomi-Bair-Winer) viscosity eta(p, T) [Pa.s] (MODEL.md §6.4, modified WLF).
+    """Modified WLF (Yasutomi-Bair-Winer) viscosity eta(p, T) [Pa.s] (docs/model.md §6.4, modified WLF).
 
     p [Pa], T and Tg0 [K], A1 [K], A2 [1/Pa], B1 [-], B2 [1/Pa], C1 [-], C2 [K].
     Clamped at eta_g = 1e12 Pa.s where the liquid is below its glass transition.
@@ -78,7 +78,7 @@ def viscosity_wlf(p, T, Tg0, A1, A2, B1, B2, C1, C2):
 
 @numba.njit(cache=True)
 def viscosity(p, model, params):
-    """eta(p) [Pa.s] at the operating temperature for model code `model` (MODEL.md §6.4).
+    """eta(p) [Pa.s] at the operating temperature for model code `model` (docs/model.md §6.4).
 
     `params` is the contiguous float64 array of `Lubricant.rheology_params()`.
     """
@@ -91,7 +91,7 @@ def viscosity(p, model, params):
 
 @numba.njit(cache=True)
 def pressure_viscosity_coefficient(model, params):
-    """Approximate pressure-viscosity coefficient alpha* = d ln eta/dp at p = 0 [1/Pa] (MODEL.md §6.4).
+    """Approximate pressure-viscosity coefficient alpha* = d ln eta/dp at p = 0 [1/Pa] (docs/model.md §6.4).
 
     Analytic for each model:
     Barus alpha; Roelands z (ln eta0 + 9.67)/p_r;

@@ -1,7 +1,7 @@
 """General multibody core: CRV rigid bodies, joints, viscoelastic hinge, HHT-α integrator.
 
-Knows nothing about bearings (STYLE.md rule 1): models implement the residual protocol of
-`problem.py`; `integrate` advances them. MODEL.md §4, §5, §9.
+Knows nothing about bearings (docs/contributing.md rule 1): models implement the residual protocol of
+`problem.py`; `integrate` advances them. docs/model.md §4, §5, §9.
 """
 
 from .hinge import HingeStiffness, hinge_energy, hinge_forces, hinge_strains

@@ -1,6 +1,6 @@
-"""Conformal rotation vector (CRV) kinematics, MODEL.md §4 (S.4a–d).
+"""Conformal rotation vector (CRV) kinematics, docs/model.md §4 (M.4a–d).
 
-The CRV is `c = 4 tan(phi/4) n` (S.4a). `|c| <= 4` covers every rotation with `|phi| <= pi`;
+The CRV is `c = 4 tan(phi/4) n` (M.4a). `|c| <= 4` covers every rotation with `|phi| <= pi`;
 beyond it the rescaled vector `c* = -16 c / (c.c)` (phi -> phi - 2 pi) describes the same
 rotation. References: Bauchau & Trainelli, "The vectorial parameterization of rotation",
 Nonlinear Dynamics 32 (2003) 71–92; Bauchau, "Flexible Multibody Dynamics" (Springer 2011),
@@ -11,7 +11,7 @@ stored as a CRV and advanced multiplicatively, `R_{n+1} = R_n R(dc)`, where the 
 `dc` is the CRV of the material rotation increment of the Newmark update. Composition goes
 through Euler parameters and picks the sign with `e0 >= 0`, which is exactly the rescaling
 `c* = -16 c/(c.c)`: the stored CRV never leaves `|c| <= 4`. Angular velocities are the
-material `Omega` of (S.4d), so no rate has to be remapped when the CRV is rescaled; for
+material `Omega` of (M.4d), so no rate has to be remapped when the CRV is rescaled; for
 models that integrate `c_dot` directly, `crv_rescale` maps the rate consistently.
 
 All kernels are pure functions of contiguous float64 arrays (dimensionless CRV, rad, rad/s).
@@ -43,13 +43,13 @@ def skew(a):
 
 @numba.njit(cache=True)
 def crv_c0(c):
-    """Scalar part c0 = 2 - c.c/8 of the CRV (S.4a), dimensionless."""
+    """Scalar part c0 = 2 - c.c/8 of the CRV (M.4a), dimensionless."""
     return 2.0 - (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) / 8.0
 
 
 @numba.njit(cache=True)
 def crv_to_matrix(c):
-    """Rotation matrix R(c) = I + 2 (c0 c~ + c~ c~) / (4 - c0)^2 (S.4b)."""
+    """Rotation matrix R(c) = I + 2 (c0 c~ + c~ c~) / (4 - c0)^2 (M.4b)."""
     c0 = crv_c0(c)
     ct = skew(c)
     f = 2.0 / (4.0 - c0) ** 2
@@ -63,7 +63,7 @@ def crv_to_matrix(c):
 
 @numba.njit(cache=True)
 def crv_H(c):
-    """Tangent operator H(c) with spatial omega = H c_dot (S.4c), 3x3."""
+    """Tangent operator H(c) with spatial omega = H c_dot (M.4c), 3x3."""
     c0 = crv_c0(c)
     f = 2.0 / (4.0 - c0) ** 2
     return f * (c0 * np.eye(3) + skew(c) + np.outer(c, c) / 4.0)
@@ -71,7 +71,7 @@ def crv_H(c):
 
 @numba.njit(cache=True)
 def crv_H_inv(c):
-    """Inverse tangent operator H^-1 = (c0 I - c~ + c c^T/4) / 2 (S.4d), 3x3."""
+    """Inverse tangent operator H^-1 = (c0 I - c~ + c c^T/4) / 2 (M.4d), 3x3."""
     c0 = crv_c0(c)
     return 0.5 * (c0 * np.eye(3) - skew(c) + np.outer(c, c) / 4.0)
 
@@ -80,7 +80,7 @@ def crv_H_inv(c):
 def crv_to_quaternion(c):
     """Euler parameters (e0, e1, e2, e3) of the CRV: e0 = c0/(4-c0), e = c/(4-c0).
 
-    From S.4a with t = tan(phi/4): cos(phi/2) = (1-t^2)/(1+t^2) = c0/(4-c0) and
+    From M.4a with t = tan(phi/4): cos(phi/2) = (1-t^2)/(1+t^2) = c0/(4-c0) and
     sin(phi/2) n = 2t/(1+t^2) n = c/(4-c0).
     """
     c0 = crv_c0(c)
@@ -110,7 +110,7 @@ def quaternion_to_crv(e):
 
 @numba.njit(cache=True)
 def crv_from_rotation_vector(theta):
-    """CRV of the rotation vector theta = phi n [rad]: c = 4 tan(phi/4) n (S.4a)."""
+    """CRV of the rotation vector theta = phi n [rad]: c = 4 tan(phi/4) n (M.4a)."""
     phi = math.sqrt(theta[0] ** 2 + theta[1] ** 2 + theta[2] ** 2)
     if phi < _SMALL_ANGLE:
         f = 1.0 + phi * phi / 48.0
@@ -121,7 +121,7 @@ def crv_from_rotation_vector(theta):
 
 @numba.njit(cache=True)
 def crv_to_rotation_vector(c):
-    """Rotation vector phi n [rad] of the CRV: phi = 4 atan(|c|/4) (inverse of S.4a)."""
+    """Rotation vector phi n [rad] of the CRV: phi = 4 atan(|c|/4) (inverse of M.4a)."""
     nc = math.sqrt(c[0] ** 2 + c[1] ** 2 + c[2] ** 2)
     if nc < 4.0 * _SMALL_ANGLE:
         f = 1.0 - nc * nc / 48.0

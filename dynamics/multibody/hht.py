@@ -1,4 +1,4 @@
-"""One HHT-α step with Newton iterations (MODEL.md §9; Hilber, Hughes & Taylor, Earthq. Eng.
+"""One HHT-α step with Newton iterations (docs/model.md §9; Hilber, Hughes & Taylor, Earthq. Eng.
 Struct. Dyn. 5 (1977) 283–292, in the paper's sign convention alpha in [0, 1/3]).
 
     M(q_{n+1}) a_{n+1} - (1 - alpha) g(t_{n+1}, q_{n+1}, v_{n+1}) - alpha g_n = 0
@@ -90,7 +90,7 @@ class HHTStepper:
         """Try a step from (t, y) of size h: returns (y1, error norm, result).
 
         y1 is a workspace reused by the next call: copy it or swap it in before stepping
-        again. The error norm is `step_control.scaled_difference_norm` of (S.§9) e.
+        again. The error norm is `step_control.scaled_difference_norm` of the error estimate e (M.99).
         """
         s, y1 = self.settings, self.y1
         alpha, beta, gamma = s.alpha, s.beta, s.gamma

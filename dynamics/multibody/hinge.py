@@ -1,14 +1,14 @@
-"""Viscoelastic hinge joint between a fixed frame A and a body B, MODEL.md §5 (S.15–S.20).
+"""Viscoelastic hinge joint between a fixed frame A and a body B, docs/model.md §5 (M.15–M.20).
 
-Strains (S.15–S.16), with mu_i = R_A e_i the triad of A and xi_3 = R_B e_3 the axis of B:
+Strains (M.15–M.16), with mu_i = R_A e_i the triad of A and xi_3 = R_B e_3 the axis of B:
 
     u = R_A^T (x_B - x_A),   psi = (-mu_2^T xi_3, mu_1^T xi_3) = -P xi_3,   P = [mu_2^T; -mu_1^T]
     u_dot = R_A^T x_B_dot,   psi_dot = P R_B (e_3 x Omega_B) = B_psi Omega_B,  B_psi = P R_B e_3~
 
-(the same as S.16: (mu_2~ xi_3)^T omega = mu_2^T (xi_3 x omega)). Energy (S.17)
-V = u^T H_u u / 2 + psi^T H_psi psi / 2; viscous forces from (S.18) with G = c_G H.
-Generalised forces (S.19–S.20) in the integrator's coordinates (force on x_B, *material*
-moment on B — the `T_B^T R_B^T` of S.19 maps the spatial moment onto CRV rates; with
+(the same as M.16: (mu_2~ xi_3)^T omega = mu_2^T (xi_3 x omega)). Energy (M.17)
+V = u^T H_u u / 2 + psi^T H_psi psi / 2; viscous forces from (M.18) with G = c_G H.
+Generalised forces (M.19–M.20) in the integrator's coordinates (force on x_B, *material*
+moment on B — the `T_B^T R_B^T` of M.19 maps the spatial moment onto CRV rates; with
 material rotation increments it is just `R_B^T`):
 
     f   = -R_A (H_u u + G_u u_dot)                          [N]
@@ -30,7 +30,7 @@ from .small import mm, mtv, mv
 
 @numba.njit(cache=True)
 def _hinge_psi_terms(R_A, R_B, Omega_B):
-    """P (2x3), psi (2) [rad], B_psi (2x3) and psi_dot (2) [rad/s] of S.15–S.16."""
+    """P (2x3), psi (2) [rad], B_psi (2x3) and psi_dot (2) [rad/s] of M.15–M.16."""
     P = np.empty((2, 3))
     P[0, :] = R_A[:, 1]
     P[1, :] = -R_A[:, 0]
@@ -46,7 +46,7 @@ def _hinge_psi_terms(R_A, R_B, Omega_B):
 def hinge_forces(x_B, R_B, x_B_dot, Omega_B, x_A, R_A, H_u, H_psi, G_u, G_psi):
     """Viscoelastic hinge generalised force g (6) and residual tangents K, C (6x6).
 
-    g = (f [N], tau [N m]) of (S.19)+(S.20) on (x_B, material rotation of B).
+    g = (f [N], tau [N m]) of (M.19)+(M.20) on (x_B, material rotation of B).
     K = -dg/d(x_B, Theta_B), C = -dg/d(x_B_dot, Omega_B), with material perturbations
     R_B -> R_B exp(dTheta~). H_u, G_u: 3x3 [N/m], [N s/m]; H_psi, G_psi: 2 [N m/rad],
     [N m s/rad].
@@ -80,7 +80,7 @@ def hinge_forces(x_B, R_B, x_B_dot, Omega_B, x_A, R_A, H_u, H_psi, G_u, G_psi):
 
 @numba.njit(cache=True)
 def hinge_energy(x_B, R_B, x_A, R_A, H_u, H_psi):
-    """Strain energy V = u^T H_u u / 2 + psi^T H_psi psi / 2 [J] (S.17)."""
+    """Strain energy V = u^T H_u u / 2 + psi^T H_psi psi / 2 [J] (M.17)."""
     u = mtv(R_A, x_B - x_A)
     psi = np.empty(2)
     psi[0] = -(R_A[0, 1] * R_B[0, 2] + R_A[1, 1] * R_B[1, 2] + R_A[2, 1] * R_B[2, 2])
@@ -90,14 +90,14 @@ def hinge_energy(x_B, R_B, x_A, R_A, H_u, H_psi):
 
 @numba.njit(cache=True)
 def hinge_strains(x_B, R_B, x_B_dot, Omega_B, x_A, R_A):
-    """(u [m], psi [rad], u_dot [m/s], psi_dot [rad/s]) of S.15–S.16."""
+    """(u [m], psi [rad], u_dot [m/s], psi_dot [rad/s]) of M.15–M.16."""
     P, psi, B_psi, psi_dot = _hinge_psi_terms(R_A, R_B, Omega_B)
     return R_A.T @ (x_B - x_A), psi, R_A.T @ x_B_dot, psi_dot
 
 
 @dataclass(frozen=True)
 class HingeStiffness:
-    """Hinge parameters (MODEL.md §5): H_u (3x3 SPD), H_psi (2, diagonal), G = c_G H."""
+    """Hinge parameters (docs/model.md §5): H_u (3x3 SPD), H_psi (2, diagonal), G = c_G H."""
 
     H_u: np.ndarray = field(metadata={"unit": "N/m"})
     H_psi: np.ndarray = field(metadata={"unit": "N m/rad"})

@@ -1,4 +1,4 @@
-"""Time loop: HHT-α steps, step-size control, sampling and the accepted-step hook (MODEL.md §9).
+"""Time loop: HHT-α steps, step-size control, sampling and the accepted-step hook (docs/model.md §9).
 
 Control flow per attempt: Newton failure -> reject, h *= newton_failure_factor (never below
 min_step; failing at min_step raises IntegrationError); error norm > 1 -> reject, shrink h by

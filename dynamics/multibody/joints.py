@@ -1,4 +1,4 @@
-"""Joints to ground, MODEL.md §4.
+"""Joints to ground, docs/model.md §4.
 
 * Ideal hinge to ground with zero speed (the fixed outer race): eliminated — the body has no
   coordinates; models use its constant position and orientation directly. A spherical joint

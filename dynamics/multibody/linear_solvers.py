@@ -1,4 +1,4 @@
-"""Linear solvers for the Newton iteration matrix S = c_m M + c_v C_t + c_q K_t (MODEL.md §9).
+"""Linear solvers for the Newton iteration matrix S = c_m M + c_v C_t + c_q K_t (docs/model.md §9).
 
 Two structures:
 

@@ -1,4 +1,4 @@
-"""Newton iteration matrix of HHT-α and the policy for reusing its factorisation (MODEL.md §9).
+"""Newton iteration matrix of HHT-α and the policy for reusing its factorisation (docs/model.md §9).
 
 Unknown of a step: a_{n+1}. With the Newmark updates, dq/da = beta h^2 and dv/da = gamma h,
 so the exact Jacobian of r = M a - (1 - alpha) g_{n+1} - alpha g_n is

@@ -1,11 +1,11 @@
-"""The residual protocol between a model and the integrator (STYLE.md rule 1).
+"""The residual protocol between a model and the integrator (docs/contributing.md rule 1).
 
 A model (pendulum, rigid body, bearing) is any object with these members; the integrator
 knows nothing else about it.
 
 Coordinates. Three arrays of the same length n = `n_dof`: configuration q, velocity v and
 acceleration a. Every coordinate is additive (v = dq/dt) except the CRV triples whose first
-index is listed in `rotation_slots`: there q holds a CRV c (S.4a, |c| <= 4), v the material
+index is listed in `rotation_slots`: there q holds a CRV c (M.4a, |c| <= 4), v the material
 angular velocity Omega [rad/s] and a its rate; the integrator updates them multiplicatively,
 R(c_{n+1}) = R(c_n) R(crv(dTheta)), dTheta = Newmark increment (crv.update_configuration).
 A coordinate whose configuration never enters a force (a ball's rotation) is an ordinary

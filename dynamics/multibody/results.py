@@ -50,7 +50,7 @@ class IntegrationError(RuntimeError):
 
 @dataclass
 class SolverStats:
-    """Counters of one integration (MODEL.md §9 asks for all of them)."""
+    """Counters of one integration (docs/model.md §9 asks for all of them)."""
 
     steps: int = 0
     rejected_steps: int = 0

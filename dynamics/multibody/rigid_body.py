@@ -1,8 +1,8 @@
-"""Rigid-body force kernels in the integrator's coordinates (MODEL.md §4).
+"""Rigid-body force kernels in the integrator's coordinates (docs/model.md §4).
 
 Coordinates of one free rigid body (6 slots, see `problem.py`):
-position x [m] (3, global frame) and CRV c (3, S.4a); velocities x_dot [m/s] and the
-*material* angular velocity Omega [rad/s] (S.4d); accelerations x_ddot and Omega_dot.
+position x [m] (3, global frame) and CRV c (3, M.4a); velocities x_dot [m/s] and the
+*material* angular velocity Omega [rad/s] (M.4d); accelerations x_ddot and Omega_dot.
 Rotation perturbations are material: R -> R exp(dTheta~). With the material inertia J
 constant, the equations are Newton–Euler:
 

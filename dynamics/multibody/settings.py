@@ -1,4 +1,4 @@
-"""Numerical settings of the HHT-α integrator (MODEL.md §9), validated on construction."""
+"""Numerical settings of the HHT-α integrator (docs/model.md §9), validated on construction."""
 
 from __future__ import annotations
 
@@ -75,10 +75,10 @@ class HHTSettings:
 
     @property
     def gamma(self) -> float:
-        """Newmark gamma = 1/2 + alpha (MODEL.md §9)."""
+        """Newmark gamma = 1/2 + alpha (docs/model.md §9)."""
         return 0.5 + self.alpha
 
     @property
     def beta(self) -> float:
-        """Newmark beta = (1 + alpha)^2 / 4 (MODEL.md §9)."""
+        """Newmark beta = (1 + alpha)^2 / 4 (docs/model.md §9)."""
         return 0.25 * (1.0 + self.alpha) ** 2

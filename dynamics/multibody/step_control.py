@@ -1,4 +1,4 @@
-"""Local-error norm and step-size proposal (MODEL.md §9).
+"""Local-error norm and step-size proposal (docs/model.md §9).
 
 Error estimate of HHT-α/Newmark: e = (beta - 1/6) h^2 (a_{n+1} - a_n) — the difference between
 the Newmark displacement and the cubic Taylor term (Zienkiewicz & Xie, Earthq. Eng. Struct.

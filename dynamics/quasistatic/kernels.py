@@ -1,4 +1,4 @@
-"""Numba kernels of the quasi-static bearing solver (MODEL.md §10, §6.1–6.2).
+"""Numba kernels of the quasi-static bearing solver (docs/model.md §10, §6.1–6.2).
 
 Each ball lives in its azimuth plane with coordinates (r, z): r radial from the bearing
 axis, z axial. The outer race is fixed, its groove curvature centre at (d_o/2, 0). The
@@ -8,7 +8,7 @@ at azimuth ψ is C_i = u + R(θ) (d_i/2) e_r(ψ), seen in the ball's azimuth pla
 (components along e_r and e_z; see `dynamics.quasistatic.solver`). The kernels take C_i and
 G = ∂C_i/∂q (2×5) per ball.
 
-Contact on the ball from race j (S.24): F_j = k_h(α_j) δ_j^{3/2} n_j, n_j = w_j/|w_j|,
+Contact on the ball from race j (M.24): F_j = k_h(α_j) δ_j^{3/2} n_j, n_j = w_j/|w_j|,
 w_j = C_j − x_b, δ_j = |w_j| − (r_j − D/2). Ball equilibrium:
 F_i + F_o + m ω_c² r e_r + F_gyro = 0. The inner race receives f = −F_i at C_i, i.e. the
 generalised force Gᵀ f.
@@ -32,7 +32,7 @@ STATUS_OK, STATUS_LOOSE, STATUS_FAILED = 0.0, 1.0, 2.0
 def contact_2d(w_r, w_z, gap, table, is_outer):
     """Force on the ball from one groove and its Jacobian with respect to w = C − x_b.
 
-    Returns (Q, α, δ, F_r, F_z, J_rr, J_rz, J_zr, J_zz): Q = k_h δ^{3/2} [N] (S.24), α the
+    Returns (Q, α, δ, F_r, F_z, J_rr, J_rz, J_zr, J_zz): Q = k_h δ^{3/2} [N] (M.24), α the
     signed contact angle (dynamics.contact.race convention), F = Q n [N], J = ∂F/∂w [N/m]
     = (3/2)k_h δ^{1/2} nnᵀ + (Q/s)(I − nnᵀ) + δ^{3/2} (dk_h/dα) n tᵀ/s, t = (−n_z, n_r).
     gap = r − D/2 [m]. δ ≤ 0 returns zeros (no contact).
@@ -64,7 +64,7 @@ def contact_2d(w_r, w_z, gap, table, is_outer):
 def ball_residual(x_r, x_z, ci_r, ci_z, co_r, co_z, gap_i, gap_o, tab_i, tab_o, m_om2, g_i, g_o):
     """Residual r = ΣF on the ball [N] and ∂r/∂x_b, plus both contacts (tuple of floats).
 
-    m_om2 = m_b ω_c² [N/m] (centrifugal force m_b ω_c² r, MODEL.md §10). g_i, g_o [N]:
+    m_om2 = m_b ω_c² [N/m] (centrifugal force m_b ω_c² r, docs/model.md §10). g_i, g_o [N]:
     frozen gyroscopic friction magnitudes along τ = (−n_z, n_r) at the inner/outer
     contact (applied only while that contact is loaded; its Jacobian is neglected).
     """

@@ -1,6 +1,6 @@
-"""Result of the quasi-static solve (MODEL.md §10) and the dynamic stage's initial state.
+"""Result of the quasi-static solve (docs/model.md §10) and the dynamic stage's initial state.
 
-Sign conventions (all SI, global frame of MODEL.md §1):
+Sign conventions (all SI, global frame of docs/model.md §1):
 - inner_displacement = (u_x, u_y, u_z) [m] of the inner-race centre and inner_tilt =
   (θ_x, θ_y) [rad] (small rotation vector), both measured from the centred position
   (axes coincident, groove curvature-centre planes coplanar) — so the clearance take-up
@@ -23,7 +23,7 @@ import numpy as np
 
 @dataclass(frozen=True)
 class QuasiStaticResult:
-    """Quasi-static equilibrium of a ball bearing (MODEL.md §10). Arrays are per ball (Z,)."""
+    """Quasi-static equilibrium of a ball bearing (docs/model.md §10). Arrays are per ball (Z,)."""
 
     converged: bool
     iterations: int  # Newton iterations on the inner race, all continuation/kinematic passes
@@ -59,7 +59,7 @@ class QuasiStaticResult:
         return int(self.azimuth.shape[0])
 
     def to_json_dict(self) -> dict:
-        """The `bearingsim quasistatic --json` object of SCENE.md (NaN → null)."""
+        """The `bearingsim quasistatic --json` object of docs/scenes.md (NaN → null)."""
 
         def num(x: float):
             x = float(x)
@@ -111,7 +111,7 @@ def tilt_rotation_matrix(tilt: np.ndarray) -> np.ndarray:
 
 
 def initial_state(result: QuasiStaticResult, geometry=None) -> dict[str, np.ndarray | float]:
-    """Initial state of the dynamic stage from a quasi-static solution (MODEL.md §10).
+    """Initial state of the dynamic stage from a quasi-static solution (docs/model.md §10).
 
     Positions from the solution; velocities from pure rolling with every ball orbiting
     at the cage speed ω_c (mean of the balls' own pure-rolling orbital speeds), each

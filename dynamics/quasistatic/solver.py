@@ -1,4 +1,4 @@
-"""Quasi-static equilibrium of a ball bearing (MODEL.md §10): the solver.
+"""Quasi-static equilibrium of a ball bearing (docs/model.md §10): the solver.
 
 Unknowns: inner-race displacement and tilt q = (u_x, u_y, u_z, θ_x, θ_y) and each ball's
 centre (r, z) in its azimuth plane. Balls are equilibrated one by one (2×2 Newton, see
@@ -264,7 +264,7 @@ def solve_quasistatic(
     kinematics: str = "exact",
     table_nodes: int = DEFAULT_TABLE_NODES,
 ) -> QuasiStaticResult:
-    """Quasi-static equilibrium of the bearing under loads on the inner race (MODEL.md §10).
+    """Quasi-static equilibrium of the bearing under loads on the inner race (docs/model.md §10).
 
     axial [N] along +z, radial [N] along +x, moment [N·m] about +y; inner_speed,
     outer_speed [rad/s] about +z. centrifugal: ball centrifugal force m_b ω_c² r at the

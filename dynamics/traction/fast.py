@@ -1,4 +1,4 @@
-"""Fast Eyring traction for the time loop: pole-centred quadrature, SIMD evaluation (MODEL.md §6.4).
+"""Fast Eyring traction for the time loop: pole-centred quadrature, SIMD evaluation (docs/model.md §6.4).
 
 Same physics and sign convention as `dynamics.traction.quadrature` (force and spin moment ON THE BALL,
 Jacobian d(F_x, F_y, M_z)/d(du0, dv0, w_s)); the nodes come from `dynamics.traction.nodes`
@@ -210,7 +210,7 @@ def _accumulate_force(X, Y, W, n, a, b, du0, dv0, w_s, k, r, x, ash, out):
 
 @numba.njit(**NO_REFCOUNT)
 def traction_fast(a, b, p_h, h, tau0, du0, dv0, w_s, eta_table, p_step, rule, work, iwork, out, jacobian=True):
-    """Eyring traction on the ball by pole-centred quadrature (MODEL.md §6.4).
+    """Eyring traction on the ball by pole-centred quadrature (docs/model.md §6.4).
 
     a, b [m] Hertz semi-axes (x = entrainment), p_h [Pa], h [m] central film, tau0 [Pa]
     Eyring stress, du0, dv0 [m/s] sliding velocity ball - race at the centre, w_s [rad/s]

@@ -1,4 +1,4 @@
-"""Quadrature nodes for the fast Eyring traction: rules centred on the spin pole (MODEL.md §6.4).
+"""Quadrature nodes for the fast Eyring traction: rules centred on the spin pole (docs/model.md §6.4).
 
 Why not the ellipse-centred rule of `dynamics.traction.quadrature` with few nodes: with spin the
 sliding field s = (du0 - w_s y, dv0 + w_s x) = w_s e_z x (r - r_p) rotates about the spin

@@ -1,4 +1,4 @@
-"""Isothermal Eyring traction of an EHD point contact, by quadrature (MODEL.md §6.4).
+"""Isothermal Eyring traction of an EHD point contact, by quadrature (docs/model.md §6.4).
 
 Local shear stress (§6.4), uniform film h (the central film, §6.3), Hertzian pressure
 p(x, y) = p_h sqrt(1 - (x/a)^2 - (y/b)^2), local low-shear viscosity eta(p) from
@@ -57,7 +57,7 @@ def eyring_response(k, r):
 
 @numba.njit(cache=True)
 def traction_on_grid(a, b, h, tau0, du0, dv0, w_s, eta_u, u_weight, cos_t, sin_t, rho_u):
-    """Traction force, spin moment and Jacobian on a polar quadrature grid (MODEL.md §6.4).
+    """Traction force, spin moment and Jacobian on a polar quadrature grid (docs/model.md §6.4).
 
     a, b [m] semi-axes (x = entrainment), h [m] film, tau0 [Pa] Eyring stress,
     du0, dv0 [m/s] sliding velocity (ball - race) at the centre, w_s [rad/s] spin.
@@ -123,7 +123,7 @@ def traction_quadrature(
     a: float, b: float, p_h: float, h: float, tau0: float, model: int, params: np.ndarray,
     du0: float, dv0: float, w_s: float, n_u: int = 48, n_theta: int = 256,
 ) -> tuple[float, float, float, np.ndarray]:
-    """Reference traction (F_x [N], F_y [N], M_z [N.m], J[3,3]) on the ball (MODEL.md §6.4).
+    """Reference traction (F_x [N], F_y [N], M_z [N.m], J[3,3]) on the ball (docs/model.md §6.4).
 
     a, b [m], p_h [Pa] maximum Hertz pressure, h [m] central film, tau0 [Pa], rheology
     `model`/`params` from `Lubricant.model_code` / `rheology_params()`, du0, dv0 [m/s],

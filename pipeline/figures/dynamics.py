@@ -1,4 +1,4 @@
-"""Figures of a dynamic run (MODEL.md §11), drawn from saved time series only.
+"""Figures of a dynamic run (docs/model.md §11), drawn from saved time series only.
 
 Each function takes plain arrays and writes one PNG atomically (matplotlib, Agg).
 """

@@ -1,4 +1,4 @@
-"""Figure: ball load and contact angle against ball azimuth (MODEL.md §11)."""
+"""Figure: ball load and contact angle against ball azimuth (docs/model.md §11)."""
 
 from __future__ import annotations
 
@@ -16,8 +16,10 @@ def plot_load_distribution(result: dict, path: Path, title: str = "") -> None:
     order = sorted(range(len(az)), key=az.__getitem__)
     az = [az[i] for i in order]
     pick = lambda key, scale=1.0: [balls[i][key] * scale for i in order]  # noqa: E731
-    fig = new_figure(figsize=(7.5, 6.0))
-    ax_q, ax_a = fig.subplots(2, 1, sharex=True)
+    screen = result.get("cage_screen")
+    fig = new_figure(figsize=(7.5, 8.6 if screen else 6.0))
+    axes = fig.subplots(3 if screen else 2, 1, sharex=True)
+    ax_q, ax_a = axes[0], axes[1]
     ax_q.plot(az, pick("inner_load"), "o-", label="inner race")
     ax_q.plot(az, pick("outer_load"), "s--", label="outer race")
     ax_q.set_ylabel("contact load Q [N]")
@@ -26,11 +28,31 @@ def plot_load_distribution(result: dict, path: Path, title: str = "") -> None:
     deg = 180.0 / math.pi
     ax_a.plot(az, pick("inner_contact_angle", deg), "o-", label="inner race")
     ax_a.plot(az, pick("outer_contact_angle", deg), "s--", label="outer race")
-    ax_a.set_xlabel("ball azimuth ψ [deg] (from +x towards +y)")
+    ax_a.set_xlabel("" if screen else "ball azimuth ψ [deg] (from +x towards +y)")
     ax_a.set_ylabel("contact angle α [deg]")
     ax_a.set_xlim(0, 360)
     ax_a.set_xticks(range(0, 361, 45))
     ax_a.legend()
     ax_a.grid(alpha=0.3)
+    if screen:
+        _plot_excursion(axes[2], az, [screen["excursion_per_ball"][i] for i in order], screen)
     fig.suptitle(f"Quasi-static load distribution — {title}" if title else "Quasi-static load distribution")
     save_png(fig, Path(path), dpi=120)
+
+
+def _plot_excursion(ax, az, s, screen: dict) -> None:
+    """The crush screen (docs/model.md §10.1): each ball's lead over a rigid centred cage
+    against the pocket walls, and where the cage must move to make room."""
+    um = 1e3  # mm
+    half = 0.5 * screen["pocket_clearance"] * um
+    ax.plot(az, [x * um for x in s], "o-", color="k", label="ball lead over a centred cage")
+    ax.axhspan(half, max(half, max(s) * um) + 0.05, color="#f9dcdc", lw=0)
+    ax.axhspan(min(-half, min(s) * um) - 0.05, -half, color="#f9dcdc", lw=0)
+    ax.axhline(half, color="r", lw=0.8)
+    ax.axhline(-half, color="r", lw=0.8)
+    ax.set_ylabel("lead in pocket [mm]")
+    ax.set_xlabel("ball azimuth ψ [deg] (from +x towards +y)")
+    ax.grid(alpha=0.3)
+    ax.set_title(f"crush screen: {screen['regime']} (push towards {round(screen['push_azimuth_deg']) % 360}°, "
+                 f"required offset {screen['required_eccentricity_ratio']:.2f} C)", fontsize=9)
+    ax.legend(fontsize=8, loc="upper right")

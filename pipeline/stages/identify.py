@@ -1,4 +1,4 @@
-"""Stage `identify`: FE identification of the inner-race hinge stiffness (MODEL.md §3).
+"""Stage `identify`: FE identification of the inner-race hinge stiffness (docs/model.md §3).
 
 Only scenes with `hinge.source = "fe"` need it; its key hashes the `[fe]` table and the
 ring dimensions the FE geometry is built from, nothing else.

@@ -21,6 +21,10 @@ def quasistatic_inputs(scene: Scene) -> dict:
         "speed": dataclasses.asdict(scene.speed),
         "centrifugal": scene.physics.centrifugal,
         "gyroscopic": scene.physics.gyroscopic,
+        # the crush screen's inputs (absent without a cage)
+        "cage": dataclasses.asdict(scene.cage) if scene.cage is not None else None,
+        "land_viscosity": scene.lubricant.eta0 if scene.lubricant is not None and scene.cage is not None else None,
+        "land": (scene.physics.cage_race_boundary, scene.physics.cage_race_lands) if scene.cage is not None else None,
     }
 
 
@@ -36,12 +40,31 @@ def solve(scene: Scene):
     )
 
 
+def cage_screen(scene: Scene, result):
+    """The crush screen (docs/model.md §10.1) of a scene with a cage, else None."""
+    if scene.cage is None:
+        return None
+    from bearingsim.dynamics.quasistatic.crush_screen import crush_screen
+
+    b, c = scene.bearing, scene.cage
+    return crush_screen(
+        result.azimuth, result.ball_orbital_speed, result.cage_speed,
+        pitch_radius=0.5 * c.mean_diameter, pocket_clearance=c.pocket_diameter - b.ball_diameter,
+        guide_clearance=c.guide_clearance(b), land_radius=0.5 * c.guide_land_diameter(b),
+        land_length=c.guide_land_length(b), lands=scene.physics.cage_race_lands,
+        eps0=scene.physics.cage_race_boundary,
+        viscosity=scene.lubricant.eta0 if scene.lubricant is not None else 0.0)
+
+
 def compute(ctx: StageContext) -> dict:
     from ..figures.worker import draw
 
     ctx.progress("solving equilibrium", 0.0)
     result = solve(ctx.scene)
     payload = result.to_json_dict()
+    screen = cage_screen(ctx.scene, result)
+    if screen is not None:
+        payload["cage_screen"] = screen.to_json_dict()
     atomic_write_json(ctx.out_dir / RESULT_FILE, payload)
     ctx.progress("drawing load distribution", 0.7)
     # in the worker `bearingsim quasistatic` prestarted, if any (see figures.worker)

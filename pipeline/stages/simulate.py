@@ -1,7 +1,7 @@
-"""Stage `simulate`: the HHT-alpha multibody run of the bearing (MODEL.md §4–§9).
+"""Stage `simulate`: the HHT-alpha multibody run of the bearing (docs/model.md §4–§9).
 
 Reads the hinge (identified or given) and starts from the quasi-static equilibrium;
-writes `timeseries.h5`, `impacts.csv`, `summary.json` and the figures of MODEL.md §11.
+writes `timeseries.h5`, `impacts.csv`, `summary.json` and the figures of docs/model.md §11.
 """
 
 from __future__ import annotations
@@ -43,6 +43,12 @@ def hinge_matrices(scene: Scene, identify_dir) -> tuple | None:
 def model_options(scene: Scene):
     from bearingsim.dynamics.bearing import ModelOptions
 
+    if not scene.physics.centrifugal:
+        from ..schema import SceneError
+
+        raise SceneError("physics.centrifugal", "false acts only on the quasi-static solve: the dynamic "
+                         "model's inertia always carries the balls' centrifugal force; remove the key "
+                         "(or set it true) to run the dynamics")
     names = {f.name for f in dataclasses.fields(ModelOptions)}
     return ModelOptions(**{k: v for k, v in dataclasses.asdict(scene.physics).items() if k in names})
 

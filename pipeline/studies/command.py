@@ -1,4 +1,4 @@
-"""`bearingsim bench SCENE`: the work–precision studies of issue 9 for one scene.
+"""`bearingsim bench SCENE`: the work–precision studies for one scene.
 
 Dynamics: `work_precision` (error against wall time, one curve per method, solve_ivp
 baseline). Identification (scenes whose hinge is identified by FE): `identify_precision`

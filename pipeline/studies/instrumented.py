@@ -1,4 +1,4 @@
-"""Instrumented runs of a multibody problem over a fixed window, for the studies of issue 9.
+"""Instrumented runs of a multibody problem over a fixed window, for the studies.
 
 Three pieces, none of them bearing-specific except `bearing_window` at the end:
 
@@ -7,7 +7,7 @@ Three pieces, none of them bearing-specific except `bearing_window` at the end:
   run past a wall-clock deadline (raises `WallClockExceeded`, so a case can never hang), and
   optionally replaces the model's (approximate) tangent by a finite-difference one.
 * `fd_tangent` builds S = c_m M + c_v C_t + c_q K_t by central differences of the residual
-  r = M a - g (MODEL.md §9, paper eq. 9), with material rotation increments on CRV slots —
+  r = M a - g (docs/model.md §9, paper eq. 9), with material rotation increments on CRV slots —
   the "exact tangent" the approximate analytic one is compared with.
 * `run_window` integrates with HHT-α and samples with the integrator's Hermite dense output
   at fixed times, so two runs with different steps are compared at the same instants.
@@ -36,7 +36,7 @@ class WallClockExceeded(RuntimeError):
 
 
 def fd_tangent(problem, t, q, v, a, c_m, c_v, c_q, template, dq_scale=1e-9, dv_scale=1e-6):
-    """S = c_m M + c_v C_t + c_q K_t by central differences of r = M a - g (MODEL.md §9).
+    """S = c_m M + c_v C_t + c_q K_t by central differences of r = M a - g (docs/model.md §9).
 
     q is perturbed by +-dq_scale [m, or rad on CRV slots, composed multiplicatively], v by
     +-dv_scale [m/s, rad/s]. M is read from one evaluation at a = 1 (diagonal mass; a row the

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 def ode_rhs(model, rotation_slots, spin_row):
-    """y = (q, v) -> (q_dot, v_dot): q_dot = v except CRV slots, c_dot = H(c)^-T Omega (S.4d);
+    """y = (q, v) -> (q_dot, v_dot): q_dot = v except CRV slots, c_dot = H(c)^-T Omega (M.4d);
     v_dot = M^-1 g (diagonal M); the prescribed spin has v_dot = 0."""
     from bearingsim.dynamics.multibody.crv import crv_H
 

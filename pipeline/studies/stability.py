@@ -1,4 +1,4 @@
-"""Stability suite: stiff and extreme cases of the bearing model (issue 9).
+"""Stability suite: stiff and extreme cases of the bearing model.
 
     python -m pipeline.studies.stability [CASE ...] [--window 0.01] [--out DIR]
     bearingsim stability [CASE ...]
@@ -118,7 +118,7 @@ def physical_checks(params, run, q0, v0) -> dict:
 
 def _land_contact(model, run) -> tuple[np.ndarray, np.ndarray]:
     """Eccentricity ratio e/C at the guide land and metal-contact force [N] at every sample,
-    from the model's own journal diagnostics (MODEL.md §8)."""
+    from the model's own journal diagnostics (docs/model.md §8)."""
     from bearingsim.dynamics.bearing.assembly import DG_EPS, DG_METAL
 
     n = model.n_dof

@@ -1,4 +1,4 @@
-"""Work–precision of the dynamic solver: error against wall time (issue 9).
+"""Work–precision of the dynamic solver: error against wall time.
 
     python -m pipeline.studies.work_precision [SCENE] [--quick] [--out DIR]
     bearingsim bench SCENE [--quick]

@@ -1,9 +1,9 @@
-"""Errors of a dynamic run against a reference run, on physical quantities (issue 9).
+"""Errors of a dynamic run against a reference run, on physical quantities.
 
 Both runs are sampled at the same instants (Hermite dense output of HHT-α, or solve_ivp's
 `t_eval`). Quantities, each compared as an RMS over the window:
 
-* cage centre (x, y) [m] — the orbit that decides where the cage rubs (MODEL.md §8, §11);
+* cage centre (x, y) [m] — the orbit that decides where the cage rubs (docs/model.md §8, §11);
 * cage speed, material spin of the cage about its axis [rad/s];
 * inner-race centre (x, y, z) [m];
 * ball–pocket impact peak force [N] — impacts found the same way in both runs from the

@@ -1,4 +1,4 @@
-"""Parameter sweeps on Dask and cage-stability maps (`bearingsim sweep`, issue 10).
+"""Parameter sweeps on Dask and cage-stability maps (`bearingsim sweep`).
 
 - :mod:`.spec` — what to vary (`--vary`, the scene's `[sweep]` table)
 - :mod:`.points` — expansion into points, stable ids, per-point scene tables

@@ -2,7 +2,7 @@
 by its cage-motion class, with contours of the metal-contact fraction.
 
 With more than two varied keys there is one panel per combination of the others.
-matplotlib is imported inside the functions only (STYLE.md rule 6); no pyplot.
+matplotlib is imported inside the functions only (docs/contributing.md rule 6); no pyplot.
 """
 
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """The sweep's results table: one row per point, from the points' records on disk.
 
 Columns: `point_id`, `status` (done | failed | pending), one column per varied scene key,
-`cage_class` (:mod:`pipeline.sweep.classify`), the summary metrics of SCENE.md (with
+`cage_class` (:mod:`pipeline.sweep.classify`), the summary metrics of docs/scenes.md (with
 `burn_zone_sector` split into `burn_zone_start` / `burn_zone_end`, rad), run counters,
 `error` (the message of a failed point) and `run_dir`. Written as CSV, and as parquet
 too when pyarrow is installed.

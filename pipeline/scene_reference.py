@@ -1,0 +1,143 @@
+"""docs/scenes.md: the reference of every scene key, generated from the field metadata of the
+dataclasses the scene loader builds (unit, range, choices, default, doc), so the document
+cannot drift from what `bearingsim check` accepts (tests/test_scene_reference.py compares).
+
+    python -m bearingsim.pipeline.scene_reference > docs/scenes.md
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import typing
+
+from .schema import describe_bounds
+
+INTRO = """# Scene reference
+
+A scene is one TOML file (or a built-in name, `bearingsim scenes`); `--set KEY=VALUE` changes
+one key on the command line with the same checks. SI units throughout, except where the key
+says otherwise (`_rpm`, `_degC`). `bearingsim check SCENE` validates a scene and prints it
+resolved. This page is generated from the code (`python -m bearingsim.pipeline.scene_reference`);
+a test keeps it current. The model behind the keys is [docs/model.md](model.md).
+
+Top level: `name` (required; names the run directory `runs/<name>/`), `description`
+(free text), and the tables below. Required tables: `[bearing]`, `[materials]`, `[load]`,
+`[speed]`. A scene computes only what it needs: no FE stage unless `hinge.source = "fe"`, no
+cage contacts without `[cage]`, no film or traction without `[lubricant]` (the physics
+defaults then fall back to the dry laws: `traction = "coulomb"`, `cage_race = "dry"`,
+`ehd_film = false`).
+"""
+
+
+def _sections():
+    from bearingsim.dynamics.geometry import BearingGeometry, CageGeometry, Material
+    from bearingsim.dynamics.lubrication.lubricant import Lubricant
+
+    from .scene_sections import CatalogueBearing, Hinge, Load, Output, Physics, SolverSettings, Speed
+    from .sweep.classify import CageClassThresholds
+    from .sweep.spec import SweepSection
+
+    def fe():
+        from bearingsim.fe_model.config import FEConfig
+
+        return FEConfig
+
+    return [
+        ("[bearing] — form 1: groove curvature centres (the reference paper's data)", BearingGeometry,
+         "Give form 1 or form 2, never both. Shoulder, bore, outside diameters and width are needed only "
+         "by what uses them (ellipse truncation, the dynamic model's inner-ring mass, FE, renders)."),
+        ("[bearing] — form 2: catalogue data", CatalogueBearing, ""),
+        ("[cage]", CageGeometry, "Cylindrical pockets with radial axes; the cage is guided by the lands of "
+                                 "the race named in `guidance`. Without `[cage]` no cage is modelled."),
+        ("[materials.ball], [materials.race], [materials.cage]", Material,
+         "`[materials.cage]` is required with a `[cage]` table. Inline tables work: "
+         "`ball = { youngs_modulus = 208e9, poisson_ratio = 0.3, density = 7850 }`."),
+        ("[lubricant]", Lubricant,
+         "`name = \"nato-o156\"` loads the built-in set (docs/model.md §6.4); any key given beside it "
+         "refines that set (e.g. `temperature_degC`, `eyring_stress`). Without a built-in name every "
+         "key without a default is required."),
+        ("[load]", Load, ""),
+        ("[speed]", Speed, ""),
+        ("[hinge]", Hinge, "The viscoelastic hinge tying the inner race to its static frame (docs/model.md §5)."),
+        ("[fe]", None, "Read only when `hinge.source = \"fe\"`; defaults suit the reference bearing."),
+        ("[solver]", SolverSettings, "Numerical settings of the dynamic run (docs/model.md §9)."),
+        ("[physics]", Physics, "Which laws the contacts use and their parameters (docs/model.md §6–§8)."),
+        ("[output]", Output, ""),
+        ("[sweep]", SweepSection, "How `bearingsim sweep` varies the scene (README, Parameter sweeps); it "
+                                  "changes no stage key. `vary` maps dotted keys to `\"start:stop:count\"` or "
+                                  "lists; `points` lists explicit points for `mode = \"list\"`."),
+        ("[sweep.thresholds]", CageClassThresholds, "Limits of the cage classes (pipeline/sweep/classify.py)."),
+    ], fe
+
+
+def _type_name(tp) -> str:
+    origin = typing.get_origin(tp)
+    args = [a for a in typing.get_args(tp) if a is not type(None)]
+    if origin in (typing.Union, getattr(__import__("types"), "UnionType", None)) and args:
+        return _type_name(args[0]) + " (optional)"
+    if origin is tuple:
+        return "list of " + _type_name(args[0]) if args else "list"
+    return getattr(tp, "__name__", str(tp)).replace("float", "number").replace("int", "integer").replace("str", "text").replace("bool", "true/false")
+
+
+def _default(f) -> str:
+    if f.default is not dataclasses.MISSING:
+        v = f.default
+    elif f.default_factory is not dataclasses.MISSING:
+        return "(table)"
+    else:
+        return "**required**"
+    if v is None:
+        return "—"
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, float):
+        return "inf" if math.isinf(v) else f"{v:g}"
+    if isinstance(v, str):
+        return f'"{v}"'
+    return str(v)
+
+
+def _allowed(meta: dict) -> str:
+    if "choices" in meta:
+        return ", ".join(f'"{c}"' for c in meta["choices"])
+    bounds = describe_bounds(meta)
+    if "length" in meta:
+        bounds = (bounds + "; " if bounds else "") + f"{meta['length']} values"
+    return bounds or "—"
+
+
+def _cell(text: str) -> str:
+    return str(text).replace("|", "\\|").replace("\n", " ")
+
+
+def section_table(cls) -> str:
+    hints = typing.get_type_hints(cls)
+    rows = ["| key | type | unit | allowed | default | meaning |", "| --- | --- | --- | --- | --- | --- |"]
+    for f in dataclasses.fields(cls):
+        if not f.init or f.name in ("thresholds", "vary", "points"):
+            continue
+        meta = dict(f.metadata)
+        if dataclasses.is_dataclass(hints.get(f.name)):
+            continue
+        unit = meta.get("unit", "")
+        rows.append("| " + " | ".join(_cell(c) for c in (
+            f"`{f.name}`", _type_name(hints.get(f.name, f.type)), unit if unit else "—",
+            _allowed(meta), _default(f), meta.get("doc", ""))) + " |")
+    return "\n".join(rows)
+
+
+def render() -> str:
+    sections, fe = _sections()
+    parts = [INTRO]
+    for title, cls, note in sections:
+        parts.append(f"## {title}\n")
+        if note:
+            parts.append(note + "\n")
+        parts.append(section_table(cls if cls is not None else fe()) + "\n")
+    return "\n".join(parts)
+
+
+if __name__ == "__main__":
+    print(render(), end="")

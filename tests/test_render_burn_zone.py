@@ -27,7 +27,7 @@ def profile() -> OuterRaceProfile:
 
 
 def test_land_geometry_of_reference_bearing(profile):
-    # MODEL.md §2: the outer groove meets the land diameter 166 mm at ±8.90 mm from the
+    # docs/model.md §2: the outer groove meets the land diameter 166 mm at ±8.90 mm from the
     # groove plane; the cage (25.4 mm wide) overlaps each land by ≈ 3.80 mm, L ≈ 7.6 mm.
     assert profile.z_land == pytest.approx(8.90e-3, abs=5e-6)
     assert profile.land_overlap == pytest.approx(7.6e-3, abs=5e-6)
@@ -36,7 +36,7 @@ def test_land_geometry_of_reference_bearing(profile):
 
 
 def test_contact_point_lies_on_groove_normal_through_ball_centre(profile):
-    """MODEL.md §6.1: the contact is on the line from the groove curvature centre through
+    """docs/model.md §6.1: the contact is on the line from the groove curvature centre through
     the ball centre, at distance r_o from the centre."""
     rng = np.random.default_rng(1)
     phi_b = rng.uniform(-math.pi, math.pi, 50)
@@ -62,6 +62,52 @@ def test_sector_energy_is_friction_power_times_time():
     # a linear ramp P = c t is integrated exactly by the trapezoid weights: c T²/2
     e2 = sector_energy(t, np.linspace(0, 2 * math.pi, t.size, endpoint=False), 1e4 * t, 36)
     assert e2.sum() == pytest.approx(1e4 * 0.02**2 / 2, rel=1e-12)
+
+
+def test_burn_zone_map_holds_land_heat_of_the_settled_window_only(profile):
+    """A rub at 40.5° in the start-up (t < 4 ms), the film dissipating 2 W at eps 0.9 towards
+    40.5° all run long; the map from t = 5 ms holds film heat only, peaking at the offset,
+    and the raceway tracks of the settled window only."""
+    from bearingsim.pipeline.render.burn_zone_data import burn_zone_map
+    from bearingsim.pipeline.results.timeseries import Series
+
+    t = np.linspace(0.0, 0.01, 201)
+    n, az = t.size, math.radians(40.5)
+    rho = profile.groove_center_radius + 0.4e-3
+    series = {name: Series(data, "", "") for name, data in {
+        "time": t,
+        "balls/position": np.tile([[[rho, 0.0, 0.0]]], (n, 1, 1)),
+        "contacts/outer_contact_angle": np.zeros((n, 1)),
+        "contacts/outer_load": np.full((n, 1), 1000.0),
+        "cage_race/friction_power": np.where(t < 4e-3, 100.0, 0.0),
+        "cage_race/film_power": np.full(n, 2.0),
+        "cage_race/eccentricity_ratio": np.full(n, 0.9),
+        "cage_race/contact_azimuth": np.full(n, az),
+    }.items()}
+    bzm = burn_zone_map(series, profile, start=5e-3, land_boundary=0.05, startup_metal_energy=0.4)
+    assert bzm.metal_energy.sum() == 0.0
+    assert bzm.film_energy.sum() == pytest.approx(2.0 * 5e-3, rel=1e-12)
+    np.testing.assert_array_equal(bzm.sector_energy, bzm.metal_energy + bzm.film_energy)
+    assert bzm.peak_sector == 40 and bzm.window == (5e-3, 0.01)
+    assert bzm.track_density.sum() == pytest.approx(1000.0 * 5e-3, rel=1e-12)  # load x settled time
+    whole = burn_zone_map(series, profile, land_boundary=0.05)  # no window: the whole run
+    assert whole.metal_energy.sum() == pytest.approx(100.0 * 5e-5 * 79.5, rel=1e-12)
+    assert whole.film_energy.sum() == pytest.approx(2.0 * 0.01, rel=1e-12)
+
+
+def test_unrolled_map_draws_both_heat_layers(profile, tmp_path):
+    from bearingsim.pipeline.render.burn_zone import heat_caption, render_burn_zone_map
+
+    base = _map(profile, 30.0)
+    film = np.full(360, 0.1)
+    metal = base.sector_energy.copy()
+    bzm = BurnZoneMap(profile, metal + film, base.sector, base.track_density, base.track_alpha_edges, 0.0,
+                      metal, film, (0.05, 0.8), 1.5)
+    render_burn_zone_map(bzm, tmp_path / "m.png", "layers")
+    assert _png(tmp_path / "m.png").std() > 0.05
+    caption = heat_caption(bzm)
+    assert "metal friction 3 J" in caption and "film shear 36 J" in caption and "0.05–0.8 s" in caption
+    assert "start-up metal energy 1.5 J not shown" in caption
 
 
 def _one_contact(profile, alpha, load=1000.0, semi_axis=None, n=11):

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import html
 import json
 import math
 import re
@@ -13,7 +14,6 @@ from typer.testing import CliRunner
 
 from bearingsim.pipeline.artefacts import atomic_write_json, read_manifest
 from bearingsim.pipeline.cli import app
-from bearingsim.pipeline.results.cage_metrics import burn_zone_histogram, burn_zone_sector, time_weights
 from bearingsim.pipeline.results.timeseries import Series, write_timeseries
 from bearingsim.pipeline.runner import run_stages, stage_key
 from bearingsim.pipeline.scene import load_scene
@@ -26,6 +26,7 @@ from bearingsim.pipeline.stages.simulate import STAGE as SIMULATE
 from .test_render_fe import write_tiny_case
 
 RUB_AZIMUTH, RUB_POWER, RUB_TIME = 1.0, 100.0, 4e-3  # rad, W, s
+FILM_POWER, EPS = 10.0, 0.8  # W, - (the cage pressed at RUB_AZIMUTH through its film)
 
 
 def _manifest(directory, key):
@@ -35,7 +36,13 @@ def _manifest(directory, key):
 
 def _timeseries(scene, path):
     """A 10 ms run: balls on the outer groove at contact angle 25° + 5° cos(psi); the cage
-    rubs the land at azimuth 1 rad with 100 W during the first 4 ms."""
+    sits at eps = 0.8 towards azimuth 1 rad, its film dissipating 10 W throughout, and rubs
+    the land there with 100 W during the first 4 ms (a start-up crash). The summary is the
+    simulate stage's own (cage_summary, cage_verdict): a 10 ms run is far shorter than a
+    cage revolution, so the settled window is the capped last half, t >= 5 ms."""
+    from bearingsim.pipeline.results.cage_metrics import cage_summary
+    from bearingsim.pipeline.results.verdict import cage_verdict
+
     b, Z = scene.bearing, scene.bearing.ball_count
     t = np.linspace(0.0, 0.01, 201)
     psi = (np.arange(Z)[None, :] * 2 * math.pi / Z + 140.0 * t[:, None])
@@ -43,19 +50,30 @@ def _timeseries(scene, path):
     rho = 0.5 * b.outer_groove_center_diameter + 0.43e-3 * np.cos(alpha)
     pos = np.stack([rho * np.cos(psi), rho * np.sin(psi), 0.43e-3 * np.sin(alpha)], axis=2)
     power = np.where(t < RUB_TIME, RUB_POWER, 0.0)
+    clearance = 2.9e-4
+    cage_xy = np.tile([EPS * clearance * math.cos(RUB_AZIMUTH), EPS * clearance * math.sin(RUB_AZIMUTH)], (t.size, 1))
     T, B = ("time",), ("time", "ball")
-    write_timeseries(path, {
+    series = {
         "time": Series(t, "s", "sample time", T),
         "balls/position": Series(pos, "m", "ball centres", ("time", "ball", "xyz")),
         "contacts/outer_contact_angle": Series(alpha, "rad", "outer contact angle", B),
         "contacts/outer_load": Series(np.full_like(alpha, 3000.0), "N", "outer load", B),
+        "cage/position": Series(np.c_[cage_xy, np.zeros(t.size)], "m", "cage centre", ("time", "xyz")),
+        "cage/speed": Series(np.full_like(t, 140.0), "rad/s", "cage speed", T),
+        "cage_race/eccentricity_ratio": Series(np.full_like(t, EPS), "-", "eps", T),
         "cage_race/friction_power": Series(power, "W", "friction power", T),
+        "cage_race/film_power": Series(np.full_like(t, FILM_POWER), "W", "film power", T),
         "cage_race/contact_azimuth": Series(np.full_like(t, RUB_AZIMUTH), "rad", "contact azimuth", T),
-    })
-    hist = burn_zone_histogram(np.full_like(t, RUB_AZIMUTH), power * time_weights(t))
-    return {"duration": 0.01, "steps": 1234, "rejected_steps": 5, "newton_iterations": 2000,
-            "factorizations": 7, "cage_speed_mean": 140.0, "burn_zone_sector": list(burn_zone_sector(hist)),
-            "burn_zone_energy_total": float(hist.sum()), "energy": {"drive": 1.0}}
+    }
+    write_timeseries(path, series, {"guide_clearance_m": clearance})
+    summary = {"duration": 0.01, "steps": 1234, "rejected_steps": 5, "newton_iterations": 2000,
+               "factorizations": 7, "energy": {"drive": 1.0}}
+    summary.update(cage_summary(
+        t, cage_xy, series["cage/speed"].data, series["cage_race/eccentricity_ratio"].data,
+        series["cage_race/contact_azimuth"].data, power, np.zeros(t.size), np.zeros(0),
+        film_power=series["cage_race/film_power"].data, guide_clearance=clearance, land_boundary=0.05))
+    summary["verdict"] = cage_verdict(summary)
+    return summary
 
 
 @pytest.fixture(scope="module")
@@ -120,21 +138,34 @@ def test_render_command_regenerates_the_report_without_solving(run_dir, monkeypa
 
     renders = json.loads((out / "renders.json").read_text())
     burn = renders["burn_zone"]
-    # energy: P on the 80 samples t_k = k dt < 4 ms (dt = 50 µs), trapezoid weights dt/2 for
-    # the first and dt for the others (the sample after the last powered one carries P = 0):
-    # E = P dt (80 - 1/2) = 100 W × 3.975 ms
-    assert burn["energy_total_J"] == pytest.approx(RUB_POWER * 5e-5 * 79.5, rel=1e-9)
-    assert burn["energy_last_half_J"] == 0.0  # the rub stops at 4 ms of a 10 ms run
+    # the map covers the settled window t >= 5 ms of summary.json: the start-up rub is not in it
+    assert burn["settled"] and burn["window_s"] == pytest.approx([0.005, 0.01])
+    assert burn["energy_metal_J"] == 0.0
+    # the start-up's metal energy: P on the 80 samples t_k = k dt < 4 ms (dt = 50 µs), trapezoid
+    # weights dt/2 for the first and dt for the others (the sample after the last powered one
+    # carries P = 0): E = P dt (80 - 1/2) = 100 W × 3.975 ms
+    assert burn["startup_metal_energy_J"] == pytest.approx(RUB_POWER * 5e-5 * 79.5, rel=1e-9)
+    # film heat: 10 W over the 5 ms of the settled window, all of it on the land
+    assert burn["energy_film_J"] == pytest.approx(FILM_POWER * 0.005, rel=1e-9)
+    assert burn["energy_total_J"] == pytest.approx(FILM_POWER * 0.005, rel=1e-9)
+    # the film is thinnest, and heats most, where the cage is pressed
     assert burn["peak_sector_deg"] == pytest.approx(math.floor(math.degrees(RUB_AZIMUTH)) + 0.5)
     assert burn["track_outside_fraction"] == 0.0  # 25° ± 5° tracks stay inside the raceway
     assert renders["fe"][0]["max_displacement_m"] == pytest.approx(3e-6, rel=1e-12)
 
     page = (out / "report.html").read_text()
-    assert len(re.findall(r'src="data:image/png;base64,', page)) >= 3  # burn 3-D, map, FE
+    assert len(re.findall(r'src="data:image/png;base64,', page)) >= 5  # orbit, map twice, burn 3-D, FE
     assert not re.search(r'src="(?!data:)', page)  # self-contained: no external files
-    for text in ("Summary metrics", "Burn zone", "Quasi-static", "Hinge", "FE deflections",
-                 "Solver counters", "Scene", "Versions", "6.5e+08", "1234", "load case fx = -1000 N"):
+    for text in ("Verdict", "Summary metrics", "Burn zone", "Quasi-static", "Hinge", "FE deflections",
+                 "Solver counters", "Scene", "Versions", "6.5e+08", "1234", "load case fx = -1000 N",
+                 "thinnest land film", "µm", "run too short to settle"):
         assert text in page, text
+    # the page opens with the verdict: its sentence comes before every other section
+    summary = json.loads((run / "simulate" / "summary.json").read_text())
+    sentence = summary["verdict"]["text"]
+    assert sentence.startswith("Cage pressed onto the outer-race land at 5") and "no metal contact" in sentence
+    assert page.index("Verdict") < page.index(html.escape(sentence)) < page.index("Summary metrics")
+    assert (out / "verdict_orbit.png").is_file()
 
 
 def test_run_finds_the_rendered_report_up_to_date_and_redraws_when_forced(run_dir, monkeypatch):

@@ -10,10 +10,14 @@ import pytest
 from bearingsim.pipeline.sweep.classify import CageClassThresholds, classify_cage
 
 
-def summary(metal=0.0, spread=None, whirl=0.0, variation=0.003, speed=143.7, duration=0.1):
-    return {"duration": duration, "cage_speed_mean": speed, "cage_speed_variation": variation,
-            "cage_metal_contact_fraction": metal, "cage_contact_angle_spread": spread,
-            "cage_whirl_ratio": whirl}
+def summary(metal=0.0, spread=None, whirl=0.0, variation=0.003, speed=143.7, duration=0.1,
+            offset_spread=None, eps_mean=None):
+    s = {"duration": duration, "cage_speed_mean": speed, "cage_speed_variation": variation,
+         "cage_metal_contact_fraction": metal, "cage_contact_angle_spread": spread,
+         "cage_whirl_ratio": whirl}
+    if offset_spread is not None:  # summaries with a settled window carry the offset keys
+        s.update(cage_offset_spread=offset_spread, cage_eps_mean=eps_mean)
+    return s
 
 
 @pytest.mark.parametrize("metrics, expected", [
@@ -41,6 +45,13 @@ def summary(metal=0.0, spread=None, whirl=0.0, variation=0.003, speed=143.7, dur
     (summary(metal=0.8, spread=1.2, whirl=0.05), "chaotic"),
     # irregular speed without contact
     (summary(variation=0.06), "chaotic"),
+    # pushed onto one sector through its film: the offset stays in one direction at eps >= 0.6
+    (summary(offset_spread=0.2, eps_mean=0.85), "pressed"),
+    (summary(offset_spread=0.5, eps_mean=0.6), "pressed"),  # limits inclusive
+    (summary(offset_spread=0.2, eps_mean=0.5), "centred"),  # steady direction, but near the centre
+    (summary(offset_spread=1.5, eps_mean=0.85, whirl=0.9, variation=0.02), "whirling"),
+    # crushed first: metal contact on one sector most of the time
+    (summary(metal=0.9, spread=0.2, offset_spread=0.1, eps_mean=1.02), "crushed"),
 ])
 def test_documented_rules(metrics, expected):
     assert classify_cage(metrics) == expected

@@ -43,17 +43,17 @@ def _plt():
 def moment_sweep_figure(study: Path, out: Path, screen: dict | None) -> Path:
     plt = _plt()
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.4))
-    for plan, style, label in (("moment_sweep", "o-", "default: dynamic film, 2 lands"),
-                               ("moment_sweep_static", "s--", "paper's law: static film, 1 journal")):
+    for plan, style, label, colour in (("moment_sweep", "o-", "default: dynamic film, 2 lands", "C0"),
+                                       ("moment_sweep_static", "s--", "paper's law: static film, 1 journal", "C1")):
         d = _load(study, plan)
         rows = sorted((float(v["overrides"][0].split("=")[1]), v["settled"]) for v in d.values() if "settled" in v)
         if not rows:
             continue
         m = np.array([r[0] for r in rows])
-        axes[0].plot(m, [r[1]["eps_mean"] for r in rows], style, label=label + " (mean)")
-        axes[0].plot(m, [r[1]["eps_max"] for r in rows], style, alpha=0.35, label=label + " (max)")
-        axes[1].plot(m, [r[1]["metal_fraction"] for r in rows], style, label=label)
-        axes[2].plot(m, [r[1]["land_force_mean"] for r in rows], style, label=label)
+        axes[0].plot(m, [r[1]["eps_mean"] for r in rows], style, color=colour, label=label + " (mean)")
+        axes[0].plot(m, [r[1]["eps_max"] for r in rows], style, color=colour, alpha=0.35, label=label + " (max)")
+        axes[1].plot(m, [r[1]["metal_fraction"] for r in rows], style, color=colour, label=label)
+        axes[2].plot(m, [r[1]["land_force_mean"] for r in rows], style, color=colour, label=label)
     axes[0].axhline(1.0, color="k", lw=0.8)
     axes[0].text(5, 1.005, "metal contact (eps > 1)", fontsize=8, va="bottom")
     axes[0].set_ylabel("cage eccentricity e / C [-]")
@@ -96,14 +96,16 @@ def tornado_figure(study: Path, out: Path, case: str, metric: str, label: str) -
         group = key.rsplit("-", 1)[0] if key.endswith(("-lo", "-hi", "-on")) else key
         groups.setdefault(group, []).append((v["overrides"][-1], v["settled"][metric] - base))
     order = sorted(groups, key=lambda g: max(abs(x[1]) for x in groups[g]))
-    fig, ax = plt.subplots(figsize=(9, 0.45 * len(order) + 1.5))
+    fig, ax = plt.subplots(figsize=(9, 0.42 * len(order) + 1.6))
+    labels = []
     for i, g in enumerate(order):
+        values = []
         for setting, delta in groups[g]:
-            ax.barh(i, delta, color="#c0504d" if delta > 0 else "#4f81bd", alpha=0.8)
-            ax.text(delta, i, " " + setting.split(".")[-1] + " ", va="center", fontsize=7,
-                    ha="left" if delta >= 0 else "right")
+            ax.barh(i, delta, height=0.6, color="#c0504d" if delta > 0 else "#4f81bd", alpha=0.75)
+            values.append(setting.split("=", 1)[1])
+        labels.append(f"{g}: " + " / ".join(values))
     ax.set_yticks(range(len(order)))
-    ax.set_yticklabels(order, fontsize=8)
+    ax.set_yticklabels(labels, fontsize=8)
     ax.axvline(0, color="k", lw=0.8)
     ax.set_xlabel(f"change of {label} from the default ({base:.3g})")
     ax.set_title(f"Case {case}: sensitivity of {label} (settled window 0.1–0.4 s)", fontsize=10)
@@ -188,6 +190,18 @@ def _finish_pocket(fig, ax, out, run):
     return path
 
 
+def _screen_curve(moment: float):
+    """(psi grid, s) of the crush screen (M.115) for the reference bearing at `moment`."""
+    from bearingsim.dynamics.quasistatic.crush_screen import orbital_excursion
+    from bearingsim.pipeline.scene import load_scene
+    from bearingsim.pipeline.stages.quasistatic import solve
+
+    scene = load_scene("helicopter-b-given-hinge", [f"load.moment={moment}"])
+    r = solve(scene)
+    _, grid, s = orbital_excursion(r.azimuth, r.ball_orbital_speed, 0.5 * scene.cage.mean_diameter)
+    return grid, s
+
+
 def markdown_table(study: Path, plan: str, names: dict[str, str] | None = None) -> str:
     d = _load(study, plan)
     head = "| run | " + " | ".join(f"{lab} [{u}]" for _, lab, u in METRICS) + " |"
@@ -224,6 +238,7 @@ def main(argv=None) -> None:
                 print(exc)
     print(orbits_figure(a.study, a.out, [("m100", "case a, 100 N m (default)"), ("static-m100", "case a, static film, 1 journal"),
                                           ("m430", "case b, 430 N m (default)"), ("m550", "550 N m (default)")], "orbits"))
+    print(pocket_figure(a.study, a.out, "m430", _screen_curve(430.0)))
     for plan in ("moment_sweep", "moment_sweep_static", "sensitivity_a", "sensitivity_b", "ablations", "repeat"):
         if _load(a.study, plan):
             (a.out / f"{plan}.md").write_text(markdown_table(a.study, plan) + "\n")

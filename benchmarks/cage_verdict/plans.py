@@ -2,10 +2,8 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
 B = "helicopter-b-given-hinge"  # reference bearing, hand-given hinge: no FE stage per run
-NO_HINGE = str(Path(__file__).parent / "scenes" / "helicopter-b-no-hinge.toml")
+NO_HINGE = "benchmarks/cage_verdict/scenes/helicopter-b-no-hinge.toml"  # run from the repository root
 MOMENTS = (0, 100, 200, 300, 430, 500, 550, 600, 700)
 
 

@@ -1,6 +1,6 @@
-"""Renders and the run report (MODEL.md §11): FE deflections, burn zone, HTML page.
+"""Renders and the run report (docs/model.md §11): FE deflections, burn zone, HTML page.
 
-Reads saved results only and never re-solves (STYLE.md rule 5). pyvista/VTK and
+Reads saved results only and never re-solves (docs/contributing.md rule 5). pyvista/VTK and
 matplotlib are imported inside the functions that draw (rule 6), so importing this
 package costs nothing. Entry points:
 

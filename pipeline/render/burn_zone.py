@@ -1,11 +1,13 @@
-"""Burn-zone renders (MODEL.md §11): the outer race in 3-D and unrolled in 2-D.
+"""Burn-zone renders (docs/model.md §11): the outer race in 3-D and unrolled in 2-D.
 
-Both images show the same two layers (see `burn_zone_data`): on the cage's land overlap
-the metal-contact energy per sector [J] ("inferno", 0 to the data's maximum), on the
-raceway the ball contact tracks as load × time [N·s] ("Blues", 0 to the maximum).
-The parts of the lands the cage does not cover and the ring's faces are grey. The peak
-sector is marked by a cyan line with its azimuth, the arc holding 80 % of the energy
-(`summary.json` `burn_zone_sector`) by a cyan outline. Azimuth runs from +x towards +y.
+Both images show the same two layers (see `burn_zone_data`), over the settled window of the
+run: on the cage's land overlap the land heat per sector [J] — metal friction plus film
+shear — ("inferno", 0 to the data's maximum), on the raceway the ball contact tracks as
+load × time [N·s] ("Blues", 0 to the maximum). The unrolled map's upper panel shows the two
+heat layers stacked (film below, metal on top). The parts of the lands the cage does not
+cover and the ring's faces are grey. The peak sector is marked by a cyan line with its
+azimuth, the arc holding 80 % of the heat (`summary.json` `burn_zone_sector`) by a cyan
+outline. Azimuth runs from +x towards +y.
 
 The 3-D image has four fixed views: each panel shows the half of the ring centred on
 azimuth 0°, 90°, 180° or 270°, seen from inside the bearing, so every sector faces the
@@ -162,7 +164,7 @@ def render_burn_zone_3d(bzm: BurnZoneMap, path: Path, title: str, outside_radius
                 if kind == "burn":
                     plotter.add_mesh(mesh, scalars="energy", cmap=BURN_CMAP, clim=clim_burn,
                                      show_scalar_bar=first, lighting=False,
-                                     scalar_bar_args={"title": f"land: energy per {deg:g} deg sector [J]\n",
+                                     scalar_bar_args={"title": f"land: heat per {deg:g} deg sector [J]\n",
                                                       "vertical": False, "position_x": 0.14, "position_y": 0.02,
                                                       "width": 0.36, "height": 0.1, "fmt": "%.3g", "title_font_size": 14,
                                                       "label_font_size": 12})
@@ -212,8 +214,14 @@ def render_burn_zone_map(bzm: BurnZoneMap, path: Path, title: str) -> dict:
     ax_e, ax_m = fig.subplots(2, 1, sharex=True, height_ratios=(1, 2.4))
     S = bzm.sectors
     sector_edges = np.linspace(0.0, 360.0, S + 1)
-    ax_e.stairs(bzm.sector_energy, sector_edges, fill=True, color="tab:red", alpha=0.8)
-    ax_e.set_ylabel(f"energy per {360 / S:g}° sector [J]")
+    if bzm.film_energy is not None and bzm.metal_energy is not None:
+        ax_e.stairs(bzm.film_energy, sector_edges, fill=True, color="tab:orange", alpha=0.8,
+                    label=f"film shear {bzm.film_energy.sum():.3g} J")
+        ax_e.stairs(bzm.film_energy + bzm.metal_energy, sector_edges, baseline=bzm.film_energy, fill=True,
+                    color="tab:red", alpha=0.8, label=f"metal friction {bzm.metal_energy.sum():.3g} J")
+    else:
+        ax_e.stairs(bzm.sector_energy, sector_edges, fill=True, color="tab:red", alpha=0.8)
+    ax_e.set_ylabel(f"heat per {360 / S:g}° sector [J]")
     ax_e.set_ylim(0.0, _clim(bzm.sector_energy)[1] * 1.1)
     ax_e.grid(alpha=0.3)
     burn = None
@@ -235,12 +243,10 @@ def render_burn_zone_map(bzm: BurnZoneMap, path: Path, title: str) -> dict:
     ax_m.set_xticks(range(0, 361, 30))
     ax_m.set_xlabel("azimuth φ [deg] (from +x towards +y)")
     ax_m.set_ylabel("axial position z [mm] (groove plane at 0)")
-    fig.colorbar(burn, ax=ax_m, label=f"land: energy per {360 / S:g}° sector [J]", pad=0.01)
+    fig.colorbar(burn, ax=ax_m, label=f"land: heat per {360 / S:g}° sector [J]", pad=0.01)
     fig.colorbar(tracks, ax=ax_m, label="raceway: load × time per bin [N·s]", pad=0.01)
-    total = float(bzm.sector_energy.sum())
-    ax_e.set_title(f"{title}\ncage metal-contact energy {total:.3g} J in total; each sector's energy spread "
-                   f"uniformly over the land overlap (both lands, L = {p.land_overlap * mm:.2f} mm)",
-                   fontsize=10)
+    ax_e.set_title(f"{title}\n{heat_caption(bzm)}\neach sector's heat spread uniformly over the land "
+                   f"overlap (both lands, L = {p.land_overlap * mm:.2f} mm)", fontsize=9)
     fig.canvas.draw()  # fix the constrained layout before reading the axes' position
     box = ax_m.get_window_extent()
     height = fig.bbox.height
@@ -258,12 +264,26 @@ def _mark_sectors(bzm: BurnZoneMap, axes, deg: float) -> None:
             spans = [(start, min(end, 360.0))] + ([(0.0, end - 360.0)] if end > 360.0 else [])
             for a, b in spans:
                 ax.axvspan(a, b, facecolor="none", edgecolor=MARK_COLOR, lw=1.5, hatch="//",
-                           label="80 % of the energy" if a == start else None)
+                           label="80 % of the heat" if a == start else None)
         if bzm.peak_sector is not None:
             ax.axvline(math.degrees(bzm.sector_center(bzm.peak_sector)), color=MARK_COLOR, lw=1.5, ls="--",
                        label=f"peak sector {math.degrees(bzm.sector_center(bzm.peak_sector)):.1f}°")
     if bzm.sector is not None or bzm.peak_sector is not None:
         axes[0].legend(loc="upper right", fontsize=8)
     else:
-        axes[0].text(0.5, 0.5, "no metal-to-metal contact at the guide land", ha="center",
+        axes[0].text(0.5, 0.5, "no heat on the guide land in this window", ha="center",
                      va="center", transform=axes[0].transAxes)
+
+
+def heat_caption(bzm: BurnZoneMap) -> str:
+    """What the burn zone shows, in words and numbers (map title, report)."""
+    total = float(bzm.sector_energy.sum())
+    window = (f" over t = {bzm.window[0]:.4g}–{bzm.window[1]:.4g} s (settled)" if bzm.window is not None else "")
+    if bzm.metal_energy is not None and bzm.film_energy is not None:
+        text = (f"land heat {total:.3g} J{window}: metal friction {bzm.metal_energy.sum():.3g} J + "
+                f"film shear {bzm.film_energy.sum():.3g} J")
+    else:
+        text = f"land heat {total:.3g} J{window}"
+    if bzm.startup_metal_energy:
+        text += f"; start-up metal energy {bzm.startup_metal_energy:.3g} J not shown"
+    return text

@@ -1,16 +1,22 @@
 """What the burn-zone renders show, as plain arrays (no plotting here).
 
-Two layers on the outer race (MODEL.md §8, §6.1, §11):
+Two layers on the outer race (docs/model.md §8, §6.1, §11), both over the *settled window*
+of the run (t >= end of the start-up, `summary.json` `settled_window`; the start-up's metal
+energy is reported apart, `summary.json` `startup`):
 
-- **Burn zone** on the guiding land: the cage's metal-contact friction energy [J]
-  accumulated per angular sector, E_k = sum over samples of P_f · w (friction power times
-  the trapezoidal sample weight), binned by the azimuth of the land point facing the cage
-  offset. It reuses `burn_zone_histogram` of the summary, so the map and
-  `summary.json` (`burn_zone_sector`, `burn_zone_energy_total`) agree by construction.
-  Default resolution: 360 sectors (1°). The model gives only the azimuth of the rub, not
-  where along the axis it happens, so each sector's energy is spread uniformly over the
-  land overlap of the cage (both lands, axial length L = `guide_land_length`); the
-  areal density is then E_k / (R_land · Δφ · L).
+- **Burn zone = land heat** on the guiding land [J] per angular sector: the cage's
+  metal-contact friction energy, E_k = sum over samples of P_f · w (friction power times
+  the trapezoidal sample weight) in the sector of the contact azimuth (M.112), *plus* the
+  viscous shear energy of the land film, each sample's film power spread round the land
+  like the shear of the film torque (M.85): ~1/h(theta) on the converging side of the
+  thinnest film, ~h_min/h^2 on the cavitated side (M.114,
+  `cage_metrics.film_heat_histogram`). It reuses
+  `cage_metrics.land_heat` of the summary, so the map and `summary.json`
+  (`burn_zone_sector`, `burn_zone_energy_metal` / `_film` / `_total`) agree by
+  construction. Default resolution: 360 sectors (1°). The model gives only the azimuth of
+  the heat, not where along the axis it goes, so each sector's energy is spread uniformly
+  over the land overlap of the cage (both lands, axial length L = `guide_land_length`);
+  the areal density is then E_k / (R_land · Δφ · L).
 - **Contact tracks** on the raceway: where the balls run. The ball–outer-race contact
   lies on the line from the groove curvature centre through the ball centre, at the
   groove radius r_o from the centre (§6.1): in the ball's azimuth plane it is at radius
@@ -29,7 +35,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..results.cage_metrics import burn_zone_histogram, burn_zone_sector, time_weights
+from ..results.cage_metrics import burn_zone_histogram, burn_zone_sector, land_heat, time_weights
 
 BURN_SECTORS = 360  # 1° sectors, as summary.json
 TRACK_AZIMUTH_BINS = 360
@@ -99,6 +105,10 @@ class BurnZoneMap:
     track_density: np.ndarray  # (A, K) N·s per (azimuth, contact-angle) bin
     track_alpha_edges: np.ndarray  # (K + 1,) rad, spanning [-theta_land, theta_land]
     track_outside_fraction: float  # share of load × time whose contact lies beyond a land edge
+    metal_energy: np.ndarray | None = None  # (S,) J per sector: metal friction layer of sector_energy
+    film_energy: np.ndarray | None = None  # (S,) J per sector: film shear layer of sector_energy
+    window: tuple[float, float] | None = None  # [start, end] s of the time the map covers
+    startup_metal_energy: float | None = None  # J of metal friction before `window` (not drawn)
 
     @property
     def sectors(self) -> int:
@@ -206,19 +216,38 @@ def contact_track_density(t: np.ndarray, ball_xyz: np.ndarray, outer_angle: np.n
 
 
 def burn_zone_map(series: dict, profile: OuterRaceProfile, sectors: int = BURN_SECTORS,
-                  summary_sector: list | None = None, semi_axis: np.ndarray | None = None) -> BurnZoneMap:
+                  summary_sector: list | None = None, semi_axis: np.ndarray | None = None, *,
+                  start: float | None = None, land_boundary: float = 0.05, land_speed: float = 0.0,
+                  startup_metal_energy: float | None = None) -> BurnZoneMap:
     """Both layers from the saved time series (`read_timeseries` names, see
-    `pipeline/results/simulation_output.py`). The 80 % arc is `summary_sector` (from
-    `summary.json`) when given, else recomputed the same way. A run without a cage has no
-    burn zone (all-zero sectors) but still has contact tracks."""
+    `pipeline/results/simulation_output.py`) over t >= `start` (None: the whole run). The
+    land heat is metal friction plus film shear (`cage_metrics.land_heat`, `land_boundary`
+    eps0 of the hybrid law, the film dragged towards sign(cage speed + `land_speed`); without
+    `cage/speed` the film heat is spread as a full film); a series without
+    `cage_race/film_power` gives metal only. The
+    80 % arc is `summary_sector` (from `summary.json`) when given, else recomputed the same
+    way. A run without a cage has no burn zone (all-zero sectors) but still has contact
+    tracks."""
     t = np.asarray(series["time"].data, dtype=float)
+    start = float(t[0]) if start is None else float(start)
     if "cage_race/friction_power" in series:
-        energy = sector_energy(t, series["cage_race/contact_azimuth"].data,
-                               series["cage_race/friction_power"].data, sectors)
+        eps = (series["cage_race/eccentricity_ratio"].data if "cage_race/eccentricity_ratio" in series
+               else np.zeros_like(t))
+        film = series["cage_race/film_power"].data if "cage_race/film_power" in series else None
+        drag = (np.sign(np.asarray(series["cage/speed"].data, dtype=float) + land_speed)
+                if "cage/speed" in series else 0.0)
+        metal, film_heat = land_heat(t, series["cage_race/contact_azimuth"].data, eps,
+                                     series["cage_race/friction_power"].data, film, land_boundary, start,
+                                     sectors, drag=drag)
     else:
-        energy = np.zeros(sectors)
-    density, edges, outside = contact_track_density(
-        t, series["balls/position"].data, series["contacts/outer_contact_angle"].data,
-        series["contacts/outer_load"].data, profile, semi_axis)
+        metal, film_heat = np.zeros(sectors), np.zeros(sectors)
+    energy = metal + film_heat
+    late = t >= start
+    ball_xyz = np.asarray(series["balls/position"].data)[late]
+    angle = np.asarray(series["contacts/outer_contact_angle"].data)[late]
+    load = np.asarray(series["contacts/outer_load"].data)[late]
+    axis = None if semi_axis is None else np.asarray(semi_axis)[late]
+    density, edges, outside = contact_track_density(t[late], ball_xyz, angle, load, profile, axis)
     sector = tuple(summary_sector) if summary_sector is not None else burn_zone_sector(energy)
-    return BurnZoneMap(profile, energy, sector, density, edges, outside)
+    return BurnZoneMap(profile, energy, sector, density, edges, outside, metal, film_heat,
+                       (start, float(t[-1])), startup_metal_energy)

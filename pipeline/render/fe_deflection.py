@@ -1,4 +1,4 @@
-"""FE deflection renders of the identification load cases (MODEL.md §3, §11).
+"""FE deflection renders of the identification load cases (docs/model.md §3, §11).
 
 Input: the `case_<axis>.vtu` files of the identify stage (`fe_model/artefacts.py`):
 tetrahedra with point data `displacement` [m] and cell data `von_mises` [Pa] and

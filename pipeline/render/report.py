@@ -1,8 +1,9 @@
 """The run report: one self-contained HTML page (PNGs embedded as base64 data URIs).
 
-Sections, in the order a reader asks: summary metrics, burn zone, dynamic figures,
-quasi-static table, hinge, FE deflections, solver counters, scene, versions and stage
-manifests. Everything comes from files already in the run directory; a section whose
+Sections, in the order a reader asks: the verdict (one sentence, a table of its numbers
+with names and units, and the evidence: cage orbit and burn zone), summary metrics, burn
+zone, dynamic figures, quasi-static table, hinge, FE deflections, solver counters, scene,
+versions and stage manifests. Everything comes from files already in the run directory; a section whose
 stage did not run says so instead of disappearing.
 """
 
@@ -21,7 +22,14 @@ SUMMARY_UNITS = {
     "kinematic_cage_speed": "rad/s", "cage_speed_variation": "-", "cage_metal_contact_fraction": "-",
     "cage_contact_angle_spread": "rad", "cage_whirl_ratio": "-", "inner_race_axial_mean": "m",
     "pocket_impacts": "count", "pocket_impact_force_p95": "N", "burn_zone_sector": "rad",
-    "burn_zone_energy_total": "J",
+    "burn_zone_energy_total": "J", "burn_zone_energy_metal": "J", "burn_zone_energy_film": "J",
+    "burn_zone_sector_metal": "rad", "settled_window": "s", "settled_revolutions": "count",
+    "cage_eps_mean": "-", "cage_eps_max": "-", "cage_offset_azimuth_mean": "rad", "cage_offset_spread": "rad",
+    "cage_offset_sector": "rad", "cage_land_force_mean": "N", "cage_land_force_max": "N",
+    "land_film_min": "m", "land_film_min_time": "s", "land_film_min_azimuth": "rad", "land_roughness": "m",
+    "land_film_ratio_min": "-", "pocket_impact_regions": "rad, rad, -",
+    "end_time": "s", "revolutions": "count", "block_length": "s", "max_metal_force": "N", "metal_energy": "J",
+    "film_energy": "J", "land_force_peak": "N", "metal_contact_fraction": "-", "pocket_impact_force_max": "N",
 }
 SOLVER_COUNTERS = ("steps", "rejected_steps", "newton_failures", "newton_iterations", "factorizations",
                    "residual_evaluations", "min_step_accepts", "integration_wall_time", "wall_time")
@@ -35,7 +43,7 @@ td,th{border:1px solid #ddd;padding:2px 8px;text-align:right}th{background:#f4f4
 td:first-child,th:first-child{text-align:left}
 figure{margin:1em 0}img{max-width:100%;border:1px solid #eee}
 figcaption{font-size:.9em;color:#444}pre{background:#f7f7f7;padding:.5em;overflow-x:auto;font-size:.85em}
-.note{color:#a60}
+.note{color:#a60}.verdict{font-size:1.1em}
 """
 
 
@@ -76,16 +84,56 @@ def _not_run(what: str) -> str:
 
 
 def summary_section(summary: dict | None) -> str:
+    """Every key of summary.json as written (SI units), the start-up and the drift check."""
     if summary is None:
         return _not_run("No dynamic run in this directory (stage simulate did not run).")
+    skip = set(SOLVER_COUNTERS) | {"warnings"}
     rows = [[k, summary[k], SUMMARY_UNITS.get(k, "")] for k in summary
-            if k not in SOLVER_COUNTERS and not isinstance(summary[k], dict)]
-    if summary.get("burn_zone_sector"):
-        a, b = summary["burn_zone_sector"]
-        rows.append(["burn_zone_sector (deg)", [math.degrees(a), math.degrees(b)], "deg"])
+            if k not in skip and not isinstance(summary[k], dict)]
+    for key in ("burn_zone_sector", "burn_zone_sector_metal", "cage_offset_sector"):
+        if summary.get(key):
+            a, b = summary[key]
+            rows.append([f"{key} (deg)", [math.degrees(a), math.degrees(b)], "deg"])
     energy = summary.get("energy") or {}
     rows += [[f"energy/{k}", v, "J"] for k, v in energy.items()]
-    return table(["metric", "value", "unit"], rows)
+    rows += [[f"startup/{k}", v, SUMMARY_UNITS.get(k, "")] for k, v in (summary.get("startup") or {}).items()]
+    parts = [table(["metric", "value", "unit"], rows)]
+    drift = summary.get("settled_drift")
+    if drift:
+        parts.append("<p>Drift check: the same metrics over the first and the second half of the settled "
+                     "window; values that differ much mean the statistics still drift (run longer).</p>")
+        parts.append(table(["metric", "first half", "second half", "unit"],
+                           [[k, v[0], v[1], SUMMARY_UNITS.get(k, "")] for k, v in drift.items()]))
+    return "".join(parts)
+
+
+def verdict_section(summary: dict | None, burn: dict | None, out_dir: Path, sim_dir: Path | None,
+                    evidence: dict | None = None) -> str:
+    """The sentence, the verdict's numbers with names and units, the warnings, and the
+    evidence figures (cage orbit, burn zone)."""
+    from ..results.verdict import verdict_rows
+
+    if summary is None:
+        return _not_run("No dynamic run in this directory (stage simulate did not run): no verdict.")
+    verdict = summary.get("verdict")
+    if not verdict:
+        reason = ("the scene has no cage" if "cage_speed_mean" not in summary
+                  else "this summary.json predates the verdict; rerun `bearingsim simulate SCENE --force`")
+        return _not_run(f"No verdict: {reason}.")
+    parts = [f'<p class="verdict"><b>{html.escape(verdict["text"])}</b></p>',
+             table(["quantity", "value", "unit"], [list(r) for r in verdict_rows(verdict)])]
+    for w in summary.get("warnings") or []:
+        parts.append(_not_run(f"warning: {w}"))
+    orbit = (evidence or {}).get("orbit")
+    if orbit:
+        parts.append(image(out_dir / orbit, "Evidence: the cage-centre orbit, start-up in grey, settled window "
+                           "in blue, inside the guide clearance (ε = 1, metal contact begins) and the film "
+                           "clearance; the loaded sector shaded, the thinnest film starred."))
+    elif sim_dir is not None and (sim_dir / "cage_orbit.png").is_file():
+        parts.append(image(sim_dir / "cage_orbit.png", "Evidence: the cage-centre orbit (whole run)."))
+    if burn is not None:
+        parts.append(image(out_dir / burn["map"], f"Evidence: the burn zone — {burn.get('caption', '')}."))
+    return "".join(parts)
 
 
 def solver_section(summary: dict | None) -> str:
@@ -139,7 +187,7 @@ def hinge_section(scene, identify_dir: Path | None) -> str:
     rows += [[f"fit: {k}", v, ""] for k, v in fit.items()]
     rows += [[f"mesh: {k}", v, ""] for k, v in mesh.items()]
     rows += [[f"time: {k}", v, "s"] for k, v in doc.get("timings_s", {}).items()]
-    return "<p>Identified by FE (stage identify, fit S.2).</p>" + table(["quantity", "value", "unit"], rows)
+    return "<p>Identified by FE (stage identify, fit M.2).</p>" + table(["quantity", "value", "unit"], rows)
 
 
 def fe_section(fe_records: list[dict], out_dir: Path, identify_ran: bool) -> str:
@@ -162,14 +210,22 @@ def burn_section(burn: dict | None, out_dir: Path) -> str:
         return _not_run("No burn-zone map (no dynamic run, or no outer-race-guided cage).")
     peak = (f"peak sector centred at {burn['peak_sector_deg']:.1f}° "
             f"({burn['peak_sector_energy_J']:.3g} J, {burn['peak_areal_density_J_m2']:.3g} J/m²)"
-            if burn.get("peak_sector_deg") is not None else "no metal-to-metal contact at the guide land")
-    arc = (f"80 % of the energy in [{burn['sector_deg'][0]:.1f}°, {burn['sector_deg'][1]:.1f}°]"
+            if burn.get("peak_sector_deg") is not None else "no heat on the guide land")
+    arc = (f"80 % of the heat in [{burn['sector_deg'][0]:.1f}°, {burn['sector_deg'][1]:.1f}°]"
            if burn.get("sector_deg") else "")
-    text = (f"<p>Cage metal-contact friction energy (friction power × time) on the guiding land, "
-            f"{burn['sectors']} sectors of {360 / burn['sectors']:g}°, total {burn['energy_total_J']:.4g} J "
-            f"over the whole run, {burn.get('energy_last_half_J', float('nan')):.4g} J of it in the last half "
-            f"(the summary's analysis window); "
-            f"{html.escape(peak)}; {html.escape(arc)}. The model gives the azimuth of the rub only: each "
+    window = burn.get("window_s") or [float("nan"), float("nan")]
+    scope = (f"over the settled window t = {window[0]:.4g}–{window[1]:.4g} s" if burn.get("settled")
+             else f"over the whole run t = {window[0]:.4g}–{window[1]:.4g} s (no settled window found)")
+    film = ("" if burn.get("film_layer", True) else
+            " This run saved no film power (cage_race/film_power): the map holds metal friction only.")
+    text = (f"<p>Heat on the guiding land {scope}: metal-contact friction energy (friction power × time, "
+            f"at the contact azimuth) plus the viscous shear energy of the land film (film power × time, "
+            f"spread round the land like the film's shear: ∝ 1/h(θ) on the converging side of the thinnest film, ∝ h_min/h² on the cavitated side), {burn['sectors']} sectors of "
+            f"{360 / burn['sectors']:g}°: total {burn['energy_total_J']:.4g} J = metal "
+            f"{burn.get('energy_metal_J', float('nan')):.4g} J + film {burn.get('energy_film_J', float('nan')):.4g} J. "
+            f"The start-up's metal energy ({burn.get('startup_metal_energy_J') or 0.0:.4g} J) is not in the map "
+            f"(summary.json startup).{film} "
+            f"{html.escape(peak)}; {html.escape(arc)}. The model gives the azimuth of the heat only: each "
             f"sector's energy is spread uniformly over the cage's land overlap (both lands, "
             f"L = {burn['land_overlap_mm']:.2f} mm). Raceway: ball–outer-race contact load × time, each "
             f"contact spread over its Hertz ellipse across the groove; "
@@ -190,7 +246,7 @@ def provenance_section(run_dir: Path, stage_dirs: dict[str, Path]) -> str:
 
 
 def write_report_html(path: Path, scene, run_dir: Path, stage_dirs: dict[str, Path], out_dir: Path,
-                      fe_records: list[dict], burn: dict | None) -> None:
+                      fe_records: list[dict], burn: dict | None, evidence: dict | None = None) -> None:
     """Assemble and write the page (atomically)."""
     from ..artefacts import atomic_write_text
 
@@ -200,6 +256,7 @@ def write_report_html(path: Path, scene, run_dir: Path, stage_dirs: dict[str, Pa
     scene_text = scene_file.read_text(encoding="utf-8") if scene_file.is_file() else ""
     dyn = "".join(image(sim / f) for f in DYNAMIC_FIGURES if (sim / f).is_file()) if sim else ""
     sections = [
+        ("Verdict", verdict_section(summary, burn, out_dir, sim, evidence)),
         ("Summary metrics", summary_section(summary)),
         ("Burn zone", burn_section(burn, out_dir)),
         ("Dynamic run", dyn or _not_run("No dynamic figures.")),

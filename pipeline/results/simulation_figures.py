@@ -1,4 +1,4 @@
-"""The figures of a dynamic run (MODEL.md §11) from its saved series."""
+"""The figures of a dynamic run (docs/model.md §11) from its saved series."""
 
 from __future__ import annotations
 

@@ -1,6 +1,6 @@
 """Turn a dynamic run into files a user can open elsewhere: `timeseries.h5` (every variable
-with units and a description), `impacts.csv`, the figures of MODEL.md §11, and the
-numbers of `summary.json` (SCENE.md)."""
+with units and a description), `impacts.csv`, the figures of docs/model.md §11, and the
+numbers of `summary.json` (docs/scenes.md)."""
 
 from __future__ import annotations
 
@@ -10,12 +10,13 @@ from pathlib import Path
 import numpy as np
 
 from ..artefacts import atomic_write_text
-from .cage_metrics import cage_summary
+from .cage_metrics import DEFAULT_LAND_ROUGHNESS, cage_summary
+from .verdict import cage_verdict
 from .timeseries import Series, write_timeseries
 
 
 def _crv_to_matrix(c: np.ndarray) -> np.ndarray:
-    """Rotation matrices (n, 3, 3) of the CRVs c (n, 3): S.4b, by the dynamics' own kernel."""
+    """Rotation matrices (n, 3, 3) of the CRVs c (n, 3): M.4b, by the dynamics' own kernel."""
     from bearingsim.dynamics.multibody.crv import crv_to_matrix
 
     c = np.ascontiguousarray(c, dtype=float)
@@ -82,6 +83,8 @@ def collect_series(run, params) -> dict[str, Series]:
             "cage_race/metal_force": Series(d[:, A.DG_METAL], "N", "metal-to-metal normal force at the land", T),
             "cage_race/friction_power": Series(d[:, A.DG_FRICTION_POWER], "W", "metal-contact friction power (burn zone)", T),
             "cage_race/contact_azimuth": Series(d[:, A.DG_AZIMUTH], "rad", "azimuth of the land point facing the cage offset", T),
+            "cage_race/film_power": Series(d[:, A.DG_FILM_POWER], "W", "viscous shear power of the land film (burn zone)", T),
+            "cage_race/min_film": Series(d[:, A.DG_MIN_FILM], "m", "thinnest land film, C(1 + eps0) - e in the hybrid model", T),
         })
     return s
 
@@ -94,6 +97,26 @@ def write_impacts_csv(path: Path, impacts: np.ndarray, fields: tuple) -> None:
     for row in impacts:
         buf.write(",".join(str(int(x)) if f == "ball" else f"{x:.9g}" for f, x in zip(fields, row)) + "\n")
     atomic_write_text(path, buf.getvalue())
+
+
+def land_boundary(scene) -> float:
+    """eps0 of the land film, C_film = C (1 + eps0): physics.cage_race_boundary in the hybrid
+    model, 0 in the purely hydrodynamic one (its film clearance is C)."""
+    physics = scene.physics
+    return float(physics.cage_race_boundary) if physics.cage_race == "hybrid" else 0.0
+
+
+def land_roughness(scene) -> float:
+    """Composite RMS roughness sigma of cage rim and land [m]: the scene's
+    `cage.land_roughness` when it has one, else DEFAULT_LAND_ROUGHNESS (cage_metrics)."""
+    value = getattr(scene.cage, "land_roughness", None) if scene.cage is not None else None
+    return float(value) if value is not None else DEFAULT_LAND_ROUGHNESS
+
+
+def guide_land_speed(scene) -> float:
+    """Speed of the race whose land guides the cage [rad/s]: the inner race for an
+    inner-guided cage, else the outer race, which the dynamic model keeps fixed."""
+    return float(scene.speed.inner) if getattr(scene.cage, "guidance", "outer") == "inner" else 0.0
 
 
 def write_simulation_results(out_dir: Path, scene, params, start, run, wall_time: float) -> dict:
@@ -114,7 +137,15 @@ def write_simulation_results(out_dir: Path, scene, params, start, run, wall_time
             run.t, series["cage/position"].data[:, :2], series["cage/speed"].data,
             series["cage_race/eccentricity_ratio"].data, series["cage_race/contact_azimuth"].data,
             series["cage_race/friction_power"].data, series["inner_race/position"].data[:, 2],
-            run.impacts[:, 3] if len(run.impacts) else np.zeros(0)))
+            run.impacts[:, 3] if len(run.impacts) else np.zeros(0),
+            impact_times=run.impacts[:, 0] if len(run.impacts) else np.zeros(0),
+            impact_orbital_positions=run.impacts[:, 2] if len(run.impacts) else np.zeros(0),
+            film_power=series["cage_race/film_power"].data, min_film=series["cage_race/min_film"].data,
+            land_force=series["cage_race/force"].data, metal_force=series["cage_race/metal_force"].data,
+            guide_clearance=params.guide_clearance, land_boundary=land_boundary(scene),
+            land_roughness=land_roughness(scene), land_film=scene.physics.cage_race in ("hybrid", "hydrodynamic"),
+            land_speed=guide_land_speed(scene)))
+        summary["verdict"] = cage_verdict(summary, guidance=getattr(scene.cage, "guidance", "outer"))
     else:
         summary["inner_race_axial_mean"] = float(np.mean(series["inner_race/position"].data[:, 2]))
     from .simulation_figures import draw_simulation_figures

@@ -13,10 +13,10 @@ from pathlib import Path
 from typing import Any
 
 CLASS_COLOURS = {
-    "centred": "#4daf4a", "whirling": "#377eb8", "crushed": "#e41a1c", "chaotic": "#984ea3",
+    "centred": "#4daf4a", "whirling": "#377eb8", "pressed": "#ff7f00", "crushed": "#e41a1c", "chaotic": "#984ea3",
     "no cage": "#999999", "failed": "#222222", "pending": "#dddddd",
 }
-CLASS_LABELS = {"centred": "stable (centred)", "crushed": "crushed against the land"}
+CLASS_LABELS = {"centred": "stable (centred)", "pressed": "pressed onto one sector", "crushed": "crushed against the land"}
 CONTOUR_LEVELS = (0.05, 0.25, 0.5, 0.75)  # metal-contact fraction; 0.05 and 0.5 are class limits
 MAX_PANELS = 12
 

@@ -1,7 +1,7 @@
 """The sweep's results table: one row per point, from the points' records on disk.
 
 Columns: `point_id`, `status` (done | failed | pending), one column per varied scene key,
-`cage_class` (:mod:`pipeline.sweep.classify`), the summary metrics of docs/scenes.md (with
+`cage_class` and `risk` (:mod:`pipeline.sweep.classify`), the summary metrics of docs/scenes.md (with
 `burn_zone_sector` split into `burn_zone_start` / `burn_zone_end`, rad), run counters,
 `error` (the message of a failed point) and `run_dir`. Written as CSV, and as parquet
 too when pyarrow is installed.
@@ -17,11 +17,13 @@ from pathlib import Path
 from typing import Any
 
 from ..artefacts import atomic_write_text
-from .classify import CageClassThresholds, classify_cage
+from .classify import CageClassThresholds, classify_cage, risk_level
 
 SUMMARY_COLUMNS = (
     "cage_speed_mean", "kinematic_cage_speed", "cage_speed_variation",
     "cage_metal_contact_fraction", "cage_contact_angle_spread", "cage_whirl_ratio",
+    "cage_eps_mean", "cage_offset_azimuth_mean", "cage_offset_spread", "cage_land_force_mean",
+    "land_film_min", "land_film_ratio_min",
     "inner_race_axial_mean", "pocket_impacts", "pocket_impact_force_p95",
     "burn_zone_start", "burn_zone_end", "burn_zone_energy_total",
     "duration", "steps", "rejected_steps", "newton_iterations", "wall_time",
@@ -36,6 +38,9 @@ def result_row(point, record: dict | None, run_dir: Path, limits: CageClassThres
     row: dict[str, Any] = {"point_id": point.id, "status": status}
     row.update({k: v for k, v in point.overrides})
     row["cage_class"] = classify_cage(summary, limits) if status != "pending" else "pending"
+    row["risk"] = (risk_level(summary, limits, row["cage_class"])[0]
+                   if summary is not None and row["cage_class"] in ("centred", "whirling", "pressed", "crushed", "chaotic")
+                   else None)
     flat = dict(summary or {})
     sector = flat.pop("burn_zone_sector", None) or (None, None)
     flat["burn_zone_start"], flat["burn_zone_end"] = sector

@@ -1,0 +1,201 @@
+"""The verdict of a dynamic run: what an engineer reads first (`summary.json` `verdict`).
+
+One dict built from the summary metrics of the settled window
+(:mod:`pipeline.results.cage_metrics`): the cage-motion class and risk level
+(:mod:`pipeline.sweep.classify`, default thresholds), the loaded sector of the land, the
+thinnest land film (when, where, and its ratio to the roughness), metal contact, whirl, the
+pocket impacts and a one-sentence `text`. Angles are in degrees, azimuth from +x towards
++y in the scene's (global) frame; films in µm; forces in N. The raw SI keys stay in
+`summary.json`; the verdict repeats them in the units a reader uses.
+
+The loaded sector:
+
+- pressed: the shortest arc holding 80 % of the settled time of the contact azimuth (the
+  land point facing the cage offset) — where the cage is pushed, with or without metal;
+- crushed, or any class with metal contact: the 80 % arc of the metal-contact energy — where
+  the land burns;
+- otherwise none: a floating or whirling cage loads no fixed sector (`heat_sector_deg` still
+  gives the 80 % arc of the land heat, metal plus film).
+"""
+
+from __future__ import annotations
+
+import math
+
+from ..sweep.classify import CageClassThresholds, classify_cage, risk_level
+
+LAND_NAMES = {"outer": "outer-race land", "inner": "inner-race land"}
+
+
+def _deg(value) -> float | None:
+    return None if value is None else math.degrees(float(value))
+
+
+def _arc_deg(arc) -> list[float] | None:
+    """[start, end] rad -> [start, end] deg, start in [0, 360), end = start + width."""
+    if not arc:
+        return None
+    start, end = (math.degrees(float(v)) for v in arc)
+    shift = 360.0 * math.floor(start / 360.0)
+    return [start - shift, end - shift]
+
+
+def format_arc(arc_deg) -> str:
+    """'5–25°', '350–10°' across zero, 'all round' for a full circle."""
+    if not arc_deg:
+        return "—"
+    start, end = arc_deg
+    if end - start >= 359.5:
+        return "all round"
+    return f"{start % 360.0:.0f}–{end % 360.0:.0f}°"
+
+
+def format_film_um(value: float | None) -> str:
+    if value is None:
+        return "—"
+    return f"{value:.0f}" if abs(value) >= 10.0 else f"{value:.2g}"
+
+
+def format_ratio(value: float | None) -> str:
+    if value is None:
+        return "—"
+    return f"{value:.0f}" if value >= 10.0 else f"{value:.2g}"
+
+
+def format_percent(fraction: float) -> str:
+    """A fraction as a percentage for people: '87', '4.2', '0.14'."""
+    value = 100.0 * fraction
+    return f"{value:.0f}" if value >= 10.0 else f"{value:.2g}"
+
+
+def cage_verdict(summary: dict, limits: CageClassThresholds = CageClassThresholds(),
+                 guidance: str = "outer") -> dict:
+    """The `verdict` of a summary with cage keys (module docstring)."""
+    cage_class = classify_cage(summary, limits)
+    risk, reasons = risk_level(summary, limits, cage_class)
+    metal = summary.get("cage_metal_contact_fraction") or 0.0
+    if cage_class == "pressed":
+        sector, source = _arc_deg(summary.get("cage_offset_sector")), "cage offset direction, 80 % of the settled time"
+    elif metal > 0.0 and summary.get("burn_zone_sector_metal"):
+        sector, source = _arc_deg(summary.get("burn_zone_sector_metal")), "metal-contact energy, 80 % arc"
+    else:
+        sector, source = None, None
+    film = summary.get("land_film_min")
+    roughness = summary.get("land_roughness")
+    regions = summary.get("pocket_impact_regions")
+    window = summary.get("settled_window") or [None, None]
+    verdict = {
+        "class": cage_class,
+        "risk": risk,
+        "risk_reasons": reasons,
+        "sector_deg": sector,
+        "sector_source": source,
+        "heat_sector_deg": _arc_deg(summary.get("burn_zone_sector")),
+        "land_film_min_um": None if film is None else 1e6 * film,
+        "land_film_min_time_s": summary.get("land_film_min_time"),
+        "land_film_min_azimuth_deg": _deg(summary.get("land_film_min_azimuth")),
+        "land_film_ratio_min": summary.get("land_film_ratio_min"),
+        "land_roughness_um": None if roughness is None else 1e6 * roughness,
+        "metal_contact_fraction": metal,
+        "eps_mean": summary.get("cage_eps_mean"),
+        "whirl_ratio": summary.get("cage_whirl_ratio"),
+        "pocket_impacts": summary.get("pocket_impacts"),
+        "pocket_impact_force_p95_N": summary.get("pocket_impact_force_p95"),
+        "pocket_impact_regions_deg": None if regions is None else [_arc_deg(r[:2]) for r in regions],
+        "settled_from_s": window[0],
+        "settled_revolutions": summary.get("settled_revolutions"),
+    }
+    verdict["text"] = verdict_sentence(verdict, summary.get("warnings") or [],
+                                       LAND_NAMES.get(guidance, "guide land"))
+    return verdict
+
+
+def verdict_sentence(v: dict, warnings: list[str] = (), land: str = "outer-race land") -> str:
+    """One sentence: what the cage does, on which film, how risky, whether metal touches."""
+    cls = v["class"]
+    film = f"{format_film_um(v['land_film_min_um'])} µm" if v.get("land_film_min_um") is not None else None
+    ratio = f"Λ {format_ratio(v['land_film_ratio_min'])}" if v.get("land_film_ratio_min") is not None else None
+    film_text = f"{film} film ({ratio})" if film and ratio else (f"{film} film" if film else None)
+    thinnest = f", thinnest land film {film}" + (f" ({ratio})" if ratio else "") if film else ""
+    sector = format_arc(v.get("sector_deg"))
+    eps = v.get("eps_mean")
+    if cls == "crushed":
+        head = f"Cage crushed against the {land} at {sector}{thinnest}"
+    elif cls == "pressed":
+        head = f"Cage pressed onto the {land} at {sector}" + (f" through a {film_text}" if film_text else "")
+    elif cls == "whirling":
+        whirl = v.get("whirl_ratio")
+        head = "Cage whirling" + (f" at {abs(whirl):.2g}× the cage speed" if whirl is not None else "") + thinnest
+    elif cls == "centred":
+        head = "Cage centred on its film" + (f" (mean ε {eps:.2g})" if eps is not None else "") + thinnest
+    else:
+        head = "Cage motion chaotic" + (f" (mean ε {eps:.2g})" if eps is not None else "") + thinnest
+    metal = v.get("metal_contact_fraction") or 0.0
+    contact = ("no metal contact in the settled run" if metal <= 0.0
+               else f"metal contact {format_percent(metal)} % of the settled run")
+    tail = ""
+    if any(w.startswith("run too short to settle") for w in warnings):
+        n = v.get("settled_revolutions")
+        tail = "; run too short to settle" + (f" ({n:.1f} cage revolutions settled)" if n is not None else "")
+    return f"{head}: {v['risk']} risk; {contact}{tail}."
+
+
+def verdict_rows(v: dict) -> list[tuple[str, str, str]]:
+    """(quantity, value, unit) rows of a verdict for people: the report's table and the
+    command line."""
+    def num(value, fmt="{:.3g}") -> str:
+        return "—" if value is None else fmt.format(value)
+
+    regions = v.get("pocket_impact_regions_deg")
+    region_text = ("too few impacts" if regions is None else "all round the orbit" if not regions
+                   else ", ".join(format_arc(r) for r in regions))
+    rows = [
+        ("cage motion (class)", v["class"], ""),
+        ("risk", v["risk"] + (f" — {'; '.join(v['risk_reasons'])}" if v.get("risk_reasons") else ""), ""),
+        ("loaded sector (azimuth from +x towards +y)",
+         format_arc(v.get("sector_deg")) + (f" ({v['sector_source']})" if v.get("sector_source") else ""), "deg"),
+        ("land heat, 80 % arc (metal + film)", format_arc(v.get("heat_sector_deg")), "deg"),
+        ("thinnest land film", format_film_um(v.get("land_film_min_um")), "µm"),
+        ("  when", num(v.get("land_film_min_time_s"), "{:.4g}"), "s"),
+        ("  where (azimuth)", num(v.get("land_film_min_azimuth_deg"), "{:.0f}"), "deg"),
+        (f"film-thickness ratio Λ_min = h_min/σ (σ = {num(v.get('land_roughness_um'))} µm)",
+         format_ratio(v.get("land_film_ratio_min")), "-"),
+        ("metal-contact fraction", format_percent(v.get("metal_contact_fraction") or 0.0), "%"),
+        ("mean eccentricity ratio ε", num(v.get("eps_mean")), "-"),
+        ("whirl ratio (whirl speed / cage speed)", num(v.get("whirl_ratio"), "{:.2g}"), "-"),
+        ("pocket impacts", num(v.get("pocket_impacts"), "{:d}"), "count"),
+        ("pocket impact force, 95th percentile", num(v.get("pocket_impact_force_p95_N")), "N"),
+        ("impacts concentrate at (orbital position)", region_text, "deg"),
+        ("settled window from", num(v.get("settled_from_s"), "{:.4g}"), "s"),
+        ("  cage revolutions in it", num(v.get("settled_revolutions"), "{:.1f}"), "count"),
+    ]
+    return rows
+
+
+def verdict_lines(summary: dict | None) -> list[str]:
+    """What `bearingsim run` / `simulate` print at the end: the sentence, the main numbers
+    on one line, and the warnings."""
+    if not summary:
+        return []
+    v = summary.get("verdict")
+    if not v:
+        if "cage_speed_mean" not in summary:
+            return ["verdict: no cage in this scene (no cage metrics)"]
+        return ["verdict: none in this summary.json (written before verdicts existed); "
+                "rerun the simulate stage with --force"]
+    impacts = f"{v.get('pocket_impacts', 0)} pocket impacts"
+    if v.get("pocket_impact_force_p95_N") is not None and v.get("pocket_impacts"):
+        impacts += f" (p95 {v['pocket_impact_force_p95_N']:.3g} N"
+        regions = v.get("pocket_impact_regions_deg")
+        impacts += (", at " + ", ".join(format_arc(r) for r in regions) + ")") if regions else ")"
+    film = ""
+    if v.get("land_film_min_um") is not None:
+        film = (f"thinnest land film {format_film_um(v['land_film_min_um'])} µm at t = "
+                f"{v['land_film_min_time_s']:.4g} s, {v['land_film_min_azimuth_deg']:.0f}° "
+                f"(Λ {format_ratio(v.get('land_film_ratio_min'))}); ")
+    lines = [f"verdict: {v['text']}",
+             f"  class {v['class']}, risk {v['risk']}; loaded sector {format_arc(v.get('sector_deg'))}; {film}"
+             f"metal contact {format_percent(v.get('metal_contact_fraction') or 0.0)} %; whirl ratio "
+             f"{(v.get('whirl_ratio') or 0.0):.2g}; {impacts}"]
+    lines += [f"  warning: {w}" for w in summary.get("warnings") or []]
+    return lines

@@ -158,7 +158,8 @@ def test_render_command_regenerates_the_report_without_solving(run_dir, monkeypa
     assert not re.search(r'src="(?!data:)', page)  # self-contained: no external files
     for text in ("Verdict", "Summary metrics", "Burn zone", "Quasi-static", "Hinge", "FE deflections",
                  "Solver counters", "Scene", "Versions", "6.5e+08", "1234", "load case fx = -1000 N",
-                 "thinnest land film", "µm", "run too short to settle"):
+                 "thinnest land film", "µm", "run too short to settle",
+                 "How far to trust this verdict", "docs/validation.md"):
         assert text in page, text
     # the page opens with the verdict: its sentence comes before every other section
     summary = json.loads((run / "simulate" / "summary.json").read_text())

@@ -107,6 +107,17 @@ def summary_section(summary: dict | None) -> str:
     return "".join(parts)
 
 
+# How far to trust the verdict: the validation against the reference cases (docs/validation.md)
+LIMITATION = (
+    "How far to trust this verdict: on the reference bearing this model reproduces the regimes "
+    "and the loaded sector, but it under-predicts the severity of a crush. The reference case b "
+    "(430 N·m), whose cage was crushed and whose race burnt on a test rig, comes out 'pressed, "
+    "elevated risk' here: the model crushes that cage only from about 525 N·m, because the "
+    "crush depends on 0.3 mm of pocket and guide clearance that the reference data do not pin "
+    "down. Read 'pressed' as a warning, and check the crush margin of `bearingsim quasistatic`. "
+    "Details: docs/validation.md.")
+
+
 def verdict_section(summary: dict | None, burn: dict | None, out_dir: Path, sim_dir: Path | None,
                     evidence: dict | None = None) -> str:
     """The sentence, the verdict's numbers with names and units, the warnings, and the
@@ -124,6 +135,7 @@ def verdict_section(summary: dict | None, burn: dict | None, out_dir: Path, sim_
              table(["quantity", "value", "unit"], [list(r) for r in verdict_rows(verdict)])]
     for w in summary.get("warnings") or []:
         parts.append(_not_run(f"warning: {w}"))
+    parts.append(f'<p class="note">{html.escape(LIMITATION)}</p>')
     orbit = (evidence or {}).get("orbit")
     if orbit:
         parts.append(image(out_dir / orbit, "Evidence: the cage-centre orbit, start-up in grey, settled window "

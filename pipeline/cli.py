@@ -1,7 +1,8 @@
 """`bearingsim` command line: scenes in, run directories out.
 
 Stdout carries only what a command is asked to print (a table, or JSON with `--json`);
-progress and log lines go to stderr and to `<run dir>/run.log`.
+progress and log lines go to stderr and to `<run dir>/run.log`. `run` and `simulate` end
+with the run's verdict (`summary.json` `verdict`) on stderr, after the stage lines.
 """
 
 from __future__ import annotations
@@ -14,14 +15,14 @@ from pathlib import Path
 from typing import Annotated, Optional
 
 import typer
-from rich.console import Console
 
+from .console import escape, explain, finding_lines, make_console
 from .numba_cache import configure_numba_cache
 
 # before any kernel is compiled or loaded: the cache keyed by the dynamics sources
 configure_numba_cache()
 
-from .artefacts import RunDirectoryBusy, run_directory_lock  # noqa: E402
+from .artefacts import OutputRefused, RunDirectoryBusy, claim_run_directory, run_directory_lock  # noqa: E402
 from .runner import StageNotAvailable
 from .schema import SceneError
 
@@ -31,10 +32,10 @@ app = typer.Typer(
     help="Ball-bearing dynamics under high moment load: FE hinge identification, "
          "quasi-static equilibrium, HHT-alpha multibody simulation, cage burn-zone prediction.",
 )
-out_console = Console()
-err_console = Console(stderr=True)
+out_console = make_console()
+err_console = make_console(stderr=True)
 
-EXIT_SCENE, EXIT_UNAVAILABLE, EXIT_FAILED = 2, 3, 1
+EXIT_SCENE, EXIT_UNAVAILABLE, EXIT_FAILED, EXIT_INTERRUPTED = 2, 3, 1, 130
 
 SceneArg = Annotated[str, typer.Argument(help="Scene TOML file, or the name of a built-in scene (see `bearingsim scenes`).")]
 OutOpt = Annotated[Optional[Path], typer.Option("--out", help="Run directory [default: runs/<scene name>/].")]
@@ -55,54 +56,103 @@ def _run_dir(scene, out: Path | None) -> Path:
 
 
 def _fail(code: int, message: str) -> None:
-    err_console.print(f"[bold red]error:[/] {message}", highlight=False)
+    err_console.print(f"[bold red]error:[/] {escape(message)}", highlight=False, soft_wrap=True)
     raise typer.Exit(code)
 
 
+def _print_findings(findings, prefix: str = "") -> None:
+    for line in finding_lines(findings, prefix):
+        err_console.print(line, highlight=False, soft_wrap=True)
+
+
 def _pipeline(scene_arg: str, overrides, out, targets: list[str], force: set[str], quiet: bool = False):
-    """Load, validate, then run `targets` with progress on stderr; map errors to exit codes."""
+    """Load, validate, then run `targets` with progress on stderr; map errors to exit codes.
+
+    Everything that can be checked without solving is checked before any file is written:
+    the scene (pipeline.validity), what the stages to run need, and that the run directory
+    is bearingsim's to write (new, empty or marked by it)."""
+    from .run_session import check_before_solving, claimed
+
     try:
         scene = _load(scene_arg, overrides)
+        notes = check_before_solving(scene, targets)
     except SceneError as exc:
-        _fail(EXIT_SCENE, f"scene: {exc}")
+        _fail(EXIT_SCENE, f"scene: {explain(exc)}")
+    _print_findings(notes)
     run_dir = _run_dir(scene, out)
     with contextlib.ExitStack() as held:
         try:
-            held.enter_context(run_directory_lock(run_dir))
+            held.enter_context(claimed(run_dir))
+        except OutputRefused as exc:
+            _fail(EXIT_SCENE, str(exc))
         except RunDirectoryBusy as exc:
             _fail(EXIT_FAILED, str(exc))
-        outcomes = _run_locked(scene, scene_arg, run_dir, targets, force, quiet)
+        except OSError as exc:
+            _fail(EXIT_FAILED, f"cannot lock {run_dir}/: {exc.strerror or exc}")
+        outcomes = _run_locked(scene, scene_arg, run_dir, targets, force, quiet, notes)
     if not quiet:
         for o in outcomes:
             extra = f" in {o.wall_time:.2f} s" if o.status == "computed" else ""
             err_console.print(f"  {o.name:<12} {o.status}{extra}", highlight=False)
-        err_console.print(f"results: {run_dir}/", highlight=False)
+    for o in outcomes:
+        _print_findings(o.warnings, f"{o.name}: ")
+    if not quiet:
+        err_console.print(f"results: {escape(str(run_dir))}/", highlight=False)
     return scene, run_dir, outcomes
 
 
-def _run_locked(scene, scene_arg, run_dir, targets, force, quiet):
+def _run_locked(scene, scene_arg, run_dir, targets, force, quiet, notes=()):
     """The stages of `_pipeline`, run while it holds the run directory's lock."""
-    from .provenance import attach_run_log, write_run_provenance
-    from .runner import run_stages
-    from .scene import read_scene_table
-    from .stages import STAGES
+    from .run_session import run_log
 
-    handler = attach_run_log(run_dir)
+    with contextlib.ExitStack() as logged:
+        try:
+            logged.enter_context(run_log(run_dir))
+        except OSError as exc:
+            _fail(EXIT_SCENE, f"--out {run_dir}: cannot write run.log there ({exc.strerror or exc}); give a "
+                              "writable directory")
+        return _run_stages_reported(scene, scene_arg, run_dir, targets, force, quiet, notes)
+
+
+def _run_stages_reported(scene, scene_arg, run_dir, targets, force, quiet, notes):
+    """The stages, with every failure logged to run.log and mapped to an exit code."""
+    from .run_session import run_stages_logged
+    from .scene import read_scene_table
+
+    log = logging.getLogger("bearingsim")
+    hint = ("\nnote: " + "\nnote: ".join(f.text for f in notes)) if notes else ""
     try:
-        write_run_provenance(run_dir, scene.raw, read_scene_table(scene_arg)[1])
-        logging.getLogger("bearingsim").info("bearingsim %s: targets %s", scene.name, targets)
         with _StageProgress(quiet) as bar:
-            return run_stages(scene, run_dir, STAGES, targets, force, progress=bar.update)
+            return run_stages_logged(scene, run_dir, targets, force, read_scene_table(scene_arg)[1],
+                                     notes=notes, progress=bar.update)
+    except KeyboardInterrupt:
+        log.warning("interrupted by the user (Ctrl-C); finished stages are kept, the interrupted one "
+                    "left nothing behind")
+        _fail(EXIT_INTERRUPTED, f"interrupted (Ctrl-C): finished stages are kept in {run_dir}/, the "
+                                "interrupted stage left nothing; run the same command again to continue")
     except StageNotAvailable as exc:
         _fail(EXIT_UNAVAILABLE, f"{exc}. Results so far are in {run_dir}/")
+    except OutputRefused as exc:
+        log.error("%s", exc)
+        _fail(EXIT_SCENE, str(exc))
     except SceneError as exc:
-        _fail(EXIT_SCENE, f"scene: {exc}")
+        log.error("scene: %s", exc)
+        _fail(EXIT_SCENE, f"scene: {explain(exc)}")
     except (RuntimeError, ValueError, ArithmeticError) as exc:
-        logging.getLogger("bearingsim").exception("stage failed")
-        _fail(EXIT_FAILED, f"{type(exc).__name__}: {exc}\n(full log: {run_dir / 'run.log'})")
-    finally:
-        logging.getLogger("bearingsim").removeHandler(handler)
-        handler.close()
+        log.exception("stage failed")
+        _fail(EXIT_FAILED, f"{type(exc).__name__}: {explain(exc)}{hint}\n(full log: {run_dir / 'run.log'})")
+    except MemoryError:
+        log.exception("out of memory")
+        _fail(EXIT_FAILED, f"out of memory{hint}; shorten solver.duration or raise output.sample_interval "
+                           f"(full log: {run_dir / 'run.log'})")
+    except OSError as exc:
+        log.exception("file error")
+        _fail(EXIT_FAILED, f"cannot write the results: {exc}; check the space and permissions of {run_dir}/ "
+                           f"(full log: {run_dir / 'run.log'})")
+    except Exception as exc:  # noqa: BLE001 - a defect: the traceback goes to run.log, not the screen
+        log.exception("internal error")
+        _fail(EXIT_FAILED, f"internal error {type(exc).__name__}: {exc} (a defect of bearingsim; the "
+                           f"traceback is in {run_dir / 'run.log'})")
 
 
 class _StageProgress:
@@ -155,11 +205,19 @@ def check(scene: SceneArg, set_: SetOpt = None) -> None:
     """Validate a scene and print it resolved, with units and the derived geometry."""
     from .scene_report import print_scene
 
+    from .validity import run_findings, scene_findings
+
     try:
         resolved = _load(scene, set_)
+        notes = scene_findings(resolved)
     except SceneError as exc:
-        _fail(EXIT_SCENE, f"scene: {exc}")
+        _fail(EXIT_SCENE, f"scene: {explain(exc)}")
     print_scene(resolved, out_console)
+    _print_findings(notes)
+    refusals = [f for f in run_findings(resolved, {"simulate"}) if f.level == "error"]
+    if refusals:
+        err_console.print("note: simulate and run would refuse this scene: "
+                          + escape("; ".join(f.text for f in refusals)), highlight=False, soft_wrap=True)
 
 
 @app.command()
@@ -171,14 +229,54 @@ def quasistatic(scene: SceneArg, json_: Annotated[bool, typer.Option("--json", h
 
     prestart()  # matplotlib loads in a second process while this one loads the scene and solves
 
+    from .artefacts import dumps_json
+
     _, run_dir, _ = _pipeline(scene, set_, out, ["quasistatic"], {"quasistatic"} if force else set(), quiet=json_)
-    result = json.loads((run_dir / "quasistatic" / RESULT_FILE).read_text())
+    try:
+        result = json.loads((run_dir / "quasistatic" / RESULT_FILE).read_text(encoding="utf-8"))
+    except (OSError, ValueError) as exc:
+        _fail(EXIT_FAILED, f"cannot read {run_dir / 'quasistatic' / RESULT_FILE}: {exc}; run again with --force")
     if json_:
-        sys.stdout.write(json.dumps(result) + "\n")
+        sys.stdout.write(dumps_json(result) + "\n")
     else:
         from .scene_report import print_quasistatic
 
         print_quasistatic(result, out_console)
+
+
+@app.command()
+def stiffness(scene: SceneArg,
+              speeds: Annotated[Optional[str], typer.Option(
+                  "--speeds", metavar="RPM,...",
+                  help="Inner-ring speeds [rev/min]: a,b,c or start:stop:count [default: the scene's speed.inner_rpm].")] = None,
+              out: OutOpt = None, set_: SetOpt = None) -> None:
+    """Bearing (5x5) and hinge stiffness over inner-ring speeds: CSV + JSON for rotordynamics codes (ROSS)."""
+    from .stiffness_export import CSV_FILE, JSON_FILE, STIFFNESS_DIR, export_stiffness, parse_speeds
+
+    try:
+        resolved = _load(scene, set_)
+        speed_list = parse_speeds(speeds) if speeds else None
+    except SceneError as exc:
+        _fail(EXIT_SCENE, f"scene: {exc}")
+    run_dir = _run_dir(resolved, out)
+    try:
+        table = export_stiffness(resolved, run_dir, speed_list)
+    except SceneError as exc:
+        _fail(EXIT_SCENE, f"scene: {exc}")
+    except OutputRefused as exc:
+        _fail(EXIT_SCENE, str(exc))
+    except RunDirectoryBusy as exc:
+        _fail(EXIT_FAILED, str(exc))
+    except StageNotAvailable as exc:
+        _fail(EXIT_UNAVAILABLE, str(exc))
+    except (RuntimeError, ValueError, ArithmeticError) as exc:
+        _fail(EXIT_FAILED, f"{type(exc).__name__}: {exc}")
+    out_console.print(table.markdown(), highlight=False, soft_wrap=True, markup=False)
+    if not table.converged.all():
+        err_console.print("warning: the quasi-static solve did not converge at some speeds (column converged)",
+                          highlight=False)
+    err_console.print(f"written: {run_dir / STIFFNESS_DIR / CSV_FILE}, {run_dir / STIFFNESS_DIR / JSON_FILE}",
+                      highlight=False)
 
 
 @app.command()
@@ -197,7 +295,8 @@ def identify(scene: SceneArg, out: OutOpt = None, set_: SetOpt = None) -> None:
 @app.command()
 def simulate(scene: SceneArg, out: OutOpt = None, force: ForceOpt = False, set_: SetOpt = None) -> None:
     """Dynamic run (and the stages it needs): cage orbit, speed, impacts, contact forces."""
-    _pipeline(scene, set_, out, ["simulate"], {"simulate"} if force else set())
+    _, run_dir, _ = _pipeline(scene, set_, out, ["simulate"], {"simulate"} if force else set())
+    _print_verdict(run_dir)
 
 
 @app.command()
@@ -205,7 +304,20 @@ def run(scene: SceneArg, out: OutOpt = None, force: ForceOpt = False, set_: SetO
     """Full pipeline: identify -> quasistatic -> simulate -> report (cached stages are skipped)."""
     from .stages import STAGE_NAMES
 
-    _pipeline(scene, set_, out, ["report"], set(STAGE_NAMES) if force else set())
+    _, run_dir, _ = _pipeline(scene, set_, out, ["report"], set(STAGE_NAMES) if force else set())
+    _print_verdict(run_dir)
+
+
+def _print_verdict(run_dir: Path) -> None:
+    """The verdict of the run's summary.json on stderr (nothing when the run has no summary)."""
+    from .results.verdict import verdict_lines
+
+    try:
+        summary = json.loads((run_dir / "simulate" / "summary.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return
+    for line in verdict_lines(summary):
+        err_console.print(line, highlight=False, markup=False, soft_wrap=True)
 
 
 @app.command()
@@ -228,8 +340,8 @@ def render(run_dir: Annotated[Path, typer.Argument(help="A run directory written
     try:
         outcome = render_run(run_dir, show=show)
     except SceneError as exc:
-        _fail(EXIT_SCENE, f"scene: {exc}")
-    except FileNotFoundError as exc:
+        _fail(EXIT_SCENE, f"scene: {explain(exc)}")
+    except (FileNotFoundError, OutputRefused) as exc:
         _fail(EXIT_SCENE, str(exc))
     except (RuntimeError, ValueError, ArithmeticError, OSError) as exc:
         logging.getLogger("bearingsim").exception("render failed")
@@ -305,16 +417,23 @@ def sweep(scene: SceneArg,
               "--scheduler", metavar="ADDRESS", help="Use a running Dask scheduler (e.g. tcp://host:8786); "
                                                      "its workers must see the sweep directory.")] = None,
           retry_failed: Annotated[bool, typer.Option("--retry-failed", help="Rerun points that failed before.")] = False,
-          dry_run: Annotated[bool, typer.Option("--dry-run", help="Validate and list the points; run nothing.")] = False) -> None:
+          dry_run: Annotated[bool, typer.Option("--dry-run", help="Validate and list the points; run nothing.")] = False,
+          max_points: Annotated[int, typer.Option(
+              "--max-points", min=1, help="Refuse sweeps of more points than this (a guard against a typo "
+                                          "in a range).")] = 10_000,
+          figures: Annotated[Optional[bool], typer.Option(
+              "--figures/--no-figures", help="Draw each point's PNG figures (default: the scene's sweep.figures, "
+                                             "else yes); --no-figures saves their drawing time.")] = None) -> None:
     """Parameter sweep on Dask: one pipeline run per point, a results table and a cage-stability map."""
     from .sweep.console import SweepProgress, class_counts, print_results
     from .sweep.driver import dask_client, gather, plan_sweep, run_sweep, unfinished
     from .sweep.table import read_table, result_row
 
     try:
-        plan = plan_sweep(scene, set_, vary, mode=mode, name=name, out=out, store=store)
+        plan = plan_sweep(scene, set_, vary, mode=mode, name=name, out=out, store=store, max_points=max_points,
+                          figures=figures)
     except SceneError as exc:
-        _fail(EXIT_SCENE, f"scene: {exc}")
+        _fail(EXIT_SCENE, f"scene: {explain(exc)}")
     if dry_run:
         rows = [result_row(p, None, Path(r.run_dir), plan.section.thresholds) for p, r in zip(plan.points, plan.requests)]
         print_results(rows, plan.varied, out_console)

@@ -2,8 +2,14 @@
 
 Each stage is a function of the scene that reads and writes artefacts in the run
 directory. Its cache key hashes exactly the scene inputs it depends on plus the keys of
-the stages it reads from, so an unchanged stage is skipped and a changed input is never
-served from a stale cache. Stages a scene does not need are left out entirely.
+the stages it reads from (and the code version), so an unchanged stage is skipped and a
+changed input is never served from a stale cache. Stages a scene does not need are left
+out entirely.
+
+A finished stage is checked against the model's validity (pipeline.validity): an error
+discards the result (ValidityError), warnings are logged and stored with it. Its manifest
+records a checksum of every file, so a damaged cached result is recomputed; a stage whose
+inputs changed removes the results downstream of it that were computed from the old ones.
 """
 
 from __future__ import annotations
@@ -16,8 +22,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
-from .artefacts import atomic_write_json, input_key, is_fresh, read_manifest, staged_directory
-from .provenance import package_version
+from . import validity
+from .artefacts import (atomic_write_json, cache_state, input_key, read_manifest, remove_stage_dir,
+                        stage_files, staged_directory)
+from .provenance import code_version
 from .scene import Scene
 
 log = logging.getLogger("bearingsim")
@@ -55,11 +63,16 @@ class StageOutcome:
     key: str | None = None
     wall_time: float = 0.0
     info: dict = field(default_factory=dict)
+    warnings: list[dict] = field(default_factory=list)  # validity warnings (level, key, message)
 
 
 def stage_key(stage: Stage, scene: Scene, upstream_keys: dict[str, str]) -> str:
     inputs = {"scene": stage.inputs(scene), "upstream": upstream_keys}
-    return input_key(stage.name, inputs, package_version())
+    return input_key(stage.name, inputs, code_version())
+
+
+def _warnings(manifest: dict | None) -> list[dict]:
+    return [f for f in (manifest or {}).get("validity", []) if isinstance(f, dict) and f.get("level") == "warning"]
 
 
 def run_stages(
@@ -80,26 +93,72 @@ def run_stages(
     by_name = {s.name: s for s in stages}
     order = _closure(by_name, targets)
     keys: dict[str, str] = {}
+    not_needed: set[str] = set()
     outcomes = []
     for name in order:
         stage = by_name[name]
         if not stage.needed(scene):
             log.info("stage %s: not needed by this scene", name)
             outcomes.append(StageOutcome(name, "not needed"))
+            not_needed.add(name)
             continue
         up = {d: keys[d] for d in stage.depends if d in keys}
         key = stage_key(stage, scene, up)
         keys[name] = key
         stage_dir = run_dir / name
-        if name not in force and is_fresh(stage_dir, key):
+        state, damaged = cache_state(stage_dir, key)
+        if name not in force and state == "fresh":
             log.info("stage %s: up to date (key %s), skipped", name, key[:12])
-            outcomes.append(StageOutcome(name, "cached", key, info=read_manifest(stage_dir).get("info", {})))
+            manifest = read_manifest(stage_dir)
+            outcomes.append(StageOutcome(name, "cached", key, info=manifest.get("info", {}),
+                                         warnings=_warnings(manifest)))
+            _log_warnings(name, outcomes[-1].warnings)
             continue
+        if state == "damaged":
+            log.warning("stage %s: the cached result is damaged (%s changed or missing since the stage "
+                        "wrote it): recomputing", name, ", ".join(damaged[:5]))
         if store is None:
             outcomes.append(compute_stage(stage, scene, run_dir, key, up, progress))
         else:
             outcomes.append(_via_store(stage, scene, run_dir, key, up, progress, Path(store), name in force))
+        if state == "damaged":
+            outcomes[-1].warnings.insert(0, {"level": "warning", "key": "", "message": (
+                f"the cached result was damaged ({', '.join(damaged[:5])} changed or missing since the stage "
+                f"wrote it): recomputed")})
+        drop_stale_dependents(run_dir, stages, keys, not_needed)
+    drop_stale_dependents(run_dir, stages, keys, not_needed)
     return outcomes
+
+
+def drop_stale_dependents(run_dir: Path, stages: list[Stage], keys: dict[str, str],
+                          not_needed: set[str] = frozenset()) -> list[str]:
+    """Remove stage folders computed from upstream results that are no longer the current
+    ones (`keys`: stage -> current key): an old report/ must not stay beside new results.
+    Only folders bearingsim wrote (with a manifest) are removed. Returns their names."""
+    removed: list[str] = []
+    for stage in stages:
+        if stage.name in keys:
+            continue  # computed or checked in this run: current by construction
+        manifest = read_manifest(Path(run_dir) / stage.name)
+        if not manifest:
+            continue
+        upstream = manifest.get("upstream") or {}
+        stale = [d for d, k in upstream.items()
+                 if (d in keys and keys[d] != k) or d in not_needed or d in removed]
+        if stale and remove_stage_dir(Path(run_dir) / stage.name):
+            log.info("stage %s: removed, it was computed from an older %s", stage.name, " and ".join(stale))
+            removed.append(stage.name)
+    return removed
+
+
+def _log_warnings(name: str, warnings: list[dict]) -> None:
+    for w in warnings:
+        log.warning("stage %s: %s%s", name, f"{w.get('key')}: " if w.get("key") else "", w.get("message"))
+
+
+def closure(stages: list[Stage], targets: list[str]) -> list[str]:
+    """Names of the stages that running `targets` involves (needed or not), in order."""
+    return _closure({s.name: s for s in stages}, targets)
 
 
 def _closure(by_name: dict[str, Stage], targets: list[str]) -> list[str]:
@@ -125,15 +184,31 @@ def compute_stage(stage, scene, run_dir, key, up, progress) -> StageOutcome:
     report = (lambda text, f: progress(stage.name, text, f)) if progress else (lambda text, f: None)
     with staged_directory(run_dir / stage.name) as tmp:
         ctx = StageContext(scene, tmp, run_dir, {d: run_dir / d for d in up}, report)
-        info = stage.compute(ctx) or {}
+        try:
+            info = stage.compute(ctx) or {}
+        except Exception as exc:
+            finding = validity.failure_finding(stage.name, scene, exc)
+            if finding is None:
+                raise
+            log.error("stage %s: result outside the model's validity: %s", stage.name, finding.text)
+            raise validity.ValidityError([finding]) from exc
         wall = time.perf_counter() - t0
+        findings = validity.stage_findings(stage.name, scene, tmp)
+        for f in findings:
+            if f.level == "error":
+                log.error("stage %s: result outside the model's validity: %s", stage.name, f.text)
+        validity.raise_errors(findings)  # a meaningless result is discarded with the temporary
+        validity.annotate(stage.name, tmp, findings)
+        warnings = [f.to_json() for f in findings]
         atomic_write_json(tmp / "stage.json", {
             "stage": stage.name, "status": "done", "key": key, "upstream": up,
             "inputs": stage.inputs(scene), "wall_time_s": wall,
             "finished": time.strftime("%Y-%m-%dT%H:%M:%S%z"), "info": info,
+            "validity": warnings, "files": stage_files(tmp),
         })
     log.info("stage %s: done in %.2f s", stage.name, wall)
-    return StageOutcome(stage.name, "computed", key, wall, info)
+    _log_warnings(stage.name, warnings)
+    return StageOutcome(stage.name, "computed", key, wall, info, warnings)
 
 
 def _via_store(stage, scene, run_dir, key, up, progress, store: Path, force: bool) -> StageOutcome:
@@ -143,11 +218,14 @@ def _via_store(stage, scene, run_dir, key, up, progress, store: Path, force: boo
     others wait for the lock and then link the published result."""
     entry = store / stage.name / key
     with _store_lock(entry.with_name(f".{key}.lock")):
-        if not force and is_fresh(entry, key):
+        if not force and cache_state(entry, key)[0] == "fresh":
             with staged_directory(run_dir / stage.name) as tmp:
                 shutil.copytree(entry, tmp, dirs_exist_ok=True, copy_function=_link_or_copy)
             log.info("stage %s: linked from store %s (key %s)", stage.name, store, key[:12])
-            return StageOutcome(stage.name, "from store", key, info=read_manifest(entry).get("info", {}))
+            manifest = read_manifest(entry)
+            _log_warnings(stage.name, _warnings(manifest))
+            return StageOutcome(stage.name, "from store", key, info=manifest.get("info", {}),
+                                warnings=_warnings(manifest))
         outcome = compute_stage(stage, scene, run_dir, key, up, progress)
         with staged_directory(entry) as tmp:  # atomic: readers never see a partial entry
             shutil.copytree(run_dir / stage.name, tmp, dirs_exist_ok=True, copy_function=_link_or_copy)

@@ -1,4 +1,4 @@
-"""Scene files: load TOML, apply `--set` overrides, validate, resolve (SCENE.md).
+"""Scene files: load TOML, apply `--set` overrides, validate, resolve (docs/scenes.md).
 
 A :class:`Scene` is the validated, resolved description of one physical case and how to
 compute it. Nothing downstream sees raw TOML.
@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import copy
 import dataclasses
+import re
 import tomllib
 from dataclasses import dataclass
 from importlib import resources
@@ -60,16 +61,39 @@ def builtin_scene_names() -> list[str]:
 
 
 def read_scene_table(scene: str | Path) -> tuple[dict, str]:
-    """Read a scene path or built-in name into a TOML table; returns (table, origin)."""
+    """Read a scene path or built-in name into a TOML table; returns (table, origin).
+    Every way a file can be unreadable is a SceneError naming the file and what to do."""
+    text_arg = str(scene)
+    if "\0" in text_arg:
+        raise SceneError("", f"the scene argument {text_arg!r} contains a NUL byte; give a scene file "
+                             "path or a built-in scene name")
     path = Path(scene)
-    if path.suffix == ".toml" or path.exists():
-        if not path.is_file():
-            raise SceneError("", f"scene file {str(path)!r} does not exist")
-        text, origin = path.read_text(encoding="utf-8"), str(path)
+    shown = text_arg if len(text_arg) <= 80 else text_arg[:77] + "..."
+    try:
+        is_path = path.suffix == ".toml" or path.exists()
+    except (OSError, ValueError):
+        is_path = True  # e.g. a name too long for the file system: reported below
+    if is_path:
+        try:
+            data = path.read_bytes()
+        except IsADirectoryError:
+            raise SceneError("", f"scene file {shown!r} is a directory; give a .toml file") from None
+        except FileNotFoundError:
+            raise SceneError("", f"scene file {shown!r} does not exist") from None
+        except (OSError, ValueError) as exc:
+            reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
+            raise SceneError("", f"scene file {shown!r} cannot be read ({reason})") from None
+        origin = str(path)
+        try:
+            text = data.decode("utf-8")
+        except UnicodeDecodeError as exc:
+            line = data[:exc.start].count(b"\n") + 1
+            raise SceneError("", f"{origin} is not UTF-8 text (byte 0x{data[exc.start]:02x} on line {line}); "
+                                 "save the scene as UTF-8 (TOML files are UTF-8)") from None
     else:
         names = builtin_scene_names()
-        if str(scene) not in names:
-            raise SceneError("", f"{str(scene)!r} is neither a scene file nor a built-in scene; "
+        if text_arg not in names:
+            raise SceneError("", f"{shown!r} is neither a scene file nor a built-in scene; "
                                  f"built-in scenes: {', '.join(names)}")
         text = (resources.files("bearingsim.pipeline") / "scenes" / f"{scene}.toml").read_text(encoding="utf-8")
         origin = f"built-in:{scene}"
@@ -77,6 +101,9 @@ def read_scene_table(scene: str | Path) -> tuple[dict, str]:
         return tomllib.loads(text), origin
     except tomllib.TOMLDecodeError as exc:
         raise SceneError("", f"{origin} is not valid TOML: {exc}") from exc
+    except RecursionError:
+        raise SceneError("", f"{origin} nests arrays or tables too deeply to read; a scene needs at most "
+                             "two levels (e.g. hinge.translational as a 3x3 matrix)") from None
 
 
 # --- overrides -------------------------------------------------------------------------
@@ -92,6 +119,8 @@ def parse_override(text: str) -> tuple[list[str], Any]:
         value = tomllib.loads(f"v = {value_text}")["v"]
     except tomllib.TOMLDecodeError:
         value = value_text
+    except RecursionError:
+        raise SceneError(key, f"--set: the value nests arrays too deeply ({len(value_text)} characters)") from None
     return key.split("."), value
 
 
@@ -190,9 +219,7 @@ def resolve(table: dict, origin: str = "<table>") -> Scene:
 
         build_sweep_section(table["sweep"])
         table = {k: v for k, v in table.items() if k != "sweep"}
-    name = convert("name", table["name"], str, {})
-    if not name or any(c in name for c in "/\\") or name.startswith("."):
-        raise SceneError("name", f"{name!r} cannot name a run directory (no slashes, not empty)")
+    name = check_name("name", convert("name", table["name"], str, {}))
     bearing = resolve_bearing(table["bearing"])
     cage = build(CageGeometry, table["cage"], "cage") if "cage" in table else None
     if cage is not None:
@@ -211,7 +238,7 @@ def resolve(table: dict, origin: str = "<table>") -> Scene:
     lubricant = resolve_lubricant(table.get("lubricant"))
     physics_table = table.get("physics", {})
     if lubricant is None and isinstance(physics_table, dict):
-        # SCENE.md: without [lubricant], contacts are dry; defaults fall back to the dry laws
+        # docs/scenes.md: without [lubricant], contacts are dry; defaults fall back to the dry laws
         physics_table = {"traction": "coulomb", "cage_race": "dry", "ehd_film": False, **physics_table}
     physics = build(Physics, physics_table, "physics")
     if physics.traction == "eyring" and lubricant is None:
@@ -223,7 +250,7 @@ def resolve(table: dict, origin: str = "<table>") -> Scene:
     if physics.cage_race in ("hybrid", "hydrodynamic") and cage is not None and lubricant is None:
         raise SceneError("physics.cage_race", f"{physics.cage_race!r} needs a [lubricant] table "
                                               "(film viscosity); give one or set it to 'dry'")
-    return Scene(
+    scene = Scene(
         name=name,
         description=convert("description", table.get("description", ""), str, {}),
         bearing=bearing,
@@ -239,6 +266,25 @@ def resolve(table: dict, origin: str = "<table>") -> Scene:
         output=build(Output, table.get("output", {}), "output"),
         raw=table,
     )
+    # geometry the model cannot represent, resources a run cannot have (pipeline.validity)
+    from .validity import raise_errors, scene_findings
+
+    raise_errors(scene_findings(scene))
+    return scene
+
+
+NAME_MAX = 100
+_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9._+-]*")
+
+
+def check_name(key: str, name: str, max_length: int = NAME_MAX) -> str:
+    """A scene (or sweep) name becomes a folder name under runs/: plain characters only."""
+    if not _NAME.fullmatch(name) or len(name) > max_length:
+        shown = name if len(name) <= 60 else name[:57] + "..."
+        raise SceneError(key, f"{shown!r} cannot name a run directory: use 1 to {max_length} letters, digits, "
+                              f"'-', '_', '.' or '+', starting with a letter or digit (no spaces, slashes or "
+                              f"shell characters), e.g. my-6209")
+    return name
 
 
 def _is_matrix(value: Any) -> bool:

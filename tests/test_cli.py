@@ -15,7 +15,7 @@ runner = CliRunner()
 
 
 def test_check_prints_derived_geometry_of_reference_bearing():
-    """Issue 2 'done when': pitch ≈ 158.003 mm, alpha_0 ≈ 25.43°, P_d = 0.118 mm (MODEL.md §2)."""
+    """pitch ≈ 158.003 mm, alpha_0 ≈ 25.43°, P_d = 0.118 mm (docs/model.md §2)."""
     result = runner.invoke(app, ["check", "helicopter-b"])
     assert result.exit_code == 0, result.output
     out = result.output
@@ -50,7 +50,7 @@ def test_render_of_a_non_run_directory_is_a_clear_error(tmp_path):
 
 
 def test_light_commands_do_not_import_heavy_libraries():
-    """STYLE.md rule 6: scene checking must not pay for gmsh, pyvista or matplotlib."""
+    """docs/contributing.md rule 6: scene checking must not pay for gmsh, pyvista or matplotlib."""
     code = (
         "import sys; from typer.testing import CliRunner; from pipeline.cli import app;"
         "r = CliRunner().invoke(app, ['check', 'helicopter-b-given-hinge']);"

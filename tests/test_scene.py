@@ -35,7 +35,7 @@ def test_builtin_scenes_present():
 
 
 def test_reference_derived_geometry(table_b):
-    """MODEL.md §2 'Derived (check these in a unit test)' — numbers computed by hand there."""
+    """docs/model.md §2 'Derived (check these in a unit test)' — numbers computed by hand there."""
     b = resolve(table_b).bearing
     assert b.inner_groove_bottom_diameter == pytest.approx(0.138894, abs=1e-9)
     assert b.outer_groove_bottom_diameter == pytest.approx(0.177112, abs=1e-9)
@@ -47,7 +47,7 @@ def test_reference_derived_geometry(table_b):
 
 
 def test_reference_masses_and_cage_guide(table_b):
-    """MODEL.md §2: ball ≈ 28.4 g, cage ≈ 0.36 kg, guide clearance 0.29 mm, L ≈ 7.6 mm."""
+    """docs/model.md §2: ball ≈ 28.4 g, cage ≈ 0.36 kg, guide clearance 0.29 mm, L ≈ 7.6 mm."""
     s = resolve(table_b)
     assert s.bearing.ball_mass(s.materials.ball) == pytest.approx(0.0284, rel=2e-3)
     assert s.cage.mass(s.materials.cage, s.bearing) == pytest.approx(0.36, rel=0.01)
@@ -77,7 +77,7 @@ def test_harris_209_free_contact_angle():
     s = load_scene("deep-groove-209")
     assert math.degrees(s.bearing.free_contact_angle) == pytest.approx(9.86, abs=0.01)
     assert s.cage is None and s.lubricant is None and s.hinge.source == "none"
-    # SCENE.md: without [lubricant] the contacts are dry
+    # docs/scenes.md: without [lubricant] the contacts are dry
     assert (s.physics.traction, s.physics.cage_race, s.physics.ehd_film) == ("coulomb", "dry", False)
 
 

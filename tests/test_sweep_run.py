@@ -1,4 +1,4 @@
-"""Sweeps on an in-process Dask cluster (issue 10 'done when'): a tiny sweep with its table
+"""Sweeps on an in-process Dask cluster : a tiny sweep with its table
 and map, per-point failures as data, a shared stage computed once, resuming after lost
 points, and a real two-point sweep of short dynamic runs."""
 

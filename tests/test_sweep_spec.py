@@ -1,4 +1,4 @@
-"""Sweep definitions (issue 10): `--vary` syntax, the scene's `[sweep]` table, expansion
+"""Sweep definitions: `--vary` syntax, the scene's `[sweep]` table, expansion
 into points, stable ids, and that a `[sweep]` table changes no stage key."""
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ def base() -> dict:
 
 
 def test_range_is_inclusive_and_evenly_spaced():
-    """Issue 10's own example: 0:600:13 is 0, 50, ..., 600 N·m."""
+    """The README's example: 0:600:13 is 0, 50, ..., 600 N·m."""
     axis = parse_vary("load.moment=0:600:13")
     assert axis.key == "load.moment"
     assert axis.values == tuple(50.0 * i for i in range(13))
@@ -110,7 +110,7 @@ def test_bad_point_value_names_key_and_point(base):
 
 
 def test_fe_identification_key_is_shared_by_load_and_speed_points(tmp_path):
-    """Issue 10: the FE identification is computed once when the sweep does not change its
+    """the FE identification is computed once when the sweep does not change its
     inputs — every moment/speed point has the same identify key, a mesh-size point not."""
     from bearingsim.pipeline.sweep.driver import plan_sweep
 

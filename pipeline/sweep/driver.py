@@ -24,11 +24,11 @@ from pathlib import Path
 from typing import Callable
 
 from ..artefacts import atomic_write_json
-from ..scene import apply_overrides, read_scene_table, resolve
+from ..scene import NAME_MAX, apply_overrides, check_name, read_scene_table, resolve
 from ..schema import SceneError
-from .point_runner import PointRequest, finished_record, run_point
+from .point_runner import NO_FIGURES, PointRequest, finished_record, run_point
 from .points import SweepPoint, expand, point_table, scene_hash
-from .spec import SweepSection, build_sweep_section, with_command_line
+from .spec import MAX_POINTS, SweepSection, build_sweep_section, check_size, with_command_line
 from .table import result_row, write_table
 
 PLAN_FILE, MAP_FILE = "sweep.json", "stability_map.png"
@@ -64,16 +64,22 @@ class SweepStatus:
 
 def plan_sweep(scene: str | Path, sets: list[str] | None = None, vary: list[str] | None = None, *,
                mode: str | None = None, name: str | None = None, out: Path | None = None,
-               store: Path | None = None) -> SweepPlan:
-    """Validate the scene, the sweep definition and every point; nothing is computed."""
+               store: Path | None = None, max_points: int = MAX_POINTS,
+               figures: bool | None = None) -> SweepPlan:
+    """Validate the scene, the sweep definition and every point; nothing is computed.
+    A sweep of more than `max_points` points is refused before its points are built.
+    `figures` (`--figures/--no-figures`) overrides the scene's `[sweep] figures`."""
     table, origin = read_scene_table(scene)
     table = apply_overrides(table, list(sets or []))
-    section = with_command_line(build_sweep_section(table.get("sweep", {})), list(vary or []), mode, name)
+    section = with_command_line(build_sweep_section(table.get("sweep", {})), list(vary or []), mode, name,
+                                figures)
+    check_size(section, max_points)
     base = {k: v for k, v in table.items() if k != "sweep"}
     resolve(base, origin)
+    if not section.figures:
+        _check_figures_can_be_skipped(base, origin)
     sweep_name = section.name or f"{base['name']}-sweep"
-    if not sweep_name or any(c in sweep_name for c in "/\\") or sweep_name.startswith("."):
-        raise SceneError("sweep.name", f"{sweep_name!r} cannot name a directory (no slashes, not empty)")
+    check_name("sweep.name", sweep_name, max_length=NAME_MAX + len("-sweep"))
     sweep_dir = Path(out if out is not None else Path("runs") / sweep_name).resolve()
     store = Path(store).resolve() if store is not None else sweep_dir / "store"
     points = tuple(expand(section))
@@ -81,8 +87,20 @@ def plan_sweep(scene: str | Path, sets: list[str] | None = None, vary: list[str]
     for p in points:
         t = point_table(base, p)
         requests.append(PointRequest(p.id, p.label, p.overrides, t, scene_hash(t, section.target),
-                                     str(sweep_dir / "points" / p.id), str(store), section.target))
+                                     str(sweep_dir / "points" / p.id), str(store), section.target,
+                                     section.figures))
     return SweepPlan(sweep_name, origin, sweep_dir, section, points, tuple(requests))
+
+
+def _check_figures_can_be_skipped(base: dict, origin: str) -> None:
+    """`figures = false` runs every point with the scene key `output.figures = false`: it must
+    validate (a version of the scene schema without that key cannot skip figures)."""
+    try:
+        resolve(apply_overrides(base, [NO_FIGURES]), origin)
+    except SceneError as exc:
+        raise SceneError("sweep.figures", f"false needs the scene key output.figures, which this "
+                                          f"version does not accept ({exc}); remove figures = false "
+                                          f"or --no-figures") from None
 
 
 def unfinished(plan: SweepPlan, retry_failed: bool = False) -> tuple[dict[str, dict], list[PointRequest]]:
@@ -184,7 +202,7 @@ def gather(plan: SweepPlan, records: list[dict | None]) -> dict[str, Path]:
 def _write_plan(plan: SweepPlan) -> None:
     s = plan.section
     atomic_write_json(plan.sweep_dir / PLAN_FILE, {
-        "name": plan.name, "scene": plan.origin, "mode": s.mode, "target": s.target,
+        "name": plan.name, "scene": plan.origin, "mode": s.mode, "target": s.target, "figures": s.figures,
         "axes": {a.key: list(a.values) for a in s.vary},
         "thresholds": dataclasses.asdict(s.thresholds),
         "points": [{"id": p.id, "label": p.label, "overrides": dict(p.overrides), "run_dir": r.run_dir}

@@ -23,6 +23,7 @@ from typing import Any
 from ..artefacts import atomic_write_json
 
 RECORD_FILE = "point.json"
+NO_FIGURES = "output.figures=false"  # scene override of a point whose sweep skips figures
 log = logging.getLogger("bearingsim")
 
 
@@ -38,6 +39,7 @@ class PointRequest:
     run_dir: str  # must be reachable from the worker (shared file system for remote ones)
     store: str | None  # shared stage store (see pipeline.runner.run_stages)
     target: str = "simulate"
+    figures: bool = True  # False: the point runs with output.figures = false (no PNGs)
 
 
 def read_record(run_dir: Path) -> dict | None:
@@ -75,7 +77,7 @@ def run_point(request: PointRequest, stages=None) -> dict:
     handler = _attach_point_log(run_dir)
     try:
         record.update(_run_pipeline(request, run_dir, stages), status="done", error=None)
-    except Exception as exc:  # noqa: BLE001 - any failure of one point is data, not fatal (issue 10)
+    except Exception as exc:  # noqa: BLE001 - any failure of one point is data, not fatal
         log.error("sweep point %s failed:\n%s", request.label, traceback.format_exc())
         record.update(status="failed", error=f"{type(exc).__name__}: {exc}", summary=None)
     finally:
@@ -95,12 +97,23 @@ def _run_pipeline(request: PointRequest, run_dir: Path, stages) -> dict:
 
     if stages is None:
         from ..stages import STAGES as stages
-    scene = resolve(request.table, origin=f"sweep point {request.label}")
+    scene = resolve(point_run_table(request), origin=f"sweep point {request.label}")
     write_run_provenance(run_dir, scene.raw, f"sweep point {request.label}")
     store = Path(request.store) if request.store else None
     outcomes = run_stages(scene, run_dir, stages, [request.target], store=store)
     summary = json.loads((run_dir / request.target / "summary.json").read_text(encoding="utf-8"))
     return {"summary": summary, "stages": {o.name: o.status for o in outcomes}}
+
+
+def point_run_table(request: PointRequest) -> dict:
+    """The scene table the point runs: its own, plus `output.figures = false` when the sweep
+    skips figures. Not part of the point's scene hash: figures are output, so switching them
+    does not rerun finished points (the stage keys, which hash the scene, do change)."""
+    if request.figures:
+        return request.table
+    from ..scene import apply_overrides
+
+    return apply_overrides(request.table, [NO_FIGURES])
 
 
 def _remove_stale_temporaries(run_dir: Path) -> None:

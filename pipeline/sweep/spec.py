@@ -25,6 +25,11 @@ from ..schema import SceneError, build
 from .classify import CageClassThresholds
 
 NOT_VARIABLE = ("name", "description", "sweep")
+# A sweep larger than this is refused unless asked for (`--max-points`): 10 000 points of the
+# reference bearing at ~40 s each are ~4.6 days on one worker. One axis may never list more
+# values than MAX_AXIS_VALUES (they are held in memory before the limit can be checked).
+MAX_POINTS = 10_000
+MAX_AXIS_VALUES = 10_000_000
 
 
 @dataclass(frozen=True)
@@ -40,9 +45,12 @@ class SweepSection:
     """`[sweep]`: how to vary a scene. The physics of each point is the scene's own."""
 
     name: str | None = field(default=None, metadata={"doc": "sweep directory name [default: <scene>-sweep]"})
-    mode: str = field(default="factorial", metadata={"choices": ("factorial", "list")})
+    mode: str = field(default="factorial", metadata={"choices": ("factorial", "list"), "doc": "factorial: every combination of the varied values; list: the i-th values together, or explicit points"})
     target: str = field(default="simulate", metadata={
         "choices": ("simulate",), "doc": "stage each point runs to (its summary.json feeds the table)"})
+    figures: bool = field(default=True, metadata={
+        "doc": "draw each point's figures (PNG); false skips them (scene key output.figures = false "
+               "in every point), which saves their drawing time; results and table are the same"})
     map_x: str | None = field(default=None, metadata={"doc": "scene key on the map's x axis [default: load.moment]"})
     map_y: str | None = field(default=None, metadata={"doc": "scene key on the map's y axis [default: speed.inner_rpm]"})
     thresholds: CageClassThresholds = field(default_factory=CageClassThresholds)
@@ -66,6 +74,9 @@ def parse_range(key: str, text: str) -> tuple[float, ...]:
         raise SceneError(key, f"bad range {text!r}: write start:stop:count, e.g. 0:600:13") from None
     if len(parts) != 3 or isinstance(count, bool) or not isinstance(count, int) or count < 1:
         raise SceneError(key, f"bad range {text!r}: write start:stop:count with an integer count >= 1")
+    if count > MAX_AXIS_VALUES:
+        raise SceneError(key, f"bad range {text!r}: {count} values; one axis may have at most "
+                              f"{MAX_AXIS_VALUES} (and a whole sweep {MAX_POINTS} points unless --max-points says more)")
     if not (math.isfinite(start) and math.isfinite(stop)):
         raise SceneError(key, f"bad range {text!r}: start and stop must be finite numbers")
     if count == 1:
@@ -132,10 +143,13 @@ def build_sweep_section(table: Any) -> SweepSection:
 
 
 def with_command_line(section: SweepSection, vary: list[str], mode: str | None,
-                      name: str | None) -> SweepSection:
+                      name: str | None, figures: bool | None = None) -> SweepSection:
     """Command-line `--vary` replaces the scene's whole point definition (vary and points);
-    thresholds and map axes stay the scene's."""
+    thresholds and map axes stay the scene's. `figures` (`--figures/--no-figures`), when
+    given, replaces the scene's `figures`."""
     changes: dict[str, Any] = {}
+    if figures is not None:
+        changes["figures"] = bool(figures)
     if vary:
         changes.update(vary=tuple(parse_vary(v) for v in vary), points=())
     if mode is not None:
@@ -145,3 +159,24 @@ def with_command_line(section: SweepSection, vary: list[str], mode: str | None,
     if name is not None:
         changes["name"] = name
     return dataclasses.replace(section, **changes)
+
+
+def point_count(section: SweepSection) -> int:
+    """How many points `section` defines (before duplicates are removed)."""
+    if section.points:
+        return len(section.points)
+    if not section.vary:
+        return 0
+    if section.mode == "factorial":
+        return math.prod(len(a.values) for a in section.vary)
+    return max(len(a.values) for a in section.vary)
+
+
+def check_size(section: SweepSection, max_points: int = MAX_POINTS) -> None:
+    """Refuse a sweep of more than `max_points` points before any point is built."""
+    n = point_count(section)
+    if n > max_points:
+        axes = " x ".join(f"{len(a.values)} of {a.key}" for a in section.vary) or f"{n} listed points"
+        raise SceneError("", f"the sweep has {n} points ({axes}), more than the limit of {max_points} "
+                             f"(at ~40 s per point of the reference bearing, {n * 40 / 86400:.3g} days on one "
+                             f"worker); give fewer values, or raise the limit with --max-points {n}")

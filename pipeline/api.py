@@ -1,0 +1,347 @@
+"""The Python API: load a scene, run stages in a run directory, read the results.
+
+    import bearingsim
+    scene = bearingsim.load_scene("helicopter-b-given-hinge", {"load.moment": 300})
+    run = bearingsim.run(scene, "runs/demo", stages=["simulate"])
+    run.summary["cage_speed_mean"], run.quasistatic["balls"], run.timeseries()["cage/speed"]
+
+The same staged runner, cache and run-directory files as the command line
+(`pipeline.runner.run_stages`): a stage whose inputs are unchanged is not recomputed, and a
+run directory written here is one `bearingsim render` or `bearingsim run` can continue.
+Errors are raised, not mapped to exit codes: `SceneError` for a bad scene or override (it
+names the key), `StageNotAvailable`, `RunDirectoryBusy`, and the solver's own
+RuntimeError/ValueError with its hint.
+
+Results come back as plain numbers and :class:`NamedArray` (values, unit, dims,
+description), which convert to xarray when it is installed (`.to_xarray()`); xarray is not a
+dependency. Importing this module loads no numba, matplotlib or gmsh.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import sys
+import time
+import warnings
+from collections.abc import Iterable, Iterator, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Callable
+
+import numpy as np
+
+from .results.named_arrays import NamedArray, TimeSeries
+
+
+DEFAULT_STAGES = ("report",)  # the whole pipeline, as `bearingsim run`
+ProgressCallback = Callable[[str, str, float], None]  # (stage, text, fraction done)
+
+
+# --- scenes --------------------------------------------------------------------------------
+def load_scene(scene, overrides: Mapping[str, Any] | Iterable[str] | None = None):
+    """A validated :class:`~bearingsim.pipeline.scene.Scene` from a built-in scene name, a
+    TOML path or another Scene, with `overrides` applied.
+
+    `overrides`: ``{"load.moment": 300, "solver.duration": 0.02}`` (dotted keys, Python
+    values) or ``["load.moment=300"]`` (the command line's ``--set`` strings). Either way the
+    value goes through the same TOML parsing and validation as the file, so a bad one raises
+    `SceneError` naming the key, the value, what is allowed and the unit.
+    """
+    from .numba_cache import configure_numba_cache
+    from .scene import Scene, apply_overrides, read_scene_table, resolve
+
+    configure_numba_cache()  # scene validation loads a few kernels' modules
+    if isinstance(scene, Scene):
+        table, origin = scene.raw, scene_origin(scene)
+    else:
+        table, origin = read_scene_table(scene)
+    resolved = resolve(apply_overrides(table, override_strings(overrides)), origin)
+    # provenance for scene.toml's header; a frozen dataclass, so set past its __setattr__
+    object.__setattr__(resolved, "_origin", origin)
+    return resolved
+
+
+def scene_origin(scene) -> str:
+    """Where a scene came from (a path or `built-in:<name>`), for the run directory's scene.toml."""
+    return getattr(scene, "_origin", "a Scene object of the Python API")
+
+
+def override_strings(overrides: Mapping[str, Any] | Iterable[str] | None) -> list[str]:
+    """`{"load.moment": 300}` -> `["load.moment=300"]`; strings pass through. A nested
+    mapping is flattened to dotted keys (`{"materials.ball": {"density": 7800}}`)."""
+    if overrides is None:
+        return []
+    if isinstance(overrides, str):
+        return [overrides]
+    if not isinstance(overrides, Mapping):
+        return [str(o) for o in overrides]
+    out = []
+    for key, value in _flatten(overrides, ""):
+        out.append(f"{key}={_toml_literal(key, value)}")
+    return out
+
+
+def _flatten(mapping: Mapping, prefix: str) -> Iterator[tuple[str, Any]]:
+    for key, value in mapping.items():
+        dotted = f"{prefix}{key}"
+        if isinstance(value, Mapping):
+            yield from _flatten(value, dotted + ".")
+        else:
+            yield dotted, value
+
+
+def _toml_literal(key: str, value: Any) -> str:
+    import tomli_w
+
+    from .schema import SceneError
+
+    if isinstance(value, np.ndarray):
+        value = value.tolist()
+    elif isinstance(value, np.generic):
+        value = value.item()
+    elif isinstance(value, tuple):
+        value = list(value)
+    elif isinstance(value, Path):
+        value = str(value)
+    if isinstance(value, list):  # one line, as typed after --set
+        return "[" + ", ".join(_toml_literal(key, v) for v in value) + "]"
+    try:
+        return tomli_w.dumps({"v": value})[len("v = "):].strip()
+    except (TypeError, ValueError) as exc:
+        raise SceneError(key, f"{value!r} cannot be written as a TOML value: {exc}") from None
+
+
+# --- running -------------------------------------------------------------------------------
+def run(scene, run_dir: str | Path | None = None, stages: str | Iterable[str] = DEFAULT_STAGES, *,
+        overrides: Mapping[str, Any] | Iterable[str] | None = None,
+        force: bool | str | Iterable[str] = False, progress: ProgressCallback | bool | None = None,
+        store: str | Path | None = None) -> "Run":
+    """Run `stages` of `scene` (and the stages they need) in `run_dir`; return the :class:`Run`.
+
+    scene:    a Scene (`load_scene`), or a built-in name / TOML path (loaded with `overrides`).
+    run_dir:  the run directory [default: runs/<scene name>/, relative to the working directory].
+    stages:   target stages, any of "identify", "quasistatic", "simulate", "report" [default:
+              "report", i.e. everything, as `bearingsim run`]. Up-to-date stages are skipped.
+    force:    True recomputes the stages named in `stages` (as `bearingsim simulate --force`);
+              "all" every stage they need (as `bearingsim run --force`); or an iterable of names.
+    progress: None/False silent; True prints stage progress to stderr; or a callable
+              (stage, text, fraction).
+    store:    a stage store shared between run directories (as sweeps use; see pipeline.runner).
+    """
+    from .scene import Scene
+
+    if not isinstance(scene, Scene) or overrides is not None:
+        scene = load_scene(scene, overrides)
+    run_dir = Path(run_dir) if run_dir is not None else Path("runs") / scene.name
+    targets = check_stage_names(stages, "stages")
+    outcomes = run_pipeline(scene, run_dir, targets, forced_stages(force, targets),
+                            progress=_progress_callback(progress), store=store)
+    return Run(scene, run_dir.absolute(), tuple(outcomes))  # absolute: valid after a chdir
+
+
+def run_pipeline(scene, run_dir: Path, targets: list[str], force: set[str] = frozenset(), *,
+                 progress: ProgressCallback | None = None, store: str | Path | None = None,
+                 origin: str | None = None) -> list:
+    """The command line's pipeline path (`cli._pipeline`), without its console: check what
+    can be checked before solving (pipeline.validity), claim the run directory (new, empty
+    or bearingsim's), hold its lock, log to `<run_dir>/run.log`, write scene.toml and
+    versions.json, then `runner.run_stages(scene, run_dir, STAGES, targets, force)`.
+    Returns the StageOutcomes; the scene's and the stages' validity warnings are issued as
+    Python warnings (and logged)."""
+    from .numba_cache import configure_numba_cache
+    from .run_session import check_before_solving, claimed, run_log, run_stages_logged
+
+    configure_numba_cache()  # before any kernel loads, as the command line does
+    run_dir = Path(run_dir)
+    notes = check_before_solving(scene, targets)
+    for note in notes:
+        warnings.warn(f"scene: {note.text}", stacklevel=3)
+    with claimed(run_dir), run_log(run_dir):
+        outcomes = run_stages_logged(scene, run_dir, targets, set(force), origin or scene_origin(scene),
+                                     notes=notes, progress=progress,
+                                     store=Path(store) if store is not None else None, label=" (Python API)")
+    for o in outcomes:
+        for w in getattr(o, "warnings", None) or ():
+            text = w.get("message", w) if isinstance(w, dict) else w
+            key = w.get("key") if isinstance(w, dict) else None
+            warnings.warn(f"{o.name}: {key + ': ' if key else ''}{text}", stacklevel=3)
+    return outcomes
+
+
+def stage_names() -> list[str]:
+    from .stages import STAGE_NAMES
+
+    return list(STAGE_NAMES)
+
+
+def check_stage_names(stages: str | Iterable[str], what: str) -> list[str]:
+    names = [stages] if isinstance(stages, str) else list(stages)
+    allowed = stage_names()
+    unknown = [s for s in names if s not in allowed]
+    if unknown or not names:
+        raise ValueError(f"{what}: {unknown[0] if unknown else names!r} is not a stage; "
+                         f"choose from {', '.join(allowed)}")
+    return names
+
+
+def forced_stages(force: bool | str | Iterable[str], targets: list[str]) -> set[str]:
+    if force is False or force is None:
+        return set()
+    if force is True:
+        return set(targets)
+    if force == "all":
+        return set(stage_names())
+    return set(check_stage_names(force, "force"))
+
+
+def _progress_callback(progress) -> ProgressCallback | None:
+    if progress is None or progress is False:
+        return None
+    if progress is True:
+        return _StderrProgress()
+    return progress
+
+
+class _StderrProgress:
+    """One line per stage change, and at most one every 2 s while a stage runs."""
+
+    def __init__(self, interval: float = 2.0):
+        self.interval, self.last, self.stage = interval, 0.0, None
+
+    def __call__(self, stage: str, text: str, fraction: float) -> None:
+        now = time.monotonic()
+        if stage != self.stage or now - self.last >= self.interval or fraction >= 1.0:
+            print(f"{stage:<12} {100 * fraction:5.1f} %  {text}", file=sys.stderr, flush=True)
+            self.stage, self.last = stage, now
+
+
+# --- results -------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Run:
+    """A run directory and its scene; results are read from its files when asked for.
+
+    `outcomes` are the StageOutcomes of the `run()` call that made it (empty from
+    :func:`open_run`); `stages` is what the directory holds now.
+    """
+
+    scene: Any
+    run_dir: Path
+    outcomes: tuple = field(default=())
+
+    def stage_dir(self, stage: str) -> Path:
+        return Path(self.run_dir) / stage
+
+    @property
+    def stages(self) -> dict[str, str]:
+        """Stage name -> "done" for every finished stage in the directory, plus the status of
+        this call's outcomes ("computed", "cached", "not needed", ...)."""
+        from .artefacts import read_manifest
+
+        this_call = {o.name: o.status for o in self.outcomes}
+        status = {}
+        for name in stage_names():
+            manifest = read_manifest(self.stage_dir(name))
+            if name in this_call:
+                status[name] = this_call[name]
+            elif manifest and manifest.get("status") == "done":
+                status[name] = "done"
+        return status
+
+    def _file(self, stage: str, filename: str) -> Path:
+        """`<run_dir>/<stage>/<filename>`, or FileNotFoundError saying how to make it."""
+        path = self.stage_dir(stage) / filename
+        if not path.is_file():
+            raise FileNotFoundError(
+                f"{path} does not exist: stage {stage!r} has not run in {self.run_dir}; "
+                f"run it with bearingsim.run(scene, {str(self.run_dir)!r}, stages=[{stage!r}])")
+        return path
+
+    def _json(self, stage: str, filename: str) -> dict:
+        return json.loads(self._file(stage, filename).read_text(encoding="utf-8"))
+
+    @property
+    def summary(self) -> dict:
+        """`simulate/summary.json`: the run's metrics (docs/scenes.md), verdict, counters."""
+        return self._json("simulate", "summary.json")
+
+    @property
+    def quasistatic(self) -> dict:
+        """`quasistatic/quasistatic.json`: per-ball loads and angles ("balls"), inner-race
+        displacement and tilt, 5x5 "stiffness" in "stiffness_order", units, crush screen."""
+        from .stages.quasistatic import RESULT_FILE
+
+        return self._json("quasistatic", RESULT_FILE)
+
+    def quasistatic_arrays(self) -> dict[str, NamedArray]:
+        """The per-ball quantities of `quasistatic` as NamedArrays over dimension "ball",
+        and "stiffness" (5x5, dims ("force", "displacement") in (x, y, z, rx, ry) order)."""
+        qs = self.quasistatic
+        units = qs.get("units", {})
+        unit_of = {"azimuth": "azimuth", "inner_load": "load", "outer_load": "load",
+                   "inner_contact_angle": "contact_angle", "outer_contact_angle": "contact_angle",
+                   "max_pressure_inner": "pressure", "max_pressure_outer": "pressure",
+                   "truncation_margin_inner": "truncation_margin", "truncation_margin_outer": "truncation_margin"}
+        out = {}
+        for name, kind in unit_of.items():
+            values = np.array([np.nan if b[name] is None else b[name] for b in qs["balls"]], dtype=float)
+            out[name] = NamedArray(values, units.get(kind, ""), ("ball",), f"quasi-static {name.replace('_', ' ')}", name)
+        out["stiffness"] = NamedArray(np.array(qs["stiffness"], dtype=float), units.get("stiffness", ""),
+                                      ("force", "displacement"),
+                                      f"bearing stiffness, order {', '.join(qs['stiffness_order'])}", "stiffness")
+        return out
+
+    @property
+    def hinge(self) -> dict | None:
+        """{"source", "translational" (H_u 3x3) [N/m], "bending" (H_psi, 2) [N.m/rad]} of the
+        scene ("given") or of identify/hinge.toml ("fe"); None for hinge.source = "none"."""
+        from .stiffness_export import hinge_of
+
+        return hinge_of(self.scene, self.stage_dir("identify"))
+
+    def timeseries(self, names: Iterable[str] | None = None) -> TimeSeries:
+        """`simulate/timeseries.h5` as name -> NamedArray (all series, or only `names`)."""
+        from .results.timeseries import read_timeseries
+
+        path = self._file("simulate", "timeseries.h5")
+        series, attrs = read_timeseries(path, names)
+        arrays = {n: NamedArray(s.data, s.units, s.dims, s.description, n) for n, s in series.items()}
+        return TimeSeries(arrays, attrs, path)
+
+    def impacts(self) -> dict[str, NamedArray]:
+        """`simulate/impacts.csv` as column name -> NamedArray over dimension "impact"."""
+        path = self._file("simulate", "impacts.csv")
+        with open(path, newline="", encoding="utf-8") as fh:
+            rows = list(csv.reader(fh))
+        out = {}
+        for j, header in enumerate(rows[0]):
+            name, _, unit = header.partition(" [")
+            values = np.array([float(r[j]) for r in rows[1:]], dtype=float)
+            if name == "ball":
+                values = values.astype(int)
+            out[name] = NamedArray(values, unit.rstrip("]"), ("impact",), f"ball-pocket impact: {name.replace('_', ' ')}", name)
+        return out
+
+    @property
+    def report(self) -> Path | None:
+        """The HTML report, when the report stage has run."""
+        path = self.stage_dir("report") / "report.html"
+        return path if path.is_file() else None
+
+    def stiffness(self, speeds_rpm: Iterable[float] | None = None, write: bool = True):
+        """Bearing and hinge stiffness over inner-ring speeds (see
+        :func:`bearingsim.pipeline.stiffness_export.export_stiffness`)."""
+        from .stiffness_export import export_stiffness, stiffness_table
+
+        if write:
+            return export_stiffness(self.scene, self.run_dir, speeds_rpm)
+        return stiffness_table(self.scene, speeds_rpm, identify_dir=self.stage_dir("identify"))
+
+
+def open_run(run_dir: str | Path) -> Run:
+    """A :class:`Run` of an existing run directory (its scene from `<run_dir>/scene.toml`)."""
+    run_dir = Path(run_dir)
+    scene_file = run_dir / "scene.toml"
+    if not scene_file.is_file():
+        raise FileNotFoundError(f"{run_dir} is not a run directory: it has no scene.toml")
+    return Run(load_scene(scene_file), run_dir.absolute())

@@ -1,0 +1,88 @@
+"""What the user reads on the terminal: consoles that never eat text, and advice in scene keys.
+
+Rich treats `[m]`, `[s]`, `[rev/min]` or `[lubricant]` as markup and `:smile:` as an emoji;
+units and scene text would vanish from messages. Every message built from user or scene
+text goes through :func:`escape`, and the consoles have emoji replacement off.
+
+The solvers' own hints speak of their settings (`tol`, `max_newton_iter`, ...), which are
+not scene keys; :func:`explain` turns a failure into a message whose advice names only keys
+of docs/scenes.md.
+"""
+
+from __future__ import annotations
+
+import re
+
+from rich.console import Console
+from rich.markup import escape
+
+__all__ = ["escape", "make_console", "explain", "finding_lines", "INTEGRATION_HINTS", "PHRASES"]
+
+
+def make_console(stderr: bool = False) -> Console:
+    return Console(stderr=stderr, emoji=False)
+
+
+# The integrator's failure reasons (dynamics/multibody/results.py, Result.value) -> what to
+# change in the scene.
+INTEGRATION_HINTS = {
+    "Newton iteration diverged": (
+        "lower solver.max_step and solver.first_step (or solver.min_step, so the step controller may "
+        "cut the step further); a very stiff hinge (hinge.translational, hinge.bending) or contact "
+        "(physics.contact_damping_ratio) needs smaller steps"),
+    "Newton did not converge within max_newton_iter iterations": (
+        "lower solver.max_step or solver.min_step; tighten solver.rtol only if the accuracy needs it"),
+    "residual is NaN or infinite": (
+        "a force became NaN or infinite: check the scene's units (lengths in m, loads in N and N.m, "
+        "speeds in rev/min), lower solver.first_step, and check physics.min_film"),
+    "iteration matrix is singular": (
+        "a body has neither mass nor stiffness: check materials.ball.density, materials.cage.density "
+        "and hinge.source ('none' leaves the inner race free)"),
+}
+
+# Phrases of solver and model messages that name no scene key -> the scene keys they mean.
+PHRASES = (
+    (", or loosen `tol`", ""),
+    ("or loosen `tol`", ""),
+    ("Reduce the axial load or moment, or check the shoulder diameter",
+     "Reduce load.axial or load.moment, or check bearing.inner_shoulder_diameter and "
+     "bearing.outer_shoulder_diameter"),
+    ("try a smaller load or check the geometry",
+     "try a smaller load (load.radial, load.axial, load.moment) or check the [bearing] keys"),
+    ("check the geometry (groove radii, diameters) and the load units (N, N·m)",
+     "check the [bearing] keys (groove radii and diameters, in m) and the load units (load.* in N and N.m)"),
+    ("Try a smaller load, check the clearance and groove radii",
+     "Try a smaller load (load.radial, load.axial, load.moment), check bearing.diametral_clearance "
+     "(form 2) or the groove-centre diameters (form 1) and the groove radii"),
+    ("Raise the operating temperature or check the WLF set.",
+     "Raise lubricant.temperature_degC or check lubricant.wlf_tg0_degC."),
+    ("Check the identified stiffness or give it by hand.",
+     "Check the identified hinge (identify/hinge.toml) or give it by hand: hinge.source = 'given' "
+     "with hinge.translational and hinge.bending."),
+)
+
+_TRY = re.compile(r"\. Try: .*$", re.S)
+
+
+def explain(exc: BaseException) -> str:
+    """`exc` as a one-paragraph message whose advice names scene keys."""
+    text = str(exc)
+    reason = getattr(exc, "reason", None)
+    if type(exc).__name__ == "IntegrationError" and reason in INTEGRATION_HINTS:
+        text = _TRY.sub(f". Try: {INTEGRATION_HINTS[reason]}.", text)
+    for phrase, replacement in PHRASES:
+        text = text.replace(phrase, replacement)
+    return text
+
+
+def finding_lines(findings, prefix: str = "") -> list[str]:
+    """Console lines (markup, user text escaped) for validity findings (Finding or dicts)."""
+    lines = []
+    for f in findings:
+        level = f.get("level") if isinstance(f, dict) else f.level
+        key = f.get("key") if isinstance(f, dict) else f.key
+        message = f.get("message") if isinstance(f, dict) else f.message
+        text = f"{key}: {message}" if key else str(message)
+        style = "bold red" if level == "error" else "yellow"
+        lines.append(f"[{style}]{level}:[/] {escape(prefix + text)}")
+    return lines

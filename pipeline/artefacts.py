@@ -370,3 +370,19 @@ def run_directory_lock(run_dir: Path) -> Iterator[None]:
             yield
         finally:
             fcntl.flock(handle, fcntl.LOCK_UN)
+
+
+# Stages worth sharing between run directories by default: the FE identification (~30 s, the
+# same for every scene with the same [fe] and ring geometry). Dynamic results are per scene.
+SHARED_STAGES = frozenset({"identify"})
+
+
+def shared_store_dir() -> Path:
+    """The stage store shared by all run directories of this user: $BEARINGSIM_STAGE_STORE,
+    else $XDG_CACHE_HOME/bearingsim/stages (default ~/.cache/bearingsim/stages)."""
+    import os
+
+    if os.environ.get("BEARINGSIM_STAGE_STORE"):
+        return Path(os.environ["BEARINGSIM_STAGE_STORE"])
+    base = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache")
+    return base / "bearingsim" / "stages"

@@ -40,6 +40,9 @@ EXIT_SCENE, EXIT_UNAVAILABLE, EXIT_FAILED, EXIT_INTERRUPTED = 2, 3, 1, 130
 SceneArg = Annotated[str, typer.Argument(help="Scene TOML file, or the name of a built-in scene (see `bearingsim scenes`).")]
 OutOpt = Annotated[Optional[Path], typer.Option("--out", help="Run directory [default: runs/<scene name>/].")]
 ForceOpt = Annotated[bool, typer.Option("--force", help="Recompute even when cached results are up to date.")]
+NoStoreOpt = Annotated[bool, typer.Option(
+    "--no-store", help="Do not share the FE identification through the user's stage store "
+                       "(~/.cache/bearingsim/stages): compute it in this run directory only.")]
 SetOpt = Annotated[Optional[list[str]], typer.Option(
     "--set", metavar="KEY=VALUE",
     help="Override a scene key for this run (repeatable), e.g. --set load.moment=250.")]
@@ -65,7 +68,8 @@ def _print_findings(findings, prefix: str = "") -> None:
         err_console.print(line, highlight=False, soft_wrap=True)
 
 
-def _pipeline(scene_arg: str, overrides, out, targets: list[str], force: set[str], quiet: bool = False):
+def _pipeline(scene_arg: str, overrides, out, targets: list[str], force: set[str], quiet: bool = False,
+              shared: bool = True):
     """Load, validate, then run `targets` with progress on stderr; map errors to exit codes.
 
     Everything that can be checked without solving is checked before any file is written:
@@ -89,10 +93,11 @@ def _pipeline(scene_arg: str, overrides, out, targets: list[str], force: set[str
             _fail(EXIT_FAILED, str(exc))
         except OSError as exc:
             _fail(EXIT_FAILED, f"cannot lock {run_dir}/: {exc.strerror or exc}")
-        outcomes = _run_locked(scene, scene_arg, run_dir, targets, force, quiet, notes)
+        outcomes = _run_locked(scene, scene_arg, run_dir, targets, force, quiet, notes, shared)
     if not quiet:
         for o in outcomes:
-            extra = f" in {o.wall_time:.2f} s" if o.status == "computed" else ""
+            extra = (f" in {o.wall_time:.2f} s" if o.status == "computed"
+                     else " (reused: same inputs as an earlier run)" if o.status == "from store" else "")
             err_console.print(f"  {o.name:<12} {o.status}{extra}", highlight=False)
     for o in outcomes:
         _print_findings(o.warnings, f"{o.name}: ")
@@ -101,7 +106,7 @@ def _pipeline(scene_arg: str, overrides, out, targets: list[str], force: set[str
     return scene, run_dir, outcomes
 
 
-def _run_locked(scene, scene_arg, run_dir, targets, force, quiet, notes=()):
+def _run_locked(scene, scene_arg, run_dir, targets, force, quiet, notes=(), shared=True):
     """The stages of `_pipeline`, run while it holds the run directory's lock."""
     from .run_session import run_log
 
@@ -111,11 +116,12 @@ def _run_locked(scene, scene_arg, run_dir, targets, force, quiet, notes=()):
         except OSError as exc:
             _fail(EXIT_SCENE, f"--out {run_dir}: cannot write run.log there ({exc.strerror or exc}); give a "
                               "writable directory")
-        return _run_stages_reported(scene, scene_arg, run_dir, targets, force, quiet, notes)
+        return _run_stages_reported(scene, scene_arg, run_dir, targets, force, quiet, notes, shared)
 
 
-def _run_stages_reported(scene, scene_arg, run_dir, targets, force, quiet, notes):
+def _run_stages_reported(scene, scene_arg, run_dir, targets, force, quiet, notes, shared=True):
     """The stages, with every failure logged to run.log and mapped to an exit code."""
+    from .artefacts import SHARED_STAGES, shared_store_dir
     from .run_session import run_stages_logged
     from .scene import read_scene_table
 
@@ -124,7 +130,8 @@ def _run_stages_reported(scene, scene_arg, run_dir, targets, force, quiet, notes
     try:
         with _StageProgress(quiet) as bar:
             return run_stages_logged(scene, run_dir, targets, force, read_scene_table(scene_arg)[1],
-                                     notes=notes, progress=bar.update)
+                                     notes=notes, progress=bar.update,
+                                     store=shared_store_dir() if shared else None, store_stages=SHARED_STAGES)
     except KeyboardInterrupt:
         log.warning("interrupted by the user (Ctrl-C); finished stages are kept, the interrupted one "
                     "left nothing behind")
@@ -280,7 +287,7 @@ def stiffness(scene: SceneArg,
 
 
 @app.command()
-def identify(scene: SceneArg, out: OutOpt = None, set_: SetOpt = None) -> None:
+def identify(scene: SceneArg, out: OutOpt = None, set_: SetOpt = None, no_store: NoStoreOpt = False) -> None:
     """Rerun only the FE hinge identification stage (its cache is ignored)."""
     try:
         resolved = _load(scene, set_)
@@ -289,22 +296,26 @@ def identify(scene: SceneArg, out: OutOpt = None, set_: SetOpt = None) -> None:
     if resolved.hinge.source != "fe":
         _fail(EXIT_SCENE, f"scene: hinge.source: is {resolved.hinge.source!r}; identification runs only "
                           "for hinge.source = 'fe' (try --set hinge.source=fe)")
-    _pipeline(scene, set_, out, ["identify"], {"identify"})
+    _pipeline(scene, set_, out, ["identify"], {"identify"}, shared=not no_store)
 
 
 @app.command()
-def simulate(scene: SceneArg, out: OutOpt = None, force: ForceOpt = False, set_: SetOpt = None) -> None:
+def simulate(scene: SceneArg, out: OutOpt = None, force: ForceOpt = False, set_: SetOpt = None,
+             no_store: NoStoreOpt = False) -> None:
     """Dynamic run (and the stages it needs): cage orbit, speed, impacts, contact forces."""
-    _, run_dir, _ = _pipeline(scene, set_, out, ["simulate"], {"simulate"} if force else set())
+    _, run_dir, _ = _pipeline(scene, set_, out, ["simulate"], {"simulate"} if force else set(), shared=not no_store)
     _print_verdict(run_dir)
 
 
 @app.command()
-def run(scene: SceneArg, out: OutOpt = None, force: ForceOpt = False, set_: SetOpt = None) -> None:
-    """Full pipeline: identify -> quasistatic -> simulate -> report (cached stages are skipped)."""
+def run(scene: SceneArg, out: OutOpt = None, force: ForceOpt = False, set_: SetOpt = None,
+        no_store: NoStoreOpt = False) -> None:
+    """Full pipeline: identify -> quasistatic -> simulate -> report (cached stages are skipped;
+    the FE identification is shared between run directories with the same FE inputs)."""
     from .stages import STAGE_NAMES
 
-    _, run_dir, _ = _pipeline(scene, set_, out, ["report"], set(STAGE_NAMES) if force else set())
+    _, run_dir, _ = _pipeline(scene, set_, out, ["report"], set(STAGE_NAMES) if force else set(),
+                              shared=not no_store)
     _print_verdict(run_dir)
 
 

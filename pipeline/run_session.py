@@ -52,7 +52,8 @@ def run_log(run_dir: Path):
 
 
 def run_stages_logged(scene, run_dir: Path, targets: list[str], force: set[str], origin: str, *,
-                      notes=(), progress=None, store: Path | None = None, label: str = "") -> list:
+                      notes=(), progress=None, store: Path | None = None, store_stages=None,
+                      label: str = "") -> list:
     """Inside `claimed(run_dir)` and `run_log(run_dir)`: log what runs, drop a killed run's
     temporaries, write the provenance (scene.toml, versions.json), run the stages. Returns
     the StageOutcomes."""
@@ -68,4 +69,5 @@ def run_stages_logged(scene, run_dir: Path, targets: list[str], force: set[str],
     if stale:
         log.info("removed temporaries of an earlier, killed run: %s", ", ".join(stale))
     write_run_provenance(run_dir, scene.raw, origin)
-    return run_stages(scene, run_dir, STAGES, targets, set(force), progress=progress, store=store)
+    return run_stages(scene, run_dir, STAGES, targets, set(force), progress=progress, store=store,
+                      store_stages=store_stages)

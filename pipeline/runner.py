@@ -83,12 +83,14 @@ def run_stages(
     force: set[str] = frozenset(),
     progress: Callable[[str, str, float], None] | None = None,
     store: Path | None = None,
+    store_stages: frozenset[str] | set[str] | None = None,
 ) -> list[StageOutcome]:
     """Run `targets` (stage names, in order) and whatever they need, caching by input key.
 
     `store`: optional directory shared by many run directories (the points of a sweep).
     A stage whose key is in the store is linked from it instead of recomputed, and a
-    computed stage is published to it (see :func:`_via_store`).
+    computed stage is published to it (see :func:`_via_store`). `store_stages`: the stages
+    that go through the store (None: all of them).
     """
     by_name = {s.name: s for s in stages}
     order = _closure(by_name, targets)
@@ -117,7 +119,7 @@ def run_stages(
         if state == "damaged":
             log.warning("stage %s: the cached result is damaged (%s changed or missing since the stage "
                         "wrote it): recomputing", name, ", ".join(damaged[:5]))
-        if store is None:
+        if store is None or (store_stages is not None and name not in store_stages):
             outcomes.append(compute_stage(stage, scene, run_dir, key, up, progress))
         else:
             outcomes.append(_via_store(stage, scene, run_dir, key, up, progress, Path(store), name in force))

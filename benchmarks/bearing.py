@@ -18,23 +18,22 @@ import numpy as np
 
 def _model(scene_name: str, overrides: list[str]):
     from bearingsim.pipeline.scene import load_scene
-    from bearingsim.pipeline.stages.simulate import build_model, hht_settings
+    from bearingsim.pipeline.stages.simulate import build_model
 
     scene = load_scene(scene_name, overrides)
     params, start = build_model(scene)
-    return scene, params, start, hht_settings(scene)
+    return scene, params, start, scene.solver
 
 
 def run_hht(params, start, settings, duration: float) -> dict:
-    from bearingsim.dynamics.bearing import layout, simulate_bearing
+    from bearingsim.dynamics.bearing import simulate_bearing
 
     simulate_bearing(params, start, settings, min(duration, 2e-5), 1e-5)  # compile / load cache
     t0 = time.perf_counter()
     run = simulate_bearing(params, start, settings, duration, 1e-5)
     wall = time.perf_counter() - t0
     return {**run.stats, "wall": wall, "us_per_step": wall / max(run.stats["steps"], 1) * 1e6,
-            "cage_speed_end": float(run.v[-1, layout.cage_offset(params.ball_count, True) + 5])
-            if params.has_cage else None}
+            "cage_speed_end": float(run.channels()["cage/speed"].data[-1]) if params.has_cage else None}
 
 
 

@@ -50,12 +50,13 @@ def time_call(fn, repeats, rounds=5):
 
 
 @numba.njit
-def _compiled_loop(n, x_b, v_b, w_b, x_c, rot, v_c, w_c, psi, speeds, pocket_p, off, vel, wc, wr, journal_p):
-    """What an njit residual pays: n x (22 pockets + 1 journal), no Python dispatch."""
+def _compiled_loop(n, pocket_args, journal_args):
+    """What an njit residual pays: n x (22 pockets + 1 journal), no Python dispatch; the
+    arguments of `pocket_contacts` and of `cage_race_journal` as two tuples."""
     total = 0.0
     for _ in range(n):
-        total += pocket_contacts(x_b, v_b, w_b, x_c, rot, v_c, w_c, psi, speeds, pocket_p)[0, 3]
-        total += cage_race_journal(off, vel, wc, wr, journal_p)[0]
+        total += pocket_contacts(*pocket_args)[0, 3]
+        total += cage_race_journal(*journal_args)[0]
     return total
 
 
@@ -70,7 +71,7 @@ def main(repeats: int = 20000) -> None:
         pockets()
         journal()
 
-    loop_args = (x_b, v_b, w_b, x_c, rot, v_c, w_c, psi, speeds, pocket_p, off, vel, wc, wr, journal_p)
+    loop_args = ((x_b, v_b, w_b, x_c, rot, v_c, w_c, psi, speeds, pocket_p), (off, vel, wc, wr, journal_p))
     compiled = time_call(lambda: _compiled_loop(1000, *loop_args), max(1, repeats // 1000)) / 1000
     rows = [
         ("1 pocket contact (in contact)", time_call(one_pocket, repeats)),

@@ -60,9 +60,10 @@ def _points(n: int, lub, seed: int = 1) -> np.ndarray:
 
 
 @numba.njit
-def _loop(repeats, a, b, p_h, h, du0, dv0, w_s, tau0, eta_table, p_step, rule, work, iwork, F, J, flags):
+def _loop(repeats, contacts, rule, F, J, flags):
+    a, b, p_h, h, du0, dv0, w_s = contacts
     for _ in range(repeats):
-        traction_fast_batch(a, b, p_h, h, du0, dv0, w_s, tau0, eta_table, p_step, rule, work, iwork, F, J, flags)
+        traction_fast_batch(a, b, p_h, h, du0, dv0, w_s, rule, F, J, flags)
 
 
 def time_batch(ft: FastTraction, P: np.ndarray, repeats: int = 400, runs: int = 7) -> float:
@@ -70,7 +71,7 @@ def time_batch(ft: FastTraction, P: np.ndarray, repeats: int = 400, runs: int = 
     cols = [np.ascontiguousarray(c) for c in P.T]
     n = P.shape[0]
     out = (np.empty((n, 3)), np.empty((n, 3, 3)), np.empty(n, dtype=np.int64))
-    args = (*cols, ft.tau0, ft.eta_table, ft.p_step, ft.rule, *ft.workspace(), *out)
+    args = (tuple(cols), ft.traction_rule(), *out)
     _loop(1, *args)
     best = math.inf
     for _ in range(runs):

@@ -9,8 +9,10 @@ this option). Kernels that allocate nothing and return no array need none of it.
 
 With `_nrt=False` numba refuses to compile an allocation, an array return, or a call to
 a function that returns an array, so these kernels can only borrow the caller's arrays
-(and views of them), which outlive the call. tests/test_bearing_model.py checks that the
-arrays passed through the model keep their reference counts.
+(and views of them), which outlive the call. Named bundles of such arrays (NamedTuples,
+dynamics/bearing/bundles.py) are plain structs of borrowed arrays: these kernels take them,
+and build them from views, without any reference counting. tests/test_bearing_model.py
+checks that the arrays passed through the model keep their reference counts.
 """
 
 NO_REFCOUNT = {"cache": True, "_nrt": False}

@@ -196,9 +196,13 @@ class CageGeometry:
     mean_diameter: float = field(metadata={"unit": "m", "gt": 0.0, "doc": "cage mean diameter (pocket centres)"})
     pocket_diameter: float = field(metadata={"unit": "m", "gt": 0.0, "doc": "cylindrical pocket diameter (pocket clearance = pocket_diameter - D)"})
     radial_thickness: float = field(metadata={"unit": "m", "gt": 0.0, "doc": "cage radial thickness (outside diameter = mean + thickness)"})
-    width: float = field(metadata={"unit": "m", "gt": 0.0, "doc": "ring width B"})
+    width: float = field(metadata={"unit": "m", "gt": 0.0, "doc": "cage axial width w_c (sets its overlap with the guide lands)"})
     guidance: str = field(default="outer", metadata={"choices": ("outer", "inner"),
                                                      "doc": "which race's lands guide the cage"})
+    land_roughness: float = field(default=1.0e-6, metadata={
+        "unit": "m", "gt": 0.0, "lt": 1e-4,
+        "doc": "composite RMS roughness sigma = sqrt(Rq_rim^2 + Rq_land^2) of cage rim and guide land: "
+               "the film-thickness ratio h_min/sigma of the verdict (ground land ~0.25 um, bronze rim ~1 um)"})
 
     def __post_init__(self) -> None:
         if self.radial_thickness >= self.mean_diameter:

@@ -53,17 +53,6 @@ def set_uniform_size(gmsh, size: float) -> None:
     gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 1)
 
 
-def refine_near_curves(gmsh, size: float, ratio: float, curves: list[int] | None = None) -> None:
-    """Grade the size from `ratio * size` on every geometric curve to `size` at 3 sizes away.
-
-    The curves of an assembly of tubes are its circular edges: re-entrant corners and
-    material junctions, where the stress is singular and uniform meshes converge slowly.
-    """
-    if curves is None:
-        curves = [tag for _, tag in gmsh.model.getEntities(1)]
-    grade_towards_curves(gmsh, size, [(curves, ratio)], reach=3.0)
-
-
 def grade_towards_curves(gmsh, size: float, refinements: list[tuple[list[int], float]], reach: float) -> None:
     """Background size field: `ratio * size` on each group of curves, growing linearly to
     `size` at `reach * size` from them; where zones overlap the smallest size wins.

@@ -1,8 +1,9 @@
 """The sections of a scene file (docs/scenes.md), one frozen dataclass each, SI units.
 
-Physical sections (`[bearing]`, `[cage]`, `[materials]`) reuse the dynamics' own types;
-the ones below are the scene-only sections. Field metadata gives unit and range; the
-generic builder in :mod:`pipeline.schema` enforces them.
+Physical sections (`[bearing]`, `[cage]`, `[materials]`) and the settings the dynamics take
+(`[physics]`, the integrator's part of `[solver]`) reuse the dynamics' own types; the ones
+below are the scene-only sections. Field metadata gives unit and range; the generic builder
+in :mod:`pipeline.schema` enforces them.
 """
 
 from __future__ import annotations
@@ -10,7 +11,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from bearingsim.dynamics.bearing.options import ModelOptions
 from bearingsim.dynamics.geometry import Material
+from bearingsim.dynamics.multibody.settings import HHTSettings
 
 
 @dataclass(frozen=True)
@@ -121,24 +124,21 @@ class Hinge:
         return [list(t[0:3]), list(t[3:6]), list(t[6:9])]
 
 
-@dataclass(frozen=True)
-class SolverSettings:
-    """Numerical settings of the dynamic stage (docs/model.md §9)."""
+# `[physics]` is built straight into the model's options: each key is defined once, with its
+# unit, range and doc, in dynamics/bearing/options.py (the quasi-static stage reads
+# `centrifugal` and `gyroscopic` from it too).
+Physics = ModelOptions
 
-    alpha: float = field(default=0.1, metadata={"unit": "-", "ge": 0.0, "le": 1.0 / 3.0, "doc": "HHT-alpha numerical damping (0: trapezoidal rule)"})
+
+@dataclass(frozen=True)
+class SolverSettings(HHTSettings):
+    """`[solver]`: the integrator's settings (dynamics/multibody/settings.py, docs/model.md §9),
+    passed to it as they are, plus the length of the run."""
+
     duration: float = field(default=0.8, metadata={"unit": "s", "gt": 0.0, "doc": "simulated time"})
-    first_step: float = field(default=1e-6, metadata={"unit": "s", "gt": 0.0, "doc": "first time step"})
-    min_step: float = field(default=1e-8, metadata={"unit": "s", "gt": 0.0, "doc": "smallest step before the run gives up"})
-    max_step: float = field(default=2e-6, metadata={"unit": "s", "gt": 0.0, "doc": "largest step"})
-    rtol: float = field(default=1e-4, metadata={"unit": "-", "gt": 0.0, "lt": 1.0, "doc": "relative tolerance of the step controller (of the position coordinates)"})
-    atol: float = field(default=1e-9, metadata={"unit": "m", "gt": 0.0, "doc": "absolute tolerance of the step controller (positions)"})
 
     def __post_init__(self) -> None:
-        if not self.min_step <= self.first_step <= self.max_step:
-            raise ValueError(
-                f"steps must satisfy min_step <= first_step <= max_step, got "
-                f"{self.min_step:g} <= {self.first_step:g} <= {self.max_step:g} [s]"
-            )
+        super().__post_init__()
         if self.max_step > self.duration:
             raise ValueError(
                 f"max_step = {self.max_step:g} s exceeds duration = {self.duration:g} s"
@@ -146,43 +146,6 @@ class SolverSettings:
 
 
 @dataclass(frozen=True)
-class Physics:
-    """Switches and contact parameters: what a scene does not need is not computed."""
-
-    ehd_film: bool = field(default=True, metadata={
-        "doc": "compute the EHD central film of every ball-race contact (needs [lubricant])"})
-    traction: str = field(default="eyring", metadata={"choices": ("eyring", "coulomb", "none"), "doc": "ball-race traction: Eyring lubricant (film needed), Coulomb (dry) or none"})
-    cage_race: str = field(default="hybrid", metadata={"choices": ("hybrid", "hydrodynamic", "dry", "none"), "doc": "cage-land law: hybrid film/metal (paper eqs. 25-31), film only, metal only, or no contact"})
-    centrifugal: bool = field(default=True, metadata={
-        "doc": "ball centrifugal force in the quasi-static solve; the dynamic model's inertia always has it, so a dynamic run refuses false"})
-    gyroscopic: bool = field(default=True, metadata={
-        "doc": "gyroscopic moments: of the balls in the quasi-static solve (race control), of every body in the dynamics"})
-    film_formula: str = field(default="nvm", metadata={
-        "choices": ("nvm", "hamrock-dowson"), "doc": "central film: Nijenbanning-Venner-Moes or Hamrock-Dowson"})
-    min_film: float = field(default=5e-8, metadata={
-        "unit": "m", "gt": 0.0, "doc": "floor of the film used by traction (mixed lubrication is not modelled)"})
-    dry_friction: float = field(default=0.1, metadata={
-        "unit": "-", "ge": 0.0, "le": 1.0, "doc": "ball-race Coulomb coefficient (traction = 'coulomb')"})
-    contact_damping_ratio: float = field(default=0.05, metadata={
-        "unit": "-", "ge": 0.0, "le": 1.0, "doc": "ball-race normal damping, fraction of critical for a ball on its Hertz stiffness"})
-    pocket_friction: float = field(default=0.1, metadata={"unit": "-", "ge": 0.0, "le": 1.0, "doc": "ball-pocket Coulomb coefficient (regularised)"})
-    pocket_restitution: float = field(default=0.7, metadata={"unit": "-", "gt": 0.0, "le": 1.0, "doc": "coefficient of restitution of ball-pocket impacts (Hunt-Crossley damping)"})
-    cage_race_friction: float = field(default=0.1, metadata={
-        "unit": "-", "ge": 0.0, "le": 1.0, "doc": "metal-to-metal friction at the guide land"})
-    cage_race_boundary: float = field(default=0.05, metadata={
-        "unit": "-", "gt": 0.0, "lt": 1.0, "doc": "epsilon_0: boundary-layer width of the hybrid model / C"})
-    cage_race_film: str = field(default="dynamic", metadata={
-        "choices": ("dynamic", "static"),
-        "doc": "land film force: 'dynamic' = short bearing with the squeeze and whirl terms of the Reynolds "
-               "equation (docs/model.md M.94b-M.94e); 'static' = the paper's eq. 25 (a centre at rest)"})
-    cage_race_lands: int = field(default=2, metadata={
-        "unit": "-", "ge": 1, "le": 2,
-        "doc": "separate guide lands the cage overlap is split into: 2 = one on each side of the race groove, "
-               "which vents the film (each a short bearing of half the length); 1 = the paper's single journal"})
-    coulomb_regularisation: float = field(default=1e-3, metadata={
-        "unit": "m/s", "gt": 0.0, "doc": "slip speed over which Coulomb friction (traction = 'coulomb') reaches its full value"})
-
-
-@dataclass(frozen=True)
 class Output:
     sample_interval: float = field(default=1e-5, metadata={"unit": "s", "gt": 0.0, "doc": "interval of the saved time series"})
+    figures: bool = field(default=True, metadata={"doc": "draw the PNG figures of the quasistatic and simulate stages; false skips them (results are the same; sweeps: [sweep] figures = false)"})

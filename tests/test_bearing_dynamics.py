@@ -8,8 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from bearingsim.dynamics.bearing import ModelOptions, layout, simulate_bearing
-from bearingsim.dynamics.bearing import assembly as A
+from bearingsim.dynamics.bearing import ModelOptions, simulate_bearing
 from bearingsim.dynamics.lubrication.lubricant import load_builtin_lubricant
 from bearingsim.dynamics.multibody.settings import HHTSettings
 
@@ -30,8 +29,7 @@ def case_b():
 
 
 def cage_speed(params, r):
-    c = layout.cage_offset(params.ball_count, True)
-    return r.v[:, c + 5]  # material spin of the nearly untilted cage ~ speed about +z
+    return r.channels()["cage/speed"].data
 
 
 def test_cage_speed_near_epicyclic(case_b):
@@ -57,9 +55,9 @@ def test_energy_balance(case_b):
     """Work of the drive and of the applied loads = dissipation + change of kinetic and
     elastic (Hertz, hinge) energy, integrated step by step (trapezoid on accepted steps)."""
     params, start, r = case_b
-    d = r.diag
-    stored = (r.kinetic[-1] - r.kinetic[0]) + (d[-1, A.DG_V_HERTZ] - d[0, A.DG_V_HERTZ]) \
-        + (d[-1, A.DG_V_HINGE] - d[0, A.DG_V_HINGE])
+    series = r.channels()
+    stored = sum(series[name].data[-1] - series[name].data[0]
+                 for name in ("energy/kinetic", "energy/hertz", "energy/hinge"))
     supplied = r.energy["drive"] + r.energy["external"] - r.energy["dissipated"]
     # the drive delivers ~2 J in 10 ms; the balance must close to 1 % of that
     assert abs(supplied - stored) < 0.01 * abs(r.energy["drive"])
@@ -76,19 +74,20 @@ def test_cage_stays_in_clearance_without_moment_and_cage_race_physics():
     """No moment, no cage–race model: nothing pushes the cage sideways, so its centre must
     stay well inside the guide clearance (it is held by the balls through the pockets)."""
     params, start, r = run(moment=0.0, duration=0.006, cage_race="none")
-    c = layout.cage_offset(params.ball_count, True)
-    offset = np.hypot(r.q[:, c], r.q[:, c + 1])
+    centre = r.channels()["cage/position"].data
+    offset = np.hypot(centre[:, 0], centre[:, 1])
     assert offset.max() < 0.5 * params.guide_clearance
 
 
 def _contact_direction(params, r):
     """Circular mean of the land contact azimuth, weighted by the metal normal force."""
-    w = r.diag[:, A.DG_METAL]
-    az = r.diag[:, A.DG_AZIMUTH]
+    series = r.channels()
+    w = series["cage_race/metal_force"].data
+    az = series["cage_race/contact_azimuth"].data
     if w.sum() <= 0.0:  # no metal contact yet: use the direction the cage centre sits in
-        c = layout.cage_offset(params.ball_count, True)
-        w = np.hypot(r.q[:, c], r.q[:, c + 1])
-        az = np.arctan2(r.q[:, c + 1], r.q[:, c])
+        centre = series["cage/position"].data
+        w = np.hypot(centre[:, 0], centre[:, 1])
+        az = np.arctan2(centre[:, 1], centre[:, 0])
     return math.atan2(np.sum(w * np.sin(az)), np.sum(w * np.cos(az)))
 
 

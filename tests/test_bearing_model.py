@@ -8,11 +8,10 @@ import pytest
 
 from bearingsim.dynamics.bearing import BearingModel, ModelOptions
 from bearingsim.dynamics.bearing import layout
-from bearingsim.dynamics.bearing.params import FP_MB
 from bearingsim.dynamics.bearing.run import initial_coordinates
 from bearingsim.dynamics.multibody.crv import update_configuration
 
-from .bearing_fixtures import reference_model
+from .bearing_fixtures import REFERENCE, STEEL, reference_model
 
 
 @pytest.fixture(scope="module")
@@ -52,13 +51,14 @@ def _centripetal_ratio(moment: float) -> tuple[np.ndarray, np.ndarray, object, o
     model = BearingModel(params)
     q, v = initial_coordinates(params, start)
     g = forces(model, q, v)
-    w_c, m_b = start["cage_angular_speed"], params.fp[FP_MB]
+    w_c, m_b = start["cage_angular_speed"], params.ball_mass
     ratio, axial = np.empty(params.ball_count), np.empty(params.ball_count)
+    balls_q, balls_g = layout.ball_states(q, params.ball_count), layout.ball_states(g, params.ball_count)
     for k in range(params.ball_count):
-        x = q[6 * k:6 * k + 3]
+        x, f = balls_q[k, :3], balls_g[k, :3]
         rho = np.hypot(x[0], x[1])
-        ratio[k] = (g[6 * k:6 * k + 2] @ x[:2] / rho) / (-m_b * w_c**2 * rho)
-        axial[k] = g[6 * k + 2] / (m_b * w_c**2 * rho)
+        ratio[k] = (f[:2] @ x[:2] / rho) / (-m_b * w_c**2 * rho)
+        axial[k] = f[2] / (m_b * w_c**2 * rho)
     return ratio, axial, params, g
 
 
@@ -89,29 +89,33 @@ def test_contact_forces_are_equal_and_opposite(dry):
     """Sum of all generalised contact forces on balls + inner race + cage, plus the outer
     race's share, is the applied load: checked through linear momentum with the outer race
     removed from the sum — so here via one ball–race contact's wrench pair."""
-    from bearingsim.dynamics.bearing.race_forces import N_CONTACT_SCRATCH, N_RC, RC_FB, RC_FR, RC_MB, RC_MR, race_contact
+    from bearingsim.dynamics.bearing.bundles import Ball, Body, ContactScratch
+    from bearingsim.dynamics.bearing.race_forces import N_CONTACT_SCRATCH, RACE_ROW, race_contact
     from bearingsim.dynamics.multibody.crv import crv_to_matrix
 
     params, _, model, q, v = dry
     o = layout.inner_offset(params.ball_count)
     R = crv_to_matrix(q[o + 3:o + 6])
-    res, cbuf, tbuf = np.zeros(N_RC), np.zeros(N_CONTACT_SCRATCH), np.zeros(12)
+    res = np.zeros(RACE_ROW.size)
     x_b, x_r = q[0:3].copy(), q[o:o + 3].copy()
-    hit = race_contact(x_b, v[0:3].copy(), v[3:6].copy(), x_r, R, v[o:o + 3].copy(), R @ v[o + 3:o + 6],
-                       False, params.fp, params.ip, params.hertz_inner, params.eta_table,
-                       params.traction_rule, params.traction_work, params.traction_iwork, cbuf, tbuf, res, True)
+    ball = Ball(x_b, v[0:3].copy(), v[3:6].copy())
+    race = Body(x_r, R, v[o:o + 3].copy(), R @ v[o + 3:o + 6])
+    hit = race_contact(ball, race, False, params.fp, params.ip, params.races.inner, params.traction,
+                       ContactScratch(np.zeros(N_CONTACT_SCRATCH), np.zeros(12)), res, True)
     assert hit
-    np.testing.assert_allclose(res[RC_FB:RC_FB + 3], -res[RC_FR:RC_FR + 3], rtol=0, atol=1e-9)
+    f_b, f_r = RACE_ROW["force_ball"].view(res), RACE_ROW["force_race"].view(res)
+    m_b, m_r = RACE_ROW["moment_ball"].view(res), RACE_ROW["moment_race"].view(res)
+    np.testing.assert_allclose(f_b, -f_r, rtol=0, atol=1e-9)
     # moments about the race centre balance: m_r + m_b + (x_b - x_r) x f_b = 0
-    total = res[RC_MR:RC_MR + 3] + res[RC_MB:RC_MB + 3] + np.cross(x_b - x_r, res[RC_FB:RC_FB + 3])
-    assert np.abs(total).max() < 1e-9 * np.abs(res[RC_FB:RC_FB + 3]).max()
+    total = m_r + m_b + np.cross(x_b - x_r, f_b)
+    assert np.abs(total).max() < 1e-9 * np.abs(f_b).max()
 
 
 def _fd_tangents(model, q, v, cols):
     n = model.n_dof
     K, C = np.zeros((n, len(cols))), np.zeros((n, len(cols)))
     for c, j in enumerate(cols):
-        rotation = j >= 6 * model.params.ball_count or j % 6 >= 3
+        rotation = j >= layout.inner_offset(model.params.ball_count) or j % layout.BALL_DOF >= 3
         ev, eq = (1e-6 if rotation else 1e-8), 1e-10
         vp, vm = v.copy(), v.copy()
         vp[j] += ev
@@ -161,7 +165,6 @@ def test_tangents_agree_with_finite_differences(case, lubricated, dry):
 def test_physics_switches_remove_the_film():
     """[physics] ehd_film = false: the film kernel is not called (film diagnostics stay 0);
     with it on, every loaded contact reports a film of order 0.1–1 µm."""
-    from bearingsim.dynamics.bearing import assembly as A
     from bearingsim.dynamics.lubrication.lubricant import load_builtin_lubricant
 
     films = {}
@@ -171,8 +174,7 @@ def test_physics_switches_remove_the_film():
         model = BearingModel(params)
         q, v = initial_coordinates(params, start)
         forces(model, q, v)
-        per_ball = model.diag[A.N_DG:].reshape(params.ball_count, A.DB)
-        films[on] = per_ball[:, [A.DB_HI, A.DB_HO]]
+        films[on] = np.stack([model.channel("contacts/inner_film"), model.channel("contacts/outer_film")])
     assert np.all(films[False] == 0.0)
     assert np.all((films[True] > 5e-8) & (films[True] < 5e-6))
 
@@ -189,8 +191,9 @@ def test_kernels_without_reference_counting_neither_leak_nor_drop_references(lub
     n = model.n_dof
     a, ma, g = np.zeros(n), np.zeros(n), np.zeros(n)
     P = params
-    watched = [q, v, a, ma, g, P.fp, P.ip, P.hertz_inner, P.hertz_outer, P.eta_table, P.traction_rule,
-               P.traction_work, P.traction_iwork, P.pocket, P.journal, P.pocket_psi, model.diag, model.K.D]
+    watched = [q, v, a, ma, g, P.fp, P.ip, *P.races, P.traction.eta_table, P.traction.rule, P.traction.work,
+               P.traction.iwork, P.pocket, P.journal, P.pocket_psi, *P.hinge, model.mass, model.impact_speeds,
+               model.diag, model.K.D, model.K.B, model.C.E]
     before = [sys.getrefcount(x) for x in watched]
     for _ in range(50):
         model.evaluate(0.0, q, v, a, ma, g)
@@ -199,38 +202,52 @@ def test_kernels_without_reference_counting_neither_leak_nor_drop_references(lub
     assert np.all(np.isfinite(g)) and np.abs(g).max() > 0.0
 
 
+def _film_inputs(lubricated, outer):
+    """(D, d_m, r, E', eta0, alpha*, min_film) of the reference bearing and oil, from their own
+    objects (not the model's parameter vector)."""
+    from bearingsim.dynamics.geometry import effective_modulus
+    from bearingsim.dynamics.lubrication.lubricant import load_builtin_lubricant
+
+    lub = load_builtin_lubricant("nato-o156")
+    r = REFERENCE.outer_groove_radius if outer else REFERENCE.inner_groove_radius
+    return (REFERENCE.ball_diameter, REFERENCE.pitch_diameter, r, effective_modulus(STEEL, STEEL),
+            lub.eta0, lub.alpha_star, ModelOptions().min_film)
+
+
 @pytest.mark.parametrize("outer", [False, True])
 def test_tabulated_film_equals_the_nvm_formula(lubricated, outer):
     """The time loop's film reads R_x and the lambda-only NVM terms from the race table
-    (race_forces.film_geometry_columns); it must equal film.film_central_nvm with R_x, R_y
+    (race_table.film_geometry_columns); it must equal film.film_central_nvm with R_x, R_y
     computed from the contact angle (docs/model.md §6.2–§6.3) -- over the table's whole range of
     contact angles, between and on its nodes, for loads and speeds of the reference bearing."""
-    from bearingsim.dynamics.bearing.params import FP_ALPHA_P, FP_D, FP_DM, FP_E_EFF, FP_ETA0, FP_MIN_FILM, FP_RI, FP_RO, IP_FILM
-    from bearingsim.dynamics.bearing.race_forces import _curvature_radii, _film
+    from bearingsim.dynamics.bearing.params import FILM_NVM
+    from bearingsim.dynamics.bearing.race_forces import _film
+    from bearingsim.dynamics.bearing.race_table import curvature_radii
     from bearingsim.dynamics.lubrication.film import film_central_nvm
     from bearingsim.dynamics.contact.hertz import table_position
 
     params = lubricated[0]
-    fp, table = params.fp, params.hertz_outer if outer else params.hertz_inner
+    table = params.races.outer if outer else params.races.inner
+    D, d_m, r, e_eff, eta0, alpha_p, min_film = _film_inputs(lubricated, outer)
     rng = np.random.default_rng(5)
     alphas = np.concatenate([rng.uniform(0.0, 1.5, 60), np.linspace(0.0, np.pi / 2, 181)[1:170:7], [-0.45]])
     for alpha in alphas:
         F, u_s = 10 ** rng.uniform(2.0, 3.8), 10 ** rng.uniform(0.5, 1.5)  # 100 N..6 kN, 3..30 m/s
-        Rx, Ry = _curvature_radii(abs(alpha), outer, fp[FP_D], fp[FP_DM], fp[FP_RO] if outer else fp[FP_RI])
-        direct = max(film_central_nvm(F, Rx, Ry, fp[FP_E_EFF], fp[FP_ETA0], fp[FP_ALPHA_P], u_s), fp[FP_MIN_FILM])
-        tabulated = _film(F, alpha, outer, u_s, fp, params.ip[IP_FILM], table, *table_position(table, alpha))
+        Rx, Ry = curvature_radii(abs(alpha), outer, D, d_m, r)
+        direct = max(film_central_nvm(F, Rx, Ry, e_eff, eta0, alpha_p, u_s), min_film)
+        tabulated = _film(F, alpha, outer, u_s, params.fp, FILM_NVM, table, *table_position(table, alpha))
         assert tabulated == pytest.approx(direct, rel=1e-8), alpha
 
 
 @pytest.mark.parametrize("outer", [False, True])
 def test_tabulated_semi_axes_equal_hertz(lubricated, outer):
     """The time loop takes the contact semi-axes as (c k_h^(1/3)) sqrt(delta) from the race
-    table (race_forces.semi_axis_columns); Hertz's a = c_a F^(1/3) with F = k_h delta^(3/2)
+    table (race_table.semi_axis_columns); Hertz's a = c_a F^(1/3) with F = k_h delta^(3/2)
     and the exact table (hertz.hertz_table_eval) must give the same, between the nodes too."""
-    from bearingsim.dynamics.bearing.race_forces import TAB_SEMI_AXES
+    from bearingsim.dynamics.bearing.race_table import TAB_SEMI_AXES
     from bearingsim.dynamics.contact.hertz import hermite, hertz_table_eval, table_position
 
-    table = lubricated[0].hertz_outer if outer else lubricated[0].hertz_inner
+    table = lubricated[0].races.outer if outer else lubricated[0].races.inner
     rng = np.random.default_rng(11)
     for alpha, delta in zip(rng.uniform(0.0, 1.5, 80), 10 ** rng.uniform(-7, -4.5, 80)):
         k_h, _, _, c_a, c_b = hertz_table_eval(table, alpha)
@@ -243,16 +260,32 @@ def test_tabulated_semi_axes_equal_hertz(lubricated, outer):
 def test_hamrock_dowson_film_option_uses_the_contact_curvatures(lubricated):
     """With the Hamrock–Dowson option the model's film is film_hamrock_dowson's central film
     at R_x, R_y of the contact angle (docs/model.md §6.3), not the tabulated NVM terms."""
-    from bearingsim.dynamics.bearing.params import FILM_HD, FP_ALPHA_P, FP_D, FP_DM, FP_E_EFF, FP_ETA0, FP_MIN_FILM, FP_RI
-    from bearingsim.dynamics.bearing.race_forces import _curvature_radii, _film
+    from bearingsim.dynamics.bearing.params import FILM_HD
+    from bearingsim.dynamics.bearing.race_forces import _film
+    from bearingsim.dynamics.bearing.race_table import curvature_radii
     from bearingsim.dynamics.lubrication.film import film_hamrock_dowson
     from bearingsim.dynamics.contact.hertz import table_position
 
     params = lubricated[0]
-    fp, table = params.fp, params.hertz_inner
+    table = params.races.inner
+    D, d_m, r, e_eff, eta0, alpha_p, min_film = _film_inputs(lubricated, False)
     for alpha, F, u_s in [(0.3, 800.0, 12.0), (0.55, 4000.0, 25.0), (0.45, 150.0, 4.0)]:
-        Rx, Ry = _curvature_radii(alpha, False, fp[FP_D], fp[FP_DM], fp[FP_RI])
-        expected = max(film_hamrock_dowson(F, Rx, Ry, fp[FP_E_EFF], fp[FP_ETA0], fp[FP_ALPHA_P], u_s)[0],
-                       fp[FP_MIN_FILM])
-        assert _film(F, alpha, False, u_s, fp, FILM_HD, table, *table_position(table, alpha)) == pytest.approx(
+        Rx, Ry = curvature_radii(alpha, False, D, d_m, r)
+        expected = max(film_hamrock_dowson(F, Rx, Ry, e_eff, eta0, alpha_p, u_s)[0], min_film)
+        assert _film(F, alpha, False, u_s, params.fp, FILM_HD, table, *table_position(table, alpha)) == pytest.approx(
             expected, rel=1e-12)
+
+
+def test_the_direct_kernel_call_is_taken_only_for_arrays_it_can_read(dry):
+    """BearingModel calls the compiled kernel directly once it is typed (model.py `_Kernel`);
+    that call does not check the arrays it unboxes, so a strided array would be read as if it
+    were contiguous. Only contiguous float64 vectors of the model's length may take it;
+    anything else goes through numba's own dispatch."""
+    params, _, model, q, v = dry
+    n = model.n_dof
+    model.evaluate(0.0, q, v, np.zeros(n), np.zeros(n), np.zeros(n))  # types the direct call
+    call = model._kernel_call
+    assert call.entry is not None and call._fits(np.zeros(n))
+    for bad in (np.zeros(2 * n)[::2], np.zeros(n, dtype=np.float32), np.zeros(n, dtype=np.int64),
+                np.zeros(n + 1), np.zeros((1, n)), list(np.zeros(n))):
+        assert not call._fits(bad), bad

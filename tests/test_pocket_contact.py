@@ -35,7 +35,6 @@ from bearingsim.dynamics.contact.pocket import (
     pocket_normal_force,
     pocket_parameters,
     pocket_parameters_for_cage,
-    update_impact_speeds,
 )
 
 STEEL = Material(208e9, 0.3, 7850.0)  # docs/model.md §2 scene values
@@ -245,13 +244,6 @@ def test_impact_restitution(e):
         assert abs(hc - e) > 3 * abs(measured - e)
 
 
-def test_impact_speed_tracking():
-    out = np.zeros((3, 30))
-    out[:, P_OUT_APPROACH] = [0.4, -0.2, 0.7]
-    out[2, P_OUT_IN_CONTACT] = 1.0
-    np.testing.assert_array_equal(update_impact_speeds(out, np.array([9.0, 9.0, 0.35])), [0.4, 0.0, 0.35])
-
-
 # --- batch, twins, set-up -------------------------------------------------------------------
 def test_batch_matches_single_and_python_twins():
     rng = np.random.default_rng(21)
@@ -274,7 +266,6 @@ def test_batch_matches_single_and_python_twins():
     for delta, rate in rng.uniform(-1e-6, 5e-6, (6, 2)):
         np.testing.assert_allclose(pocket_normal_force.py_func(delta, rate, 0.2, 2.5e10, 0.5),
                                    pocket_normal_force(delta, rate, 0.2, 2.5e10, 0.5), rtol=1e-13)
-    np.testing.assert_array_equal(update_impact_speeds.py_func(batch, speeds), update_impact_speeds(batch, speeds))
 
 
 def test_reference_scene_parameters():

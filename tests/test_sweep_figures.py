@@ -4,20 +4,16 @@ scene hashes (figures are output: switching them reruns no finished point)."""
 
 from __future__ import annotations
 
-import dataclasses
 from pathlib import Path
 
 import pytest
 
-from bearingsim.pipeline.scene_sections import Output
 from bearingsim.pipeline.schema import SceneError
 from bearingsim.pipeline.sweep.driver import plan_sweep
 from bearingsim.pipeline.sweep.point_runner import point_run_table, run_point
 from bearingsim.pipeline.sweep.spec import build_sweep_section, with_command_line
 
 SCENE = "helicopter-b-given-hinge"
-# the scene key the point runner sets; until it exists a no-figures sweep is refused clearly
-HAS_OUTPUT_FIGURES = "figures" in {f.name for f in dataclasses.fields(Output)}
 
 
 def test_sweep_table_and_command_line_option():
@@ -30,13 +26,6 @@ def test_sweep_table_and_command_line_option():
         build_sweep_section({"figures": "no"})
 
 
-@pytest.mark.skipif(HAS_OUTPUT_FIGURES, reason="output.figures exists: the option works (tests below)")
-def test_without_output_figures_a_no_figures_sweep_is_refused_before_running(tmp_path):
-    with pytest.raises(SceneError, match=r"sweep\.figures: false needs the scene key output\.figures"):
-        plan_sweep(SCENE, [], ["load.moment=100,300"], out=tmp_path / "sw", figures=False)
-
-
-@pytest.mark.skipif(not HAS_OUTPUT_FIGURES, reason="needs the scene key output.figures")
 def test_no_figures_keeps_point_ids_and_hashes(tmp_path):
     drawn = plan_sweep(SCENE, [], ["load.moment=100,300"], out=tmp_path / "sw")
     bare = plan_sweep(SCENE, [], ["load.moment=100,300"], out=tmp_path / "sw", figures=False)
@@ -47,7 +36,6 @@ def test_no_figures_keeps_point_ids_and_hashes(tmp_path):
     assert point_run_table(drawn.requests[0]) == drawn.requests[0].table
 
 
-@pytest.mark.skipif(not HAS_OUTPUT_FIGURES, reason="needs the scene key output.figures")
 def test_a_no_figures_point_writes_results_but_no_png(tmp_path):
     sets = ["solver.duration=0.002"]
     bare = plan_sweep(SCENE, sets, ["load.moment=300"], out=tmp_path / "bare", figures=False).requests[0]

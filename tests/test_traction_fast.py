@@ -23,6 +23,7 @@ from bearingsim.dynamics.traction import quadrature as traction
 from bearingsim.dynamics.lubrication.lubricant import load_builtin_lubricant
 from bearingsim.dynamics.traction.fast import (
     FLAG_NO_CONTACT, FLAG_OK, FLAG_PRESSURE_CLAMPED, FLAG_SLIP_CLAMPED, FLAG_UNVALIDATED, FastTraction, _accumulate,
+    _Nodes, _NodeValues,
     _accumulate_force, _eyring_argument, _slip_and_table_index, _viscosity_lookup, log_ge1, traction_fast,
 )
 from tests.lubrication_points import (
@@ -203,17 +204,18 @@ def test_passes_equal_their_py_funcs(o156, fast):
             pick(_eyring_argument)(k, r, n, x, z)
             pick(log_ge1)(z, n, fi, iwork, ash)
             out, force_only = np.empty(12), np.full(12, np.nan)
-            pick(_accumulate)(X, Y, W, n, a, b, du0, dv0, w_s, k, r, x, z, ash, out)
-            pick(_accumulate_force)(X, Y, W, n, a, b, du0, dv0, w_s, k, r, x, ash, force_only)
+            nodes, values = _Nodes(X, Y, W), _NodeValues(k, r, x, z, ash)
+            pick(_accumulate)(nodes, values, n, a, b, du0, dv0, w_s, out)
+            pick(_accumulate_force)(nodes, values, n, a, b, du0, dv0, w_s, force_only)
             assert np.allclose(force_only[:3], out[:3], rtol=1e-12, atol=1e-15 * np.abs(out[:3]).max())
             assert not force_only[3:].any()
             results.append(out * fast.tau0)
         # fastmath reassociates the sums in the compiled kernels: agreement to rounding only
         assert np.allclose(results[0], results[1], rtol=1e-9, atol=1e-12 * np.abs(results[1]).max())
         full, residual_only = np.empty(12), np.full(12, np.nan)
-        traction_fast(a, b, p_h, h, fast.tau0, du0, dv0, w_s, *fast.args(), full)
+        traction_fast(a, b, p_h, h, du0, dv0, w_s, fast.traction_rule(), full)
         assert np.allclose(full, results[1], rtol=1e-9, atol=1e-12 * np.abs(results[1]).max())
-        traction_fast(a, b, p_h, h, fast.tau0, du0, dv0, w_s, *fast.args(), residual_only, False)
+        traction_fast(a, b, p_h, h, du0, dv0, w_s, fast.traction_rule(), residual_only, False)
         assert np.allclose(residual_only[:3], full[:3], rtol=1e-12) and not residual_only[3:].any()
 
 

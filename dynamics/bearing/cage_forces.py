@@ -10,8 +10,8 @@ import numpy as np
 from bearingsim.dynamics._kernel_options import NO_REFCOUNT
 from bearingsim.dynamics.journal.hybrid import (
     J_OUT_CONTACT_AZIMUTH, J_OUT_DF_DOMEGA_CAGE, J_OUT_DF_DPOS, J_OUT_DF_DVEL,
-    J_OUT_DT_DOMEGA_CAGE, J_OUT_DT_DPOS, J_OUT_DT_DVEL, J_OUT_EPS, J_OUT_FORCE,
-    J_OUT_FRICTION_POWER, J_OUT_METAL_FORCE, J_OUT_TORQUE, cage_race_journal,
+    J_OUT_DT_DOMEGA_CAGE, J_OUT_DT_DPOS, J_OUT_DT_DVEL, J_OUT_EPS, J_OUT_FILM_POWER, J_OUT_FORCE,
+    J_OUT_FRICTION_POWER, J_OUT_METAL_FORCE, J_OUT_MIN_FILM, J_OUT_TORQUE, cage_race_journal,
 )
 from bearingsim.dynamics.contact.pocket import (
     P_MU, P_OUT_APPROACH, P_OUT_DFN_DDELTA, P_OUT_DFN_DRATE, P_OUT_FN, P_OUT_FORCE_BALL,
@@ -20,16 +20,23 @@ from bearingsim.dynamics.contact.pocket import (
     P_V_REG, _pocket_contact_into,
 )
 
+from .channels import (
+    DB_POCKET, DB_POCKET_APPROACH, DB_POCKET_FRICTION_POWER, DB_POCKET_IN_CONTACT, DB_POCKET_ORBITAL,
+    DG_AZIMUTH, DG_EPS, DG_FILM_POWER, DG_FRICTION_POWER, DG_FX, DG_FY, DG_METAL, DG_MIN_FILM, DG_TORQUE,
+)
+from .layout import CAGE_BORDER
 from .tangents import add_pair, point_map
 
 
 @numba.njit(**NO_REFCOUNT)
-def pocket_forces(x_b, v_b, w_b, x_c, R_c, v_c, w_c, psi, v0, pp, pres, g, b, F_cage, M_cage):
-    """Ball in its pocket: the contact row into pres and, in contact (pres[P_OUT_IN_CONTACT]
-    > 0; then `pocket_tangent` gives its Newton blocks), the ball's wrench added to g[b:b+6]
-    and the cage's (spatial, about its centre) to F_cage, M_cage."""
+def pocket_forces(ball, cage, psi, v0, pp, pres, g, b, F_cage, M_cage):
+    """Ball in its pocket (docs/model.md §7): ball and cage are `bundles.Ball` and
+    `bundles.Body`, psi [rad] the pocket azimuth, v0 [m/s] its remembered impact speed, pp
+    the pocket parameters. The contact row goes into pres and, in contact
+    (pres[P_OUT_IN_CONTACT] > 0; then `pocket_tangent` gives its Newton blocks), the ball's
+    wrench is added to g[b:b+6] and the cage's (spatial, about its centre) to F_cage, M_cage."""
     pres[:] = 0.0
-    _pocket_contact_into(pres, x_b, v_b, w_b, x_c, R_c, v_c, w_c, psi, v0, pp)
+    _pocket_contact_into(pres, ball.x, ball.v, ball.w, cage.x, cage.R, cage.v, cage.w, psi, v0, pp)
     if pres[P_OUT_IN_CONTACT] <= 0.0:
         return
     for i in range(3):
@@ -40,10 +47,11 @@ def pocket_forces(x_b, v_b, w_b, x_c, R_c, v_c, w_c, psi, v0, pp, pres, g, b, F_
 
 
 @numba.njit(cache=True)
-def pocket_tangent(k, x_b, x_c, R_c, pp, pres, cage_off, Kd, Ke, Kf, Kb, Cd, Ce, Cf, Cb):
-    """Tangent blocks of ball k's pocket contact (result row `pres` of `pocket_forces`),
-    cage at border offset cage_off. Kept apart from the force so that a residual-only
-    evaluation does not pass the eight block arrays (~0.25 us a call)."""
+def pocket_tangent(k, x_b, cage, pp, pres, K, C):
+    """Tangent blocks of ball k's pocket contact (result row `pres` of `pocket_forces`) into
+    K and C (`linear_solvers.Blocks`); x_b: the ball centre, cage: `bundles.Body`. Kept
+    apart from the force so that a residual-only evaluation does not pass the tangent
+    blocks (~0.25 us a call)."""
     n = pres[P_OUT_NORMAL:P_OUT_NORMAL + 3]
     p = pres[P_OUT_POINT:P_OUT_POINT + 3]
     nn = np.outer(n, n)
@@ -51,44 +59,46 @@ def pocket_tangent(k, x_b, x_c, R_c, pp, pres, cage_off, Kd, Ke, Kf, Kb, Cd, Ce,
     GB = np.empty((3, 6))
     I3 = np.eye(3)
     point_map(p - x_b, I3, GA)
-    point_map(p - x_c, R_c, GB)
+    point_map(p - cage.x, cage.R, GB)
     # normal stiffness along n (contact point on the wall moves with the ball centre)
     GA0 = np.zeros((3, 6))
     for i in range(3):
         GA0[i, i] = 1.0
-    add_pair(k, cage_off, pres[P_OUT_DFN_DDELTA] * nn, GA0, GB, Kd, Ke, Kf, Kb, 1.0)
+    add_pair(k, CAGE_BORDER, pres[P_OUT_DFN_DDELTA] * nn, GA0, GB, K)
     # normal damping and regularised friction act on the relative velocity at p
     mu, v_reg = pp[P_MU], pp[P_V_REG]
     c_f = mu * pres[P_OUT_FN] / max(pres[P_OUT_SLIDING_SPEED], v_reg)
     Jv = pres[P_OUT_DFN_DRATE] * nn + c_f * (I3 - nn)
-    add_pair(k, cage_off, Jv, GA, GB, Cd, Ce, Cf, Cb, 1.0)
+    add_pair(k, CAGE_BORDER, Jv, GA, GB, C)
 
 
 @numba.njit(cache=True)
-def journal_forces(x_c, v_c, w_c, x_r, v_r, w_race_z, jp, jres, g, cage_off, R_c,
-                   want_tangent, Kb, Cb):
-    """Cage on its guiding land: force and torque about z on the cage (spatial), into the
-    cage rows g[cage_off:cage_off+6]; tangents into Kb, Cb, the cage's own 6x6 blocks.
-    Returns the power of the journal forces on the cage [W] (negative: dissipated)."""
+def journal_forces(cage, race, jp, jres, g, cage_off, want_tangent, Kb, Cb):
+    """Cage on its guiding land (docs/model.md §8): cage and race are `bundles.Body` (the
+    race turns about z); force and torque about z on the cage (spatial), into the cage rows
+    g[cage_off:cage_off+6]; the `cage_race_journal` row into jres; tangents into Kb, Cb, the
+    cage's own 6x6 blocks. Returns the power of the journal forces on the cage [W]
+    (negative: dissipated)."""
     off = np.empty(2)
     vel = np.empty(2)
-    off[0], off[1] = x_c[0] - x_r[0], x_c[1] - x_r[1]
-    vel[0], vel[1] = v_c[0] - v_r[0], v_c[1] - v_r[1]
-    out = cage_race_journal(off, vel, w_c[2], w_race_z, jp)
+    off[0], off[1] = cage.x[0] - race.x[0], cage.x[1] - race.x[1]
+    vel[0], vel[1] = cage.v[0] - race.v[0], cage.v[1] - race.v[1]
+    w_race_z = race.w[2]
+    out = cage_race_journal(off, vel, cage.w[2], w_race_z, jp)
     jres[:] = out
     F = out[J_OUT_FORCE:J_OUT_FORCE + 3]
     T = out[J_OUT_TORQUE]
     # torque about the global z axis, mapped to material moments of the cage
     for i in range(3):
         g[cage_off + i] += F[i]
-        g[cage_off + 3 + i] += R_c[2, i] * T
+        g[cage_off + 3 + i] += cage.R[2, i] * T
     if want_tangent:
         _subtract_planar(Kb, out, J_OUT_DF_DPOS, J_OUT_DT_DPOS)
         _subtract_planar(Cb, out, J_OUT_DF_DVEL, J_OUT_DT_DVEL)
         Cb[0, 5] -= out[J_OUT_DF_DOMEGA_CAGE]
         Cb[1, 5] -= out[J_OUT_DF_DOMEGA_CAGE + 1]
         Cb[5, 5] -= out[J_OUT_DT_DOMEGA_CAGE]
-    return F[0] * vel[0] + F[1] * vel[1] + T * (w_c[2] - w_race_z)
+    return F[0] * vel[0] + F[1] * vel[1] + T * (cage.w[2] - w_race_z)
 
 
 @numba.njit(cache=True)
@@ -102,21 +112,24 @@ def _subtract_planar(M, out, i_force, i_torque):
 
 
 @numba.njit(**NO_REFCOUNT)
-def pocket_diag(pres, row):
-    """Per-ball pocket quantities for the saved results and the impact log."""
-    row[0] = pres[P_OUT_FN]
-    row[1] = pres[P_OUT_IN_CONTACT]
-    row[2] = pres[P_OUT_APPROACH]
-    row[3] = pres[P_OUT_ORBITAL_POSITION]
-    row[4] = pres[P_OUT_FRICTION_POWER]
+def pocket_diag(pres, diag, d):
+    """Ball k's pocket channels (channels.PER_BALL, from diag[d]) from its contact row."""
+    diag[d + DB_POCKET] = pres[P_OUT_FN]
+    diag[d + DB_POCKET_IN_CONTACT] = pres[P_OUT_IN_CONTACT]
+    diag[d + DB_POCKET_APPROACH] = pres[P_OUT_APPROACH]
+    diag[d + DB_POCKET_ORBITAL] = pres[P_OUT_ORBITAL_POSITION]
+    diag[d + DB_POCKET_FRICTION_POWER] = pres[P_OUT_FRICTION_POWER]
 
 
 @numba.njit(cache=True)
 def journal_diag(jres, diag):
-    diag[0] = jres[J_OUT_EPS]
-    diag[1] = jres[J_OUT_FORCE]
-    diag[2] = jres[J_OUT_FORCE + 1]
-    diag[3] = jres[J_OUT_TORQUE]
-    diag[4] = jres[J_OUT_METAL_FORCE]
-    diag[5] = jres[J_OUT_FRICTION_POWER]
-    diag[6] = jres[J_OUT_CONTACT_AZIMUTH]
+    """The cage-land channels (channels.GLOBAL) from the `cage_race_journal` row."""
+    diag[DG_EPS] = jres[J_OUT_EPS]
+    diag[DG_FX] = jres[J_OUT_FORCE]
+    diag[DG_FY] = jres[J_OUT_FORCE + 1]
+    diag[DG_TORQUE] = jres[J_OUT_TORQUE]
+    diag[DG_METAL] = jres[J_OUT_METAL_FORCE]
+    diag[DG_FRICTION_POWER] = jres[J_OUT_FRICTION_POWER]
+    diag[DG_AZIMUTH] = jres[J_OUT_CONTACT_AZIMUTH]
+    diag[DG_FILM_POWER] = jres[J_OUT_FILM_POWER]
+    diag[DG_MIN_FILM] = jres[J_OUT_MIN_FILM]

@@ -18,6 +18,14 @@ import numpy as np
 BALL_DOF = 6
 RACE_DOF = 6
 CAGE_DOF = 6
+# offsets inside the border block (the block-arrow matrix's B, E, F)
+INNER_BORDER = 0
+CAGE_BORDER = RACE_DOF
+
+
+def ball_offset(k: int) -> int:
+    """Global index of ball k's first coordinate."""
+    return BALL_DOF * k
 
 
 def border_size(has_cage: bool) -> int:
@@ -47,3 +55,10 @@ def rotation_slots(ball_count: int, has_cage: bool) -> np.ndarray:
 def spin_row(ball_count: int) -> int:
     """Row of the inner race's material spin, replaced by the prescribed speed."""
     return inner_offset(ball_count) + 5
+
+
+def ball_states(x: np.ndarray, ball_count: int) -> np.ndarray:
+    """The ball coordinates of q or v (..., n_dof) as (..., Z, BALL_DOF): [..., k, 0:3] centre
+    (or its velocity), [..., k, 3:6] rotation integral (or omega). For x contiguous along its
+    last axis this is a view: writing to it writes x."""
+    return x[..., :BALL_DOF * ball_count].reshape(x.shape[:-1] + (ball_count, BALL_DOF))

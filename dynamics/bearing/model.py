@@ -13,18 +13,21 @@ import numpy as np
 from bearingsim.dynamics.multibody.joints import prescribe_velocity_block_arrow
 from bearingsim.dynamics.multibody.linear_solvers import BlockArrowMatrix
 
-from . import layout
-from .assembly import (
-    DB, DB_POCKET, DG_P_DISS, DG_P_DRIVE, DG_P_EXT, N_DG, diag_size, evaluate_bearing, mass_diagonal,
+from . import channels, layout
+from .assembly import evaluate_bearing, mass_diagonal
+from .bundles import CageArrays, ModelArrays
+from .channels import (
+    DB, DB_POCKET, DB_POCKET_APPROACH, DB_POCKET_IN_CONTACT, DB_POCKET_ORBITAL, DG_P_DISS, DG_P_DRIVE,
+    DG_P_EXT, N_DG, diag_size,
 )
-from .params import FP_DM, BearingModelParams
+from .params import BearingModelParams
 
 IMPACT_FIELDS = ("time", "ball", "orbital_position", "peak_force", "impact_speed", "duration")
 
 
 @numba.njit(cache=True)
 def track_impacts(t, diag, Z, state, events, impact_speeds):
-    """Update per-pocket impact state from the accepted step's diagnostics.
+    """Update per-pocket impact state from the accepted step's diagnostics (docs/model.md §7).
 
     Also keeps v_0 of the hysteresis law (`impact_speeds`, Z): while a pocket is open its
     approach speed is remembered, so the speed it hits with is known when contact starts.
@@ -35,8 +38,9 @@ def track_impacts(t, diag, Z, state, events, impact_speeds):
     """
     n = 0
     for k in range(Z):
-        d = N_DG + DB * k + DB_POCKET
-        force, touching, approach, orbital = diag[d], diag[d + 1], diag[d + 2], diag[d + 3]
+        d = N_DG + DB * k
+        force, touching = diag[d + DB_POCKET], diag[d + DB_POCKET_IN_CONTACT]
+        approach, orbital = diag[d + DB_POCKET_APPROACH], diag[d + DB_POCKET_ORBITAL]
         if touching <= 0.0:
             impact_speeds[k] = max(approach, 0.0)
         if touching > 0.0:
@@ -52,6 +56,37 @@ def track_impacts(t, diag, Z, state, events, impact_speeds):
     return n
 
 
+class _Kernel:
+    """`evaluate_bearing` bound to one model's bundles.
+
+    numba's per-call type dispatch costs ~6 us for the nested bundles (it types every array
+    of every tuple in Python), more than a tenth of a residual; after the first call this
+    calls the compiled overload directly (`Dispatcher.get_overload`), which unboxes the
+    arguments without typing them. Its unboxing does not check an array's dtype or layout, so
+    the state arrays, the only arguments that change between calls, are checked here
+    (float64, 1-D, contiguous, of the model's length) and anything else goes through the
+    dispatcher.
+    """
+
+    def __init__(self, n_dof: int):
+        self.n = n_dof
+        self.entry = None
+
+    def _fits(self, x) -> bool:
+        return (type(x) is np.ndarray and x.dtype == np.float64 and x.ndim == 1 and x.shape[0] == self.n
+                and x.flags.c_contiguous)
+
+    def __call__(self, t, q, v, a, arrays, want_tangent, ma, g, diag, K, C):
+        args = (float(t), q, v, a, arrays, bool(want_tangent), ma, g, diag, K, C)
+        if self.entry is not None and self._fits(q) and self._fits(v) and self._fits(a) \
+                and self._fits(ma) and self._fits(g):
+            return self.entry(*args)
+        drive = evaluate_bearing(*args)
+        if self.entry is None and all(self._fits(x) for x in (q, v, a, ma, g)):
+            self.entry = evaluate_bearing.get_overload(tuple(numba.typeof(x) for x in args))
+        return drive
+
+
 class BearingModel:
     """Races, Z balls and (optionally) the cage; see layout.py for the coordinates."""
 
@@ -62,21 +97,25 @@ class BearingModel:
         self.rotation_slots = layout.rotation_slots(Z, has_cage)
         self.nb = layout.border_size(has_cage)
         w = np.ones(self.n_dof)
-        radius = 0.5 * P.fp[FP_DM]  # pitch radius: rotation errors read as arc lengths [m]
-        for k in range(Z):
-            w[6 * k + 3:6 * k + 6] = 0.0  # ball orientation never enters a force
+        radius = 0.5 * P.pitch_diameter  # rotation errors read as arc lengths [m]
+        layout.ball_states(w, Z)[:, 3:] = 0.0  # ball orientation never enters a force
         for s in self.rotation_slots:
             w[s:s + 3] = radius
         w[layout.spin_row(Z)] = 0.0
         self.error_weights = w
         self.mass = mass_diagonal(P.fp, P.ip, self.n_dof)
-        self.K = BlockArrowMatrix.zeros(Z, 6, self.nb)
-        self.C = BlockArrowMatrix.zeros(Z, 6, self.nb)
-        self.S = BlockArrowMatrix.zeros(Z, 6, self.nb)
+        self.K = BlockArrowMatrix.zeros(Z, layout.BALL_DOF, self.nb)
+        self.C = BlockArrowMatrix.zeros(Z, layout.BALL_DOF, self.nb)
+        self.S = BlockArrowMatrix.zeros(Z, layout.BALL_DOF, self.nb)
         self.diag = np.zeros(diag_size(Z))
         self._ma = np.zeros(self.n_dof)
         self._g = np.zeros(self.n_dof)
         self.impact_speeds = np.zeros(Z)
+        self.arrays = ModelArrays(
+            fp=P.fp, ip=P.ip, mass=self.mass, races=P.races, traction=P.traction,
+            cage=CageArrays(P.pocket, P.journal, P.pocket_psi, self.impact_speeds), hinge=P.hinge)
+        self._blocks = (self.K.blocks(), self.C.blocks())
+        self._kernel_call = _Kernel(self.n_dof)
         self.impact_threshold = impact_force_threshold
         self._impact_state = np.zeros((Z, 6))
         self._events = np.zeros((Z, len(IMPACT_FIELDS)))
@@ -86,13 +125,8 @@ class BearingModel:
 
     # --- protocol --------------------------------------------------------------------
     def _kernel(self, t, q, v, a, ma, g, want_tangent):
-        P = self.params
-        K, C = self.K, self.C
-        return evaluate_bearing(
-            t, q, v, a, P.fp, P.ip, P.hertz_inner, P.hertz_outer, P.eta_table, P.traction_rule, P.traction_work, P.traction_iwork,
-            P.pocket, P.journal, P.pocket_psi, P.hinge_Hu, P.hinge_Hpsi, P.hinge_Gu, P.hinge_Gpsi,
-            P.static_x, P.static_R, self.impact_speeds, self.mass, want_tangent, ma, g, self.diag,
-            K.D, K.E, K.F, K.B, C.D, C.E, C.F, C.B)
+        K, C = self._blocks
+        return self._kernel_call(t, q, v, a, self.arrays, want_tangent, ma, g, self.diag, K, C)
 
     def evaluate(self, t, q, v, a, ma_out, g_out) -> None:
         self._kernel(t, q, v, a, ma_out, g_out, False)
@@ -105,9 +139,10 @@ class BearingModel:
         S.F[...] = c_v * C.F + c_q * K.F
         S.B[...] = c_v * C.B + c_q * K.B
         Z = self.params.ball_count
+        mass = layout.ball_states(self.mass, Z)
         for k in range(Z):
-            S.D[k] += np.diag(c_m * self.mass[6 * k:6 * k + 6])
-        S.B += np.diag(c_m * self.mass[6 * Z:])
+            S.D[k] += np.diag(c_m * mass[k])
+        S.B += np.diag(c_m * self.mass[layout.inner_offset(Z):])
         prescribe_velocity_block_arrow(S, layout.spin_row(Z), c_m, c_v, 1.0)
         return S
 
@@ -126,6 +161,13 @@ class BearingModel:
             for key, i in (("drive", 1), ("external", 2), ("dissipated", 3)):
                 self.energy[key] += 0.5 * dt * (powers[i] + self._last[i])
         self._last = powers
+
+    # --- results -----------------------------------------------------------------------
+    def channel(self, name: str) -> np.ndarray | float:
+        """Diagnostic `name` (channels.py) of the last evaluated state: a float, or an array
+        (per ball, or of a channel's width)."""
+        value = channels.read(self.diag, self.params.ball_count, name)
+        return float(value) if value.ndim == 0 else value.copy()
 
     def kinetic_energy(self, v) -> float:
         """T = sum of m v^2/2 + J Omega^2/2 over all bodies [J] (diagonal mass)."""

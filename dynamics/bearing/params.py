@@ -1,17 +1,20 @@
-"""Pack a physical bearing into the plain arrays the force kernel takes (once, outside
+"""Pack a physical bearing into the arrays and bundles the force kernel takes (once, outside
 the time loop). Everything here is SI; nothing here runs per step."""
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from bearingsim.dynamics.geometry import BearingGeometry, CageGeometry, Material, effective_modulus
-from bearingsim.dynamics.contact.hertz import race_hertz_table
+from bearingsim.dynamics.traction.fast import TractionRule, unused_traction_rule
 
 from . import layout
+from .bundles import HingeArrays, RaceTables
+from .options import ModelOptions
+from .race_table import race_contact_table
 
 # --- float parameter vector fp -----------------------------------------------------------
 FP_D, FP_DM, FP_DI, FP_DO, FP_RI, FP_RO = 0, 1, 2, 3, 4, 5
@@ -21,62 +24,34 @@ FP_MC, FP_JCX, FP_JCZ = 11, 12, 13        # cage
 FP_OMEGA_I, FP_OMEGA_O = 14, 15           # race speeds about +z [rad/s]
 FP_FX, FP_FZ, FP_MY = 16, 17, 18          # loads on the inner race: radial (x), axial (z), moment (y)
 FP_E_EFF = 19                              # ball-race E' [Pa]
-FP_ETA0, FP_ALPHA_P, FP_TAU0 = 20, 21, 22  # lubricant at its temperature
-FP_MIN_FILM, FP_MU_DRY, FP_ZETA = 23, 24, 25
-FP_V_REG = 26                              # regularisation speed of Coulomb traction [m/s]
-FP_P_STEP = 27                             # traction viscosity table pressure step [Pa]
-FP_T_LOAD_STEP, FP_MY_STEP = 28, 29        # from t >= FP_T_LOAD_STEP [s] the moment is FP_MY_STEP [N m]
-N_FP = 30
+FP_ETA0, FP_ALPHA_P = 20, 21               # lubricant at its temperature: eta0 [Pa s], alpha* [1/Pa]
+FP_MIN_FILM, FP_MU_DRY, FP_ZETA = 22, 23, 24
+FP_V_REG = 25                              # regularisation speed of Coulomb traction [m/s]
+FP_T_LOAD_STEP, FP_MY_STEP = 26, 27        # from t >= FP_T_LOAD_STEP [s] the moment is FP_MY_STEP [N m]
+N_FP = 28
 
 # --- integer switches ip ------------------------------------------------------------------
 IP_Z, IP_TRACTION, IP_FILM, IP_CAGE, IP_JOURNAL, IP_HINGE, IP_GYRO = 0, 1, 2, 3, 4, 5, 6
 N_IP = 7
 TRACTION_NONE, TRACTION_COULOMB, TRACTION_EYRING = 0, 1, 2
 FILM_NONE, FILM_NVM, FILM_HD = 0, 1, 2
-
-
-@dataclass(frozen=True)
-class ModelOptions:
-    """Physics switches and contact parameters (the scene's [physics] table, SI)."""
-
-    traction: str = "eyring"          # "eyring" | "coulomb" | "none"
-    ehd_film: bool = True             # compute the central film (needs a lubricant)
-    film_formula: str = "nvm"         # "nvm" | "hamrock-dowson"; ignored without lubricant
-    cage_race: str = "hybrid"         # "hybrid" | "hydrodynamic" | "dry" | "none"
-    gyroscopic: bool = True
-    min_film: float = 5e-8            # [m]
-    dry_friction: float = 0.1
-    contact_damping_ratio: float = 0.05
-    pocket_friction: float = 0.1
-    pocket_restitution: float = 0.7
-    cage_race_friction: float = 0.1
-    cage_race_boundary: float = 0.05  # epsilon_0
-    cage_race_film: str = "dynamic"  # "dynamic" (squeeze + whirl terms) | "static" (paper eq. 25)
-    cage_race_lands: int = 2  # separate lands the land overlap L is split into (the race groove vents the film)
-    coulomb_regularisation: float = 1e-3  # [m/s]
+# the parts of the model a study may switch off (`BearingModelParams.without`)
+SWITCHES = {"traction": IP_TRACTION, "film": IP_FILM, "cage": IP_CAGE, "journal": IP_JOURNAL,
+            "hinge": IP_HINGE, "gyroscopic": IP_GYRO}
 
 
 @dataclass(frozen=True)
 class BearingModelParams:
-    """Everything the force kernel needs, as contiguous arrays (see FP_*, IP_*)."""
+    """Everything the force kernel needs, as contiguous arrays and bundles (see FP_*, IP_*)."""
 
     fp: np.ndarray
     ip: np.ndarray
-    hertz_inner: np.ndarray  # Hertz, film and semi-axis columns (params._race_table)
-    hertz_outer: np.ndarray
-    eta_table: np.ndarray
-    traction_rule: np.ndarray   # fast-path quadrature rule (dynamics.traction.nodes)
-    traction_work: np.ndarray   # fast-path scratch (9, n) and (n,) int
-    traction_iwork: np.ndarray
-    pocket: np.ndarray
-    journal: np.ndarray
-    hinge_Hu: np.ndarray
-    hinge_Hpsi: np.ndarray
-    hinge_Gu: np.ndarray
-    hinge_Gpsi: np.ndarray
-    static_x: np.ndarray   # x_A, static frame of the hinge [m]
-    static_R: np.ndarray   # R_A
-    pocket_psi: np.ndarray
+    races: RaceTables
+    traction: TractionRule    # Eyring fast path (dynamics.traction.fast); a placeholder without it
+    pocket: np.ndarray        # ball-pocket parameters (contact/pocket.py)
+    journal: np.ndarray       # cage-land parameters (journal/hybrid.py)
+    pocket_psi: np.ndarray    # pocket azimuths [rad]
+    hinge: HingeArrays
     has_cage: bool
     guide_clearance: float = float("nan")
     meta: dict = field(default_factory=dict)
@@ -88,6 +63,32 @@ class BearingModelParams:
     @property
     def n_dof(self) -> int:
         return layout.n_dof(self.ball_count, self.has_cage)
+
+    @property
+    def ball_diameter(self) -> float:
+        """D [m]."""
+        return float(self.fp[FP_D])
+
+    @property
+    def pitch_diameter(self) -> float:
+        """d_m [m]."""
+        return float(self.fp[FP_DM])
+
+    @property
+    def ball_mass(self) -> float:
+        """m_b [kg]."""
+        return float(self.fp[FP_MB])
+
+    def without(self, *parts: str) -> "BearingModelParams":
+        """A copy with `parts` switched off (keys of SWITCHES: traction, film, cage, journal,
+        hinge, gyroscopic), for studies that time or compare the model piece by piece."""
+        unknown = sorted(set(parts) - set(SWITCHES))
+        if unknown:
+            raise ValueError(f"unknown model part(s) {unknown}; choose from {sorted(SWITCHES)}")
+        ip = self.ip.copy()
+        for part in parts:
+            ip[SWITCHES[part]] = 0
+        return replace(self, ip=ip)
 
 
 def inner_race_inertia(bearing: BearingGeometry, race: Material) -> tuple[float, float, float]:
@@ -106,27 +107,6 @@ def inner_race_inertia(bearing: BearingGeometry, race: Material) -> tuple[float,
     return m, jx, jz
 
 
-def _race_table(bearing: BearingGeometry, e_eff: float, outer: bool) -> np.ndarray:
-    """A race's contact table: the Hertz columns (`hertz.race_hertz_table`) and, on the same
-    contact-angle grid, the film columns (`race_forces.film_geometry_columns`) and the
-    semi-axis columns (`race_forces.semi_axis_columns`)."""
-    from .race_forces import film_geometry_columns, semi_axis_columns
-
-    hertz = race_hertz_table(bearing, e_eff, outer=outer)
-    r = bearing.outer_groove_radius if outer else bearing.inner_groove_radius
-    film = film_geometry_columns(bearing.ball_diameter, bearing.pitch_diameter, r, outer, hertz.shape[0])
-    return np.ascontiguousarray(np.hstack([hertz, film, semi_axis_columns(hertz)]))
-
-
-def _traction_tables(lubricant):
-    """(eta table, rule, work, iwork, pressure step) of the Eyring fast path."""
-    from bearingsim.dynamics.traction.fast import FastTraction
-
-    ft = FastTraction.build(lubricant)
-    work, iwork = ft.workspace()
-    return ft.eta_table, ft.rule, work, iwork, ft.p_step
-
-
 def build_model_params(
     bearing: BearingGeometry, cage: CageGeometry | None, ball: Material, race: Material,
     cage_material: Material | None, lubricant, *, axial: float, radial: float, moment: float,
@@ -136,6 +116,9 @@ def build_model_params(
     """Pack a bearing. `hinge` = (H_u 3x3 [N/m], H_psi (2) [N m/rad], c_G [s]) or None
     (inner race free); (static_x, static_R) is the hinge's static frame A (docs/model.md §5).
     `load_step` = (t_step [s], moment after it [N m]): a sudden change of the moment."""
+    if not options.centrifugal:
+        raise ValueError("physics.centrifugal = false acts only on the quasi-static solve: the dynamic "
+                         "model's inertia always carries the balls' centrifugal force")
     Z = bearing.ball_count
     fp = np.zeros(N_FP)
     fp[[FP_D, FP_DM, FP_DI, FP_DO, FP_RI, FP_RO]] = (
@@ -154,15 +137,17 @@ def build_model_params(
     ip[IP_Z] = Z
     ip[IP_GYRO] = int(options.gyroscopic)
     ip[IP_TRACTION] = {"none": TRACTION_NONE, "coulomb": TRACTION_COULOMB, "eyring": TRACTION_EYRING}[options.traction]
-    eta_table, rule, work, iwork = np.zeros((2, 2)), np.zeros(1), np.zeros((1, 1)), np.zeros(1, dtype=np.int64)
+    traction = unused_traction_rule()
     if lubricant is not None:
-        fp[FP_ETA0], fp[FP_ALPHA_P], fp[FP_TAU0] = lubricant.eta0, lubricant.alpha_star, lubricant.eyring_stress
+        fp[FP_ETA0], fp[FP_ALPHA_P] = lubricant.eta0, lubricant.alpha_star
         if options.ehd_film:
             ip[IP_FILM] = FILM_HD if options.film_formula == "hamrock-dowson" else FILM_NVM
         elif options.traction == "eyring":
             raise ValueError("Eyring traction needs the EHD film (ehd_film = True)")
         if options.traction == "eyring":
-            eta_table, rule, work, iwork, fp[FP_P_STEP] = _traction_tables(lubricant)
+            from bearingsim.dynamics.traction.fast import FastTraction
+
+            traction = FastTraction.build(lubricant).traction_rule()
     elif options.traction == "eyring":
         raise ValueError("Eyring traction needs a lubricant; use traction 'coulomb' for dry contacts")
     pocket, journal, psi, clearance = np.zeros(1), np.zeros(1), np.zeros(Z), float("nan")
@@ -176,19 +161,16 @@ def build_model_params(
         ip[IP_HINGE] = 1
     else:
         H_u, H_psi, c_G = np.zeros((3, 3)), np.zeros(2), 0.0
+    contiguous = np.ascontiguousarray
     return BearingModelParams(
         fp=fp, ip=ip,
-        hertz_inner=_race_table(bearing, e_eff, outer=False),
-        hertz_outer=_race_table(bearing, e_eff, outer=True),
-        eta_table=np.ascontiguousarray(eta_table), traction_rule=rule, traction_work=work,
-        traction_iwork=iwork,
-        pocket=pocket, journal=journal,
-        hinge_Hu=np.ascontiguousarray(H_u), hinge_Hpsi=np.ascontiguousarray(H_psi),
-        hinge_Gu=np.ascontiguousarray(c_G * H_u), hinge_Gpsi=np.ascontiguousarray(c_G * H_psi),
-        static_x=np.ascontiguousarray(static_x, dtype=float),
-        static_R=np.ascontiguousarray(static_R, dtype=float),
-        pocket_psi=np.ascontiguousarray(psi), has_cage=cage is not None, guide_clearance=clearance,
-        meta={"effective_modulus": e_eff},
+        races=RaceTables(inner=race_contact_table(bearing, e_eff, outer=False),
+                         outer=race_contact_table(bearing, e_eff, outer=True)),
+        traction=traction, pocket=pocket, journal=journal, pocket_psi=contiguous(psi),
+        hinge=HingeArrays(H_u=contiguous(H_u), H_psi=contiguous(H_psi), G_u=contiguous(c_G * H_u),
+                          G_psi=contiguous(c_G * H_psi), x_A=contiguous(static_x, dtype=float),
+                          R_A=contiguous(static_R, dtype=float)),
+        has_cage=cage is not None, guide_clearance=clearance, meta={"effective_modulus": e_eff},
     )
 
 

@@ -1,7 +1,7 @@
 """One ball–race contact of the dynamic model: geometry (§6.1), Hertz normal load with
 normal damping (M.24, §6.2), EHD film (§6.3), traction (§6.4), and what the Newton matrix
-needs. A numba kernel writing into a caller-owned row `res` (layout RC_*): the time loop
-calls it 2Z times per residual and allocates nothing here.
+needs. A numba kernel writing into a caller-owned row `res` (layout RACE_ROW): the time
+loop calls it 2Z times per residual and allocates nothing here.
 
 Tangent ingredients (see assembly.py): the normal force depends on the relative position
 of ball centre and race point p through the 3x3 stiffness K_p (M.34) and on the relative
@@ -14,38 +14,68 @@ from __future__ import annotations
 import math
 
 import numba
-import numpy as np
 
 from bearingsim.dynamics._kernel_options import NO_REFCOUNT
-from bearingsim.dynamics.lubrication.film import film_central_nvm_terms, film_hamrock_dowson, nvm_geometry_terms
-from bearingsim.dynamics.contact.hertz import TAB_KH, TABLE_COLUMNS, hermite, table_position
+from bearingsim.dynamics.contact.hertz import TAB_KH, hermite, table_position
 from bearingsim.dynamics.contact.race import (
     OUT_ALPHA, OUT_DELTA, OUT_EX, OUT_EY, OUT_LEVER, OUT_N, OUT_P, OUT_SLIDE, OUT_SPIN,
     OUT_SRR, OUT_U_SUM, ball_race_contact_kernel,
 )
-
+from bearingsim.dynamics.lubrication.film import film_central_nvm_terms, film_hamrock_dowson
 from bearingsim.dynamics.traction.fast import traction_fast
+
+from .channels import Channel, RowLayout
 from .params import (
     FP_ALPHA_P, FP_D, FP_DI, FP_DM, FP_DO, FP_E_EFF, FP_ETA0, FP_MB, FP_MIN_FILM,
-    FP_MU_DRY, FP_P_STEP, FP_RI, FP_RO, FP_TAU0, FP_V_REG, FP_ZETA, FILM_HD, FILM_NONE,
+    FP_MU_DRY, FP_RI, FP_RO, FP_V_REG, FP_ZETA, FILM_HD, FILM_NONE,
     IP_FILM, IP_TRACTION, TRACTION_COULOMB, TRACTION_EYRING,
 )
+from .race_table import TAB_FILM, TAB_SEMI_AXES, curvature_radii_kernel
 
-RC_FB, RC_MB, RC_FR, RC_MR = 0, 3, 6, 9  # wrenches: ball (about its centre), race (about its centre)
-RC_Q, RC_ALPHA, RC_FILM, RC_SRR, RC_PDISS = 12, 13, 14, 15, 16
-RC_KP, RC_CN, RC_JT = 17, 26, 35          # 3x3 each, row-major
-RC_PB, RC_PR, RC_N, RC_EX, RC_EY = 44, 47, 50, 53, 56
-RC_ACTIVE, RC_PMAX, RC_FLAG, RC_SPIN, RC_USUM, RC_VHZ = 59, 60, 61, 62, 63, 64
-RC_LOAD_SLOPE = 65    # d ln|T| / d delta [1/m]: traction's dependence on the normal approach
-RC_WTB, RC_WTR = 66, 72  # traction part of the ball / race wrenches (6 each, spatial)
-RC_DN = 78               # dn/dx_b (3x3): how the contact normal turns as the ball moves
-N_RC = 87
+# The result row of one ball-race contact; 3x3 blocks are row-major, vectors global.
+RACE_ROW = RowLayout(
+    Channel("force_ball", 3, "N", "contact force on the ball"),
+    Channel("moment_ball", 3, "N.m", "moment on the ball about its centre (incl. the spin moment)"),
+    Channel("force_race", 3, "N", "contact force on the race"),
+    Channel("moment_race", 3, "N.m", "moment on the race about its centre"),
+    Channel("load", 1, "N", "normal load F_n (elastic + damping, >= 0)"),
+    Channel("angle", 1, "rad", "contact angle (docs/model.md M.55)"),
+    Channel("film", 1, "m", "central film thickness (0: no film)"),
+    Channel("slide_roll", 1, "-", "slide-to-roll ratio"),
+    Channel("dissipated_power", 1, "W", "power dissipated by traction and normal damping"),
+    Channel("stiffness", 9, "N/m", "K_p = -dF_ball/dx_b of the normal force (M.63); tangent only"),
+    Channel("damping", 9, "N.s/m", "c_n n n^T; tangent only"),
+    Channel("traction_jacobian", 9, "-", "J_t = -d(F_x, F_y, M_z)/d(du0, dv0, w_s); tangent only"),
+    Channel("lever_ball", 3, "m", "contact point - ball centre"),
+    Channel("lever_race", 3, "m", "contact point - race centre"),
+    Channel("normal", 3, "-", "unit normal n, from the contact towards the ball centre"),
+    Channel("e_x", 3, "-", "entrainment direction"),
+    Channel("e_y", 3, "-", "n x e_x"),
+    Channel("active", 1, "-", "1 in contact"),
+    Channel("max_pressure", 1, "Pa", "maximum Hertz pressure"),
+    Channel("traction_flags", 1, "-", "flag bits of the traction rule (traction/fast.py FLAG_*)"),
+    Channel("spin", 1, "rad/s", "spin w_s"),
+    Channel("sum_speed", 1, "m/s", "entrainment (sum) speed u_s"),
+    Channel("hertz_energy", 1, "J", "elastic energy 2/5 k_h delta^(5/2)"),
+    Channel("load_slope", 1, "1/m", "d ln|T|/d delta: traction's dependence on the approach; tangent only"),
+    Channel("traction_wrench_ball", 6, "N, N.m", "traction part of the ball's wrench (spatial); tangent only"),
+    Channel("traction_wrench_race", 6, "N, N.m", "traction part of the race's wrench (spatial); tangent only"),
+    Channel("normal_turn", 9, "1/m", "dn/dx_b: how the normal turns as the ball moves; tangent only"),
+)
+RC_FB, RC_MB, RC_FR, RC_MR = (RACE_ROW.slot(n) for n in ("force_ball", "moment_ball", "force_race", "moment_race"))
+RC_Q, RC_ALPHA, RC_FILM, RC_SRR, RC_PDISS = (
+    RACE_ROW.slot(n) for n in ("load", "angle", "film", "slide_roll", "dissipated_power"))
+RC_KP, RC_CN, RC_JT = (RACE_ROW.slot(n) for n in ("stiffness", "damping", "traction_jacobian"))
+RC_PB, RC_PR, RC_N, RC_EX, RC_EY = (RACE_ROW.slot(n) for n in ("lever_ball", "lever_race", "normal", "e_x", "e_y"))
+RC_ACTIVE, RC_PMAX, RC_FLAG, RC_SPIN, RC_USUM, RC_VHZ = (
+    RACE_ROW.slot(n) for n in ("active", "max_pressure", "traction_flags", "spin", "sum_speed", "hertz_energy"))
+RC_LOAD_SLOPE = RACE_ROW.slot("load_slope")
+RC_WTB, RC_WTR = RACE_ROW.slot("traction_wrench_ball"), RACE_ROW.slot("traction_wrench_race")
+RC_DN = RACE_ROW.slot("normal_turn")
+N_RC = RACE_ROW.size
 # |T| grows like F_n (Coulomb) or roughly like the contact area, F_n^(2/3) (Eyring plateau)
 LOAD_EXPONENT_COULOMB, LOAD_EXPONENT_EYRING = 1.0, 2.0 / 3.0
 N_CONTACT_SCRATCH = 27
-TAB_FILM = TABLE_COLUMNS  # first film column of a race table (`film_geometry_columns`)
-N_FILM_TERMS = 6          # R_x and the five terms of film.nvm_geometry_terms
-TAB_SEMI_AXES = TAB_FILM + 2 * N_FILM_TERMS  # c_a k_h^(1/3), c_b k_h^(1/3) [m^(1/2)] (`semi_axis_columns`)
 
 
 @numba.njit(**NO_REFCOUNT)
@@ -70,50 +100,6 @@ def _coulomb(F_n, a_x, b_y, du0, dv0, w_s, mu, v_reg, out):
     out[5] = out[8] = out[9] = out[10] = 0.0
 
 
-def _curvature_radii(alpha, is_outer, D, d_m, r):
-    """(R_x, R_y) [m] of a ball-race contact at contact angle alpha (docs/model.md §6.2)."""
-    c = math.cos(alpha)
-    rho_ii1 = -2.0 * c / (d_m + D * c) if is_outer else 2.0 * c / (d_m - D * c)
-    return 1.0 / (2.0 / D + rho_ii1), 1.0 / (2.0 / D - 1.0 / r)
-
-
-_curvature_radii_kernel = numba.njit(**NO_REFCOUNT)(_curvature_radii)
-
-
-def film_geometry_columns(D: float, d_m: float, r: float, is_outer: bool, n_nodes: int) -> np.ndarray:
-    """Columns appended to a race's Hertz table (same contact-angle grid, cubic Hermite
-    pairs): R_x and the lambda-only NVM terms of `film.nvm_geometry_terms`, so that the time
-    loop's film needs no cosine and no lambda logarithms (~40 ns of ~190 per contact).
-    Slopes by central differences (step 1e-6 rad; Hermite error then ~1e-9 relative)."""
-    alpha = np.linspace(0.0, 0.5 * math.pi, n_nodes)
-    step = 1e-6
-
-    def row(a):
-        Rx, Ry = _curvature_radii(a, is_outer, D, d_m, r)
-        return np.array([Rx, *nvm_geometry_terms(Rx, Ry)])
-
-    out = np.empty((n_nodes, 2 * N_FILM_TERMS))
-    for i, a in enumerate(alpha):
-        out[i, 0::2] = row(a)
-        out[i, 1::2] = (row(a + step) - row(a - step)) / (2.0 * step)
-    return out
-
-
-def semi_axis_columns(hertz: np.ndarray) -> np.ndarray:
-    """Columns appended after the film columns: a/sqrt(delta) = c_a k_h^(1/3) and
-    b/sqrt(delta) = c_b k_h^(1/3) [m^(1/2)] with their slopes (Hertz: a = c_a F^(1/3) and
-    F = k_h delta^(3/2)), so that the time loop needs no cube root per contact."""
-    from bearingsim.dynamics.contact.hertz import TAB_CA, TAB_CB, TAB_DCA, TAB_DCB, TAB_DKH
-
-    k13 = np.cbrt(hertz[:, TAB_KH])
-    dk13 = hertz[:, TAB_DKH] * k13 / (3.0 * hertz[:, TAB_KH])
-    out = np.empty((hertz.shape[0], 4))
-    for c, (col, dcol) in enumerate(((TAB_CA, TAB_DCA), (TAB_CB, TAB_DCB))):
-        out[:, 2 * c] = hertz[:, col] * k13
-        out[:, 2 * c + 1] = hertz[:, dcol] * k13 + hertz[:, col] * dk13
-    return out
-
-
 @numba.njit(**NO_REFCOUNT)
 def _film(F_n, alpha, is_outer, u_s, fp, method, table, j, t, step):
     """Central film thickness [m], floored at FP_MIN_FILM. NVM reads R_x and its lambda
@@ -121,7 +107,7 @@ def _film(F_n, alpha, is_outer, u_s, fp, method, table, j, t, step):
     (`hertz.table_position`); Hamrock–Dowson computes R_x, R_y from alpha."""
     u = max(u_s, 1e-6)
     if method == FILM_HD:
-        Rx, Ry = _curvature_radii_kernel(alpha, is_outer, fp[FP_D], fp[FP_DM], fp[FP_RO] if is_outer else fp[FP_RI])
+        Rx, Ry = curvature_radii_kernel(alpha, is_outer, fp[FP_D], fp[FP_DM], fp[FP_RO] if is_outer else fp[FP_RI])
         h = film_hamrock_dowson(F_n, Rx, Ry, fp[FP_E_EFF], fp[FP_ETA0], fp[FP_ALPHA_P], u)[0]
         return max(h, fp[FP_MIN_FILM])
     Rx = hermite(table, j, TAB_FILM, t, step)[0]
@@ -135,17 +121,20 @@ def _film(F_n, alpha, is_outer, u_s, fp, method, table, j, t, step):
 
 
 @numba.njit(**NO_REFCOUNT)
-def race_contact(x_b, v_b, w_b, x_r, R_r, v_r, w_r, is_outer, fp, ip, table,
-                 eta_table, rule, work, iwork, cbuf, tbuf, res, want_tangent):
+def race_contact(ball, race, is_outer, fp, ip, table, traction, scratch, res, want_tangent):
     """Forces of one ball on one race and (want_tangent) their tangent ingredients, into
-    res (N_RC); the tangent-only rows (RC_KP, RC_CN, RC_DN, RC_WTB, RC_WTR, RC_LOAD_SLOPE)
-    stay zero otherwise.
+    res (RACE_ROW); the tangent-only fields stay zero otherwise.
 
-    x_b, v_b, w_b: ball centre [m], velocity [m/s], angular velocity [rad/s];
-    x_r, R_r, v_r, w_r: race centre, rotation (race -> global), velocity, spatial angular
-    velocity; table: the race's contact table (Hertz, film and semi-axis columns,
-    `params._race_table`). Returns True when in contact.
+    ball: `bundles.Ball` (centre [m], velocity [m/s], angular velocity [rad/s]); race:
+    `bundles.Body` (centre, rotation race -> global, velocity, spatial angular velocity);
+    fp, ip: the model's parameter vectors (params.FP_*, IP_*); table: the race's contact
+    table (race_table.race_contact_table); traction: the `TractionRule` of the Eyring fast
+    path; scratch: `bundles.ContactScratch`.
+    Returns True when in contact.
     """
+    x_b, v_b, w_b = ball.x, ball.v, ball.w
+    x_r, R_r, v_r, w_r = race.x, race.R, race.v, race.w
+    cbuf, tbuf = scratch.contact, scratch.traction
     res[:] = 0.0
     d_g = fp[FP_DO] if is_outer else fp[FP_DI]
     r_g = fp[FP_RO] if is_outer else fp[FP_RI]
@@ -188,8 +177,7 @@ def race_contact(x_b, v_b, w_b, x_r, R_r, v_r, w_r, is_outer, fp, ip, table,
         h = _film(F_el, cbuf[OUT_ALPHA], is_outer, cbuf[OUT_U_SUM], fp, ip[IP_FILM], table, j, t, step)
     # traction T = tbuf[0:3] and dT/ds = tbuf[3:12] (row-major), on the ball
     if mode == TRACTION_EYRING:
-        res[RC_FLAG] = traction_fast(a_x, b_y, p_max, h, fp[FP_TAU0], du0, dv0, w_s, eta_table,
-                                       fp[FP_P_STEP], rule, work, iwork, tbuf, want_tangent)
+        res[RC_FLAG] = traction_fast(a_x, b_y, p_max, h, du0, dv0, w_s, traction, tbuf, want_tangent)
     elif mode == TRACTION_COULOMB:
         _coulomb(F_n, a_x, b_y, du0, dv0, w_s, fp[FP_MU_DRY], fp[FP_V_REG], tbuf)
     else:

@@ -10,16 +10,17 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field
-from typing import Callable
+from typing import Callable, NamedTuple
 
 import numpy as np
 
-from bearingsim.dynamics.multibody.crv import crv_from_rotation_vector
-from bearingsim.dynamics.multibody.integrate import integrate
+from bearingsim.dynamics.multibody.crv import crv_from_rotation_vector, crv_to_matrix
+from bearingsim.dynamics.multibody.time_loop import integrate
 from bearingsim.dynamics.multibody.linear_solvers import BlockArrowSolver
 from bearingsim.dynamics.multibody.settings import HHTSettings
 
 from . import layout
+from .channels import declared as declared_channels, read as read_channel
 from .model import IMPACT_FIELDS, BearingModel
 from .params import FP_OMEGA_I, BearingModelParams
 
@@ -31,10 +32,10 @@ def initial_coordinates(params: BearingModelParams, start: dict) -> tuple[np.nda
     Z = params.ball_count
     n = params.n_dof
     q, v = np.zeros(n), np.zeros(n)
-    for k in range(Z):
-        q[6 * k:6 * k + 3] = start["ball_positions"][k]
-        v[6 * k:6 * k + 3] = start["ball_velocities"][k]
-        v[6 * k + 3:6 * k + 6] = start["ball_angular_velocities"][k]
+    balls_q, balls_v = layout.ball_states(q, Z), layout.ball_states(v, Z)
+    balls_q[:, :3] = start["ball_positions"]
+    balls_v[:, :3] = start["ball_velocities"]
+    balls_v[:, 3:] = start["ball_angular_velocities"]
     o = layout.inner_offset(Z)
     q[o:o + 3] = start["inner_race_displacement"]
     tilt = start["inner_race_tilt"]
@@ -46,9 +47,21 @@ def initial_coordinates(params: BearingModelParams, start: dict) -> tuple[np.nda
     return q, v
 
 
+class RunSeries(NamedTuple):
+    """One named series of a run: data (samples first), unit, description and the names of
+    its dimensions ("time", then "xyz", "xy", "ball", ...)."""
+
+    data: np.ndarray
+    unit: str
+    description: str
+    dims: tuple[str, ...]
+
+
 @dataclass
 class BearingRun:
-    """Sampled results of a run (arrays over samples), the impact log and the counters."""
+    """Sampled results of a run (arrays over samples), the impact log and the counters.
+    `channels()` names every saved series; q, v and diag are the raw layouts (layout.py,
+    channels.py) for code inside dynamics/bearing."""
 
     t: np.ndarray
     q: np.ndarray
@@ -58,8 +71,51 @@ class BearingRun:
     energy: dict
     kinetic: np.ndarray
     stats: dict
+    ball_count: int
+    has_cage: bool
     step_history: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
     impact_fields: tuple = IMPACT_FIELDS
+
+    def channels(self) -> dict[str, RunSeries]:
+        """Every saved series by name (the names of timeseries.h5): body states, the saved
+        diagnostics of the channel table (channels.py; the cage's only with a cage), energies
+        and the step history."""
+        Z = self.ball_count
+        T, V, B, BV = ("time",), ("time", "xyz"), ("time", "ball"), ("time", "ball", "xyz")
+        o = layout.inner_offset(Z)
+        balls_q, balls_v = layout.ball_states(self.q, Z), layout.ball_states(self.v, Z)
+        R_i = _rotations(self.q[:, o + 3:o + 6])
+        out = {
+            "time": RunSeries(self.t, "s", "sample time (end of the first accepted step at or after each sample instant)", T),
+            "inner_race/position": RunSeries(self.q[:, o:o + 3], "m", "inner-race centre, global frame", V),
+            "inner_race/velocity": RunSeries(self.v[:, o:o + 3], "m/s", "inner-race centre velocity", V),
+            "inner_race/axis": RunSeries(R_i[:, :, 2], "-", "inner-race axis (unit vector); its x, y are the tilts about -y, +x", V),
+            "inner_race/angular_velocity": RunSeries(self.v[:, o + 3:o + 6], "rad/s", "material angular velocity", V),
+            "balls/position": RunSeries(balls_q[:, :, :3], "m", "ball centres", BV),
+            "balls/velocity": RunSeries(balls_v[:, :, :3], "m/s", "ball centre velocities", BV),
+            "balls/angular_velocity": RunSeries(balls_v[:, :, 3:], "rad/s", "ball angular velocities (global frame)", BV),
+            "energy/kinetic": RunSeries(self.kinetic, "J", "kinetic energy of all bodies", T),
+            "solver/step_size": RunSeries(self.step_history, "s", "(time, step size) every 50 accepted steps", ("sample", "t_h")),
+        }
+        if self.has_cage:
+            c = layout.cage_offset(Z, True)
+            omega = np.einsum("nij,nj->ni", _rotations(self.q[:, c + 3:c + 6]), self.v[:, c + 3:c + 6])
+            out.update({
+                "cage/position": RunSeries(self.q[:, c:c + 3], "m", "cage centre (guiding race at the origin)", V),
+                "cage/velocity": RunSeries(self.v[:, c:c + 3], "m/s", "cage centre velocity", V),
+                "cage/angular_velocity": RunSeries(omega, "rad/s", "cage angular velocity, global frame", V),
+                "cage/speed": RunSeries(omega[:, 2], "rad/s", "cage rotation speed about +z", T),
+            })
+        for ch, per_ball in declared_channels(self.has_cage):
+            dims = (B if per_ball else T) + (("xy",) if ch.width == 2 else ("xyz",) if ch.width == 3 else ())
+            out[ch.name] = RunSeries(read_channel(self.diag, Z, ch.name), ch.unit, ch.description, dims)
+        return out
+
+
+def _rotations(c: np.ndarray) -> np.ndarray:
+    """Rotation matrices (n, 3, 3) of the CRVs c (n, 3) (docs/model.md M.4b)."""
+    c = np.ascontiguousarray(c, dtype=float)
+    return np.array([crv_to_matrix(ci) for ci in c]).reshape(-1, 3, 3)
 
 
 class _Recorder:
@@ -114,7 +170,7 @@ def simulate_bearing(params: BearingModelParams, start: dict, settings: HHTSetti
     progress(t, t_end, h) is called about four times a second of wall time."""
     model = BearingModel(params)
     q0, v0 = initial_coordinates(params, start)
-    solver = BlockArrowSolver(params.ball_count, 6, model.nb)
+    solver = BlockArrowSolver(params.ball_count, layout.BALL_DOF, model.nb)
     rec = _Recorder(model, 0.0, duration, sample_interval, progress)
     # the initial diagnostics come from the initial-acceleration evaluation
     n = model.n_dof
@@ -128,4 +184,5 @@ def simulate_bearing(params: BearingModelParams, start: dict, settings: HHTSetti
     c = rec.count
     return BearingRun(t=rec.t[:c], q=rec.q[:c], v=rec.v[:c], diag=rec.diag[:c],
                       impacts=model.impact_log(), energy=dict(model.energy), kinetic=rec.kin[:c],
-                      stats=stats, step_history=np.array(rec.history).reshape(-1, 2))
+                      stats=stats, ball_count=params.ball_count, has_cage=params.has_cage,
+                      step_history=np.array(rec.history).reshape(-1, 2))

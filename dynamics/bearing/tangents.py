@@ -48,29 +48,16 @@ def slip_map(ex, ey, n, r, R, out):
 
 
 @numba.njit(cache=True)
-def add_pair(k, off, J, GA, GB, D, E, F, B, scale):
-    """Add scale x (the four blocks above) for ball k and the border body at offset `off`
-    (off < 0: the other body is fixed, only the ball block is added)."""
+def add_pair(k, off, J, GA, GB, M):
+    """Add the four blocks above to the block-arrow matrix M (`linear_solvers.Blocks`) for
+    ball k and the border body at border offset `off` (off < 0: the other body is fixed,
+    only the ball block is added)."""
     AJ = GA.T @ J
-    D[k] += scale * (AJ @ GA)
+    M.D[k] += AJ @ GA
     if off < 0:
         return
     nb = GB.shape[1]
-    E[k, :, off:off + nb] -= scale * (AJ @ GB)
+    M.E[k, :, off:off + nb] -= AJ @ GB
     BJ = GB.T @ J
-    F[k, off:off + nb, :] -= scale * (BJ @ GA)
-    B[off:off + nb, off:off + nb] += scale * (BJ @ GB)
-
-
-@numba.njit(cache=True)
-def add_border_pair(offA, offB, J, GA, GB, B, scale):
-    """The same pattern between two border bodies (e.g. cage and inner race)."""
-    na, nb = GA.shape[1], GB.shape[1]
-    AJ = GA.T @ J
-    B[offA:offA + na, offA:offA + na] += scale * (AJ @ GA)
-    if offB < 0:
-        return
-    B[offA:offA + na, offB:offB + nb] -= scale * (AJ @ GB)
-    BJ = GB.T @ J
-    B[offB:offB + nb, offA:offA + na] -= scale * (BJ @ GA)
-    B[offB:offB + nb, offB:offB + nb] += scale * (BJ @ GB)
+    M.F[k, off:off + nb, :] -= BJ @ GA
+    M.B[off:off + nb, off:off + nb] += BJ @ GB

@@ -175,18 +175,6 @@ def build_hertz_table(ball_diameter, pitch_diameter, groove_radius, is_outer, e_
     return table
 
 
-@numba.njit(cache=True)
-def constant_hertz_table(k_h, kappa, c_a, c_b, n_nodes):
-    """A table with α-independent constants (for comparisons that fix k_h by hand)."""
-    table = np.zeros((n_nodes, TABLE_COLUMNS))
-    for j in range(n_nodes):
-        table[j, TAB_KH] = k_h
-        table[j, TAB_KAPPA] = kappa
-        table[j, TAB_CA] = c_a
-        table[j, TAB_CB] = c_b
-    return table
-
-
 @numba.njit(**NO_REFCOUNT)
 def hermite(table, j, col, t, step):
     """Cubic Hermite interpolation of column col (value) with col + 1 (slope per rad) of a

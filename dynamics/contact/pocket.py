@@ -19,8 +19,9 @@ c_d comes from the restitution coefficient e: by default Flores et al. (2011),
 c_d = 8(1-e)/(5e), which reproduces e over 0.3–1 better than the Hunt–Crossley
 3(1-e)/2 or Lankarani–Nikravesh 3(1-e^2)/4 factors (both offered).
 v_0 is the impact (approach) speed, which the hysteresis law needs; the kernel takes it
-as an argument. `update_impact_speeds` keeps it: while a pocket is open it stores the
-current approach speed, so when contact starts the speed it hit with is already known.
+as an argument. The bearing model keeps it (`dynamics.bearing.model.track_impacts`): while a
+pocket is open it stores the current approach speed, so when contact starts the speed it
+hit with is already known.
 v_0 is floored at a reference speed (scene value) so that a slow, persistent contact
 (a ball pushing the cage) is not given unbounded damping; a caller that does not track
 it passes 0 and gets the velocity-independent law with v_0 = the reference speed.
@@ -193,23 +194,6 @@ def pocket_contacts(x_balls, v_balls, w_balls, x_cage, rot_cage, v_cage, w_cage,
         _pocket_contact_into(out[k], x_balls[k], v_balls[k], w_balls[k], x_cage, rot_cage, v_cage,
                              w_cage, psi[k], impact_speeds[k], params)
     return out
-
-
-@numba.njit(cache=True)
-def update_impact_speeds(out, stored):
-    """Impact speeds v_0 (Z,) [m/s] to use from the next step on.
-
-    While pocket k is open its approach speed max(d delta/dt, 0) is stored, so at the
-    step contact starts the speed it hit with is known; during contact it is held.
-    Call once per *accepted* step with that step's `pocket_contacts` result.
-    """
-    new = np.empty_like(stored)
-    for k in range(out.shape[0]):
-        if out[k, P_OUT_IN_CONTACT] > 0.0:
-            new[k] = stored[k]
-        else:
-            new[k] = max(out[k, P_OUT_APPROACH], 0.0)
-    return new
 
 
 # --- scene-level set-up (Python side, once per scene) ------------------------------------

@@ -2,19 +2,27 @@
 
 Knows nothing about bearings (docs/contributing.md rule 1): models implement the residual protocol of
 `problem.py`; `integrate` advances them. docs/model.md §4, §5, §9.
+
+The names below load their module on first use, so that the scene loader, which builds the
+integrator's `HHTSettings` from `[solver]`, imports neither numba nor the kernels.
 """
 
-from .hinge import HingeStiffness, hinge_energy, hinge_forces, hinge_strains
-from .integrate import initial_acceleration, integrate
-from .linear_solvers import BlockArrowMatrix, BlockArrowSolver, DenseSolver
-from .problem import MultibodyProblem, check_problem
-from .results import IntegrationError, Result, Solution, SolverStats
-from .sampling import FixedIntervalSampler
-from .settings import HHTSettings, JacobianReuse
+import importlib
 
-__all__ = [
-    "BlockArrowMatrix", "BlockArrowSolver", "DenseSolver", "FixedIntervalSampler",
-    "HHTSettings", "HingeStiffness", "IntegrationError", "JacobianReuse", "MultibodyProblem",
-    "Result", "Solution", "SolverStats", "check_problem", "hinge_energy", "hinge_forces",
-    "hinge_strains", "initial_acceleration", "integrate",
-]
+_EXPORTS = {
+    "HingeStiffness": ".hinge", "hinge_energy": ".hinge", "hinge_forces": ".hinge", "hinge_strains": ".hinge",
+    "initial_acceleration": ".time_loop", "integrate": ".time_loop",
+    "BlockArrowMatrix": ".linear_solvers", "BlockArrowSolver": ".linear_solvers", "DenseSolver": ".linear_solvers",
+    "MultibodyProblem": ".problem", "check_problem": ".problem",
+    "IntegrationError": ".results", "Result": ".results", "Solution": ".results", "SolverStats": ".results",
+    "FixedIntervalSampler": ".sampling", "HHTSettings": ".settings", "JacobianReuse": ".settings",
+}
+__all__ = sorted(_EXPORTS)
+
+
+def __getattr__(name):
+    if name not in _EXPORTS:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(_EXPORTS[name], __name__), name)
+    globals()[name] = value
+    return value

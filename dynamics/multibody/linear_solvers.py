@@ -24,6 +24,7 @@ then rejected); `solve(rhs, out)` writes the solution into `out`.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numba
 import numpy as np
@@ -135,6 +136,15 @@ def block_arrow_solve(LU_D, piv_D, DinvE, F, S, piv_S, rhs, x):
         x[k * m:(k + 1) * m] -= DinvE[k] @ xb
 
 
+class Blocks(NamedTuple):
+    """The four arrays of a block-arrow matrix as one kernel argument (`BlockArrowMatrix.blocks`)."""
+
+    D: np.ndarray  # (Z, m, m)
+    E: np.ndarray  # (Z, m, nb)
+    F: np.ndarray  # (Z, nb, m)
+    B: np.ndarray  # (nb, nb)
+
+
 @dataclass
 class BlockArrowMatrix:
     """Block-arrow matrix data (see module docstring); fill the arrays in place."""
@@ -152,6 +162,10 @@ class BlockArrowMatrix:
             F=np.zeros((n_small, n_border, block)),
             B=np.zeros((n_border, n_border)),
         )
+
+    def blocks(self) -> Blocks:
+        """The arrays (views, not copies) as a bundle for numba kernels that fill them."""
+        return Blocks(self.D, self.E, self.F, self.B)
 
     @property
     def shape(self) -> tuple[int, int]:

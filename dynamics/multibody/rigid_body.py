@@ -56,12 +56,6 @@ def kinetic_energy(m, J, x_dot, Omega):
     return 0.5 * m * (x_dot @ x_dot) + 0.5 * (Omega @ (J @ Omega))
 
 
-@numba.njit(cache=True)
-def spatial_angular_momentum(R, J, Omega):
-    """Spatial angular momentum about the reference point, L = R J Omega [N m s]."""
-    return R @ (J @ Omega)
-
-
 def inertia_about_point(m: float, J_c: np.ndarray, rho: np.ndarray) -> np.ndarray:
     """Inertia about a point at -rho from the centre of mass (parallel axis theorem):
     J_O = J_c + m (|rho|^2 I - rho rho^T) [kg m^2], rho = centre of mass seen from O."""

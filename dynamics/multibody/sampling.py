@@ -15,6 +15,7 @@ Sample times are t0 + k dt, k = 0..N; the caller chooses which coordinates to ke
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numba
 import numpy as np
@@ -22,10 +23,39 @@ import numpy as np
 from .crv import update_configuration
 
 
+class StepEnds(NamedTuple):
+    """An accepted step from t_n to t_n + h: state at its start (q_n, v_n, a_n), velocity and
+    acceleration at its end (v1, a1) and its increment dq (q_{n+1} = q_n (+) dq)."""
+
+    q_n: np.ndarray
+    v_n: np.ndarray
+    a_n: np.ndarray
+    v1: np.ndarray
+    a1: np.ndarray
+    dq: np.ndarray
+
+
+class Samples(NamedTuple):
+    """Sample times, the coordinates kept (q_idx, v_idx, a_idx), the output rows (out_q,
+    out_v, out_a; one row per time) and two n_dof work vectors."""
+
+    times: np.ndarray
+    q_idx: np.ndarray
+    v_idx: np.ndarray
+    a_idx: np.ndarray
+    out_q: np.ndarray
+    out_v: np.ndarray
+    out_a: np.ndarray
+    p_work: np.ndarray
+    q_work: np.ndarray
+
+
 @numba.njit(cache=True)
-def hermite_fill(t_n, h, q_n, v_n, a_n, v1, a1, dq, rotation_slots, times, k,
-                 q_idx, v_idx, a_idx, out_q, out_v, out_a, p_work, q_work):
-    """Fill samples k, k+1, ... with t_n < times[k] <= t_n + h; returns the next k."""
+def hermite_fill(t_n, h, step, rotation_slots, samples, k):
+    """Fill samples k, k+1, ... with t_n < times[k] <= t_n + h from the `StepEnds` of one
+    step (module docstring); returns the next k."""
+    q_n, v_n, a_n, v1, a1 = step.q_n, step.v_n, step.a_n, step.v1, step.a1
+    times, p_work, q_work = samples.times, samples.p_work, samples.q_work
     t_end = t_n + h
     while k < times.shape[0] and times[k] <= t_end * (1.0 + 1e-15) + 1e-300:
         th = (times[k] - t_n) / h
@@ -36,16 +66,16 @@ def hermite_fill(t_n, h, q_n, v_n, a_n, v1, a1, dq, rotation_slots, times, k,
         h11 = th3 - th2
         h00 = 1.0 - h01
         for i in range(q_n.shape[0]):
-            p_work[i] = h10 * h * v_n[i] + h01 * dq[i] + h11 * h * v1[i]
+            p_work[i] = h10 * h * v_n[i] + h01 * step.dq[i] + h11 * h * v1[i]
         update_configuration(q_n, p_work, rotation_slots, q_work)
-        for j in range(q_idx.shape[0]):
-            out_q[k, j] = q_work[q_idx[j]]
-        for j in range(v_idx.shape[0]):
-            i = v_idx[j]
-            out_v[k, j] = h00 * v_n[i] + h10 * h * a_n[i] + (1.0 - h00) * v1[i] + h11 * h * a1[i]
-        for j in range(a_idx.shape[0]):
-            i = a_idx[j]
-            out_a[k, j] = (1.0 - th) * a_n[i] + th * a1[i]
+        for j in range(samples.q_idx.shape[0]):
+            samples.out_q[k, j] = q_work[samples.q_idx[j]]
+        for j in range(samples.v_idx.shape[0]):
+            i = samples.v_idx[j]
+            samples.out_v[k, j] = h00 * v_n[i] + h10 * h * a_n[i] + (1.0 - h00) * v1[i] + h11 * h * a1[i]
+        for j in range(samples.a_idx.shape[0]):
+            i = samples.a_idx[j]
+            samples.out_a[k, j] = (1.0 - th) * a_n[i] + th * a1[i]
         k += 1
     return k
 
@@ -74,8 +104,8 @@ class FixedIntervalSampler:
         self.v = np.full((n_samples, self.v_indices.size), np.nan)
         self.a = np.full((n_samples, self.a_indices.size), np.nan)
         self.count = 0
-        self._p = np.zeros(n_dof)
-        self._qw = np.zeros(n_dof)
+        self._samples = Samples(self.t, self.q_indices, self.v_indices, self.a_indices, self.q, self.v,
+                                self.a, np.zeros(n_dof), np.zeros(n_dof))
 
     def start(self, t0: float, q0, v0, a0) -> None:
         """Record the initial state when the first sample time is t0."""
@@ -89,7 +119,5 @@ class FixedIntervalSampler:
         """Interpolate the samples in (t_n, t_n + h] of an accepted step."""
         if self.count >= self.t.size or self.t[self.count] > t_n + h * (1.0 + 1e-12):
             return
-        self.count = hermite_fill(t_n, h, y_n.q, y_n.v, y_n.a, y_1.v, y_1.a, y_1.dq,
-                                  rotation_slots, self.t, self.count, self.q_indices,
-                                  self.v_indices, self.a_indices, self.q, self.v, self.a,
-                                  self._p, self._qw)
+        step = StepEnds(y_n.q, y_n.v, y_n.a, y_1.v, y_1.a, y_1.dq)
+        self.count = hermite_fill(t_n, h, step, rotation_slots, self._samples, self.count)

@@ -1,13 +1,19 @@
-"""Numerical settings of the HHT-α integrator (docs/model.md §9), validated on construction."""
+"""Numerical settings of the HHT-α integrator (docs/model.md §9), validated on construction.
+
+The scene's `[solver]` table is built straight into these settings (plus the run's
+`duration`, pipeline/scene_sections.py): the field metadata below (unit, range, choices,
+doc) is the one definition of every solver key, and docs/scenes.md is generated from it.
+"""
 
 from __future__ import annotations
 
 import enum
-import math
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field
+
+from bearingsim.dynamics.field_checks import check_fields
 
 
-class JacobianReuse(enum.Enum):
+class JacobianReuse(enum.StrEnum):
     """When the Newton iteration matrix is rebuilt and factored.
 
     NEWTON: every iteration (full Newton; fewest iterations, most factorisations).
@@ -28,44 +34,45 @@ class HHTSettings:
     `atol` is in the units of the weighted coordinates (m when rotations are weighted by a
     length in m/rad); `newton_tol` is relative to the same scale as the error test."""
 
-    alpha: float = field(default=0.1, metadata={"unit": "-", "ge": 0.0, "le": 1.0 / 3.0})
-    first_step: float = field(default=1e-6, metadata={"unit": "s", "gt": 0.0})
-    min_step: float = field(default=1e-8, metadata={"unit": "s", "gt": 0.0})
-    max_step: float = field(default=2e-6, metadata={"unit": "s", "gt": 0.0})
-    rtol: float = field(default=1e-4, metadata={"unit": "-", "ge": 0.0})
-    atol: float = field(default=1e-9, metadata={"unit": "m", "gt": 0.0})
-    adaptive: bool = field(default=True, metadata={"unit": "-"})
-    newton_tol: float = field(default=1e-2, metadata={"unit": "-", "gt": 0.0})
-    residual_tol: float = field(default=0.0, metadata={"unit": "N", "ge": 0.0})
-    max_newton_iter: int = field(default=8, metadata={"unit": "-", "ge": 1})
-    reuse_jacobian: JacobianReuse = field(default=JacobianReuse.ADAPTIVE,
-                                          metadata={"unit": "-"})
-    refactor_rate: float = field(default=0.3, metadata={"unit": "-", "gt": 0.0, "lt": 1.0})
-    refactor_step_ratio: float = field(default=1.5, metadata={"unit": "-", "ge": 1.0})
-    safety: float = field(default=0.9, metadata={"unit": "-", "gt": 0.0, "le": 1.0})
-    min_factor: float = field(default=0.2, metadata={"unit": "-", "gt": 0.0, "lt": 1.0})
-    max_factor: float = field(default=2.0, metadata={"unit": "-", "gt": 1.0})
-    newton_failure_factor: float = field(default=0.25, metadata={"unit": "-", "gt": 0.0,
-                                                                 "lt": 1.0})
+    alpha: float = field(default=0.1, metadata={
+        "unit": "-", "ge": 0.0, "le": 1.0 / 3.0, "doc": "HHT-alpha numerical damping (0: trapezoidal rule)"})
+    first_step: float = field(default=1e-6, metadata={"unit": "s", "gt": 0.0, "doc": "first time step"})
+    min_step: float = field(default=1e-8, metadata={
+        "unit": "s", "gt": 0.0, "doc": "smallest step before the run gives up"})
+    max_step: float = field(default=2e-6, metadata={"unit": "s", "gt": 0.0, "doc": "largest step"})
+    rtol: float = field(default=1e-4, metadata={
+        "unit": "-", "ge": 0.0, "lt": 1.0,
+        "doc": "relative tolerance of the step controller (of the position coordinates; 0: absolute only)"})
+    atol: float = field(default=1e-9, metadata={
+        "unit": "m", "gt": 0.0, "doc": "absolute tolerance of the step controller (positions)"})
+    adaptive: bool = field(default=True, metadata={
+        "doc": "adapt the step to the error estimate (M.99-M.101); false: fixed steps of first_step"})
+    newton_tol: float = field(default=1e-2, metadata={
+        "unit": "-", "gt": 0.0, "doc": "Newton converges when its position correction, in the error norm, is below this (M.102)"})
+    residual_tol: float = field(default=0.0, metadata={
+        "unit": "N", "ge": 0.0, "doc": "Newton also converges when max |residual| is below this (0: off)"})
+    max_newton_iter: int = field(default=8, metadata={
+        "unit": "-", "ge": 1, "doc": "Newton iterations before the step is rejected"})
+    reuse_jacobian: str = field(default=JacobianReuse.ADAPTIVE, metadata={
+        "choices": tuple(JacobianReuse),
+        "doc": "when the Newton matrix is rebuilt: 'adaptive' keeps it while Newton contracts fast and the "
+               "step barely changes, 'step' once per step, 'newton' every iteration"})
+    refactor_rate: float = field(default=0.3, metadata={
+        "unit": "-", "gt": 0.0, "lt": 1.0, "doc": "('adaptive') rebuild the matrix when Newton contracts by less than this"})
+    refactor_step_ratio: float = field(default=1.5, metadata={
+        "unit": "-", "ge": 1.0, "doc": "('adaptive') rebuild the matrix when the step changed by more than this factor"})
+    safety: float = field(default=0.9, metadata={
+        "unit": "-", "gt": 0.0, "le": 1.0, "doc": "safety factor of the step controller (M.101)"})
+    min_factor: float = field(default=0.2, metadata={
+        "unit": "-", "gt": 0.0, "lt": 1.0, "doc": "smallest change of the step from one step to the next (M.101)"})
+    max_factor: float = field(default=2.0, metadata={
+        "unit": "-", "gt": 1.0, "doc": "largest change of the step from one step to the next (M.101)"})
+    newton_failure_factor: float = field(default=0.25, metadata={
+        "unit": "-", "gt": 0.0, "lt": 1.0, "doc": "step reduction after a Newton failure"})
 
     def __post_init__(self) -> None:
-        if isinstance(self.reuse_jacobian, str):
-            object.__setattr__(self, "reuse_jacobian", JacobianReuse(self.reuse_jacobian))
-        for f in fields(self):
-            meta, value = f.metadata, getattr(self, f.name)
-            if "unit" not in meta or isinstance(value, (JacobianReuse, bool)):
-                continue
-            unit = meta["unit"]
-            bad = (not math.isfinite(value)
-                   or ("gt" in meta and not value > meta["gt"])
-                   or ("ge" in meta and not value >= meta["ge"])
-                   or ("lt" in meta and not value < meta["lt"])
-                   or ("le" in meta and not value <= meta["le"]))
-            if bad:
-                allowed = ", ".join(f"{k} {meta[k]:.6g}" for k in ("gt", "ge", "lt", "le")
-                                    if k in meta)
-                raise ValueError(f"solver.{f.name} = {value!r} [{unit}] is out of range; "
-                                 f"allowed: {allowed}")
+        check_fields(self, "solver")
+        object.__setattr__(self, "reuse_jacobian", JacobianReuse(self.reuse_jacobian))
         if not self.min_step <= self.first_step <= self.max_step:
             raise ValueError(
                 f"solver steps must satisfy min_step <= first_step <= max_step; got "

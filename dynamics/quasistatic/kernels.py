@@ -17,11 +17,33 @@ generalised force Gᵀ f.
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numba
 import numpy as np
 
 from bearingsim.dynamics.contact.hertz import hertz_table_eval
+
+
+class Grooves(NamedTuple):
+    """The two grooves a ball sits between: Hertz tables (contact.hertz.race_hertz_table)
+    and gaps r - D/2 [m] of the inner and outer race."""
+
+    tab_i: np.ndarray
+    tab_o: np.ndarray
+    gap_i: float
+    gap_o: float
+
+
+class BallLoads(NamedTuple):
+    """Per ball (Z,): m_b omega_c^2 [N/m] (centrifugal force m_b omega_c^2 r, docs/model.md
+    §10) and the frozen gyroscopic friction magnitudes g_i, g_o [N] at the inner and outer
+    contact (see `ball_residual`)."""
+
+    m_om2: np.ndarray
+    g_i: np.ndarray
+    g_o: np.ndarray
+
 
 BALL_COLUMNS = 11
 B_QI, B_QO, B_AI, B_AO, B_DI, B_DO, B_STATUS, B_FRIC_R, B_FRIC_Z, B_FR, B_FZ = range(BALL_COLUMNS)
@@ -61,15 +83,15 @@ def contact_2d(w_r, w_z, gap, table, is_outer):
 
 
 @numba.njit(cache=True)
-def ball_residual(x_r, x_z, ci_r, ci_z, co_r, co_z, gap_i, gap_o, tab_i, tab_o, m_om2, g_i, g_o):
-    """Residual r = ΣF on the ball [N] and ∂r/∂x_b, plus both contacts (tuple of floats).
-
-    m_om2 = m_b ω_c² [N/m] (centrifugal force m_b ω_c² r, docs/model.md §10). g_i, g_o [N]:
-    frozen gyroscopic friction magnitudes along τ = (−n_z, n_r) at the inner/outer
-    contact (applied only while that contact is loaded; its Jacobian is neglected).
+def ball_residual(x_r, x_z, ci_r, ci_z, co_r, co_z, grooves, m_om2, g_i, g_o):
+    """Residual r = ΣF on the ball at (x_r, x_z) [N] and ∂r/∂x_b, plus both contacts (tuple of
+    floats). (ci_r, ci_z), (co_r, co_z): inner and outer curvature centres [m]; grooves:
+    `Grooves`. m_om2 = m_b ω_c² [N/m] (centrifugal force m_b ω_c² r, docs/model.md §10).
+    g_i, g_o [N]: frozen gyroscopic friction magnitudes along τ = (−n_z, n_r) at the
+    inner/outer contact (applied only while that contact is loaded; its Jacobian is neglected).
     """
-    ci = contact_2d(ci_r - x_r, ci_z - x_z, gap_i, tab_i, False)
-    co = contact_2d(co_r - x_r, co_z - x_z, gap_o, tab_o, True)
+    ci = contact_2d(ci_r - x_r, ci_z - x_z, grooves.gap_i, grooves.tab_i, False)
+    co = contact_2d(co_r - x_r, co_z - x_z, grooves.gap_o, grooves.tab_o, True)
     res_r = ci[3] + co[3] + m_om2 * x_r
     res_z = ci[4] + co[4]
     fr_r = fr_z = 0.0
@@ -89,13 +111,14 @@ def ball_residual(x_r, x_z, ci_r, ci_z, co_r, co_z, gap_i, gap_o, tab_i, tab_o, 
 
 
 @numba.njit(cache=True)
-def _initial_ball_position(ci_r, ci_z, co_r, co_z, gap_i, gap_o, tab_i, tab_o, m_om2, x):
+def _initial_ball_position(ci_r, ci_z, co_r, co_z, grooves, m_om2, x):
     """Collinear (no centrifugal force) solution, or the ball resting on the outer groove.
 
     Without centrifugal force the loaded ball lies on the segment C_o–C_i with
     k_i δ_i^{3/2} = k_o δ_o^{3/2}, δ_i + δ_o = |C_i − C_o| − gap_i − gap_o (exact, both
     contacts share the line so share α). Returns True when that total approach is ≤ 0.
     """
+    tab_i, tab_o, gap_i, gap_o = grooves.tab_i, grooves.tab_o, grooves.gap_i, grooves.gap_o
     e_r, e_z = ci_r - co_r, ci_z - co_z
     length = math.sqrt(e_r * e_r + e_z * e_z)
     approach = length - gap_i - gap_o
@@ -124,11 +147,11 @@ def _initial_ball_position(ci_r, ci_z, co_r, co_z, gap_i, gap_o, tab_i, tab_o, m
 
 
 @numba.njit(cache=True)
-def _newton_ball(ci_r, ci_z, co_r, co_z, gap_i, gap_o, tab_i, tab_o, m_om2, g_i, g_o, x):
+def _newton_ball(ci_r, ci_z, co_r, co_z, grooves, m_om2, g_i, g_o, x):
     """Damped Newton on the ball residual from x (in/out); True when converged."""
     tol = 1e-14  # [m] Newton step at which we stop: ~1e-9 of a Hertz approach
     for _ in range(60):
-        out = ball_residual(x[0], x[1], ci_r, ci_z, co_r, co_z, gap_i, gap_o, tab_i, tab_o, m_om2, g_i, g_o)
+        out = ball_residual(x[0], x[1], ci_r, ci_z, co_r, co_z, grooves, m_om2, g_i, g_o)
         r_r, r_z, a_rr, a_rz, a_zr, a_zz = out[0], out[1], out[2], out[3], out[4], out[5]
         det = a_rr * a_zz - a_rz * a_zr
         if det == 0.0 or not math.isfinite(det):
@@ -144,7 +167,7 @@ def _newton_ball(ci_r, ci_z, co_r, co_z, gap_i, gap_o, tab_i, tab_o, m_om2, g_i,
         step = 1.0
         for _ls in range(40):  # backtrack on |r|² (a full step may open a contact)
             t = ball_residual(x[0] + step * dx_r, x[1] + step * dx_z, ci_r, ci_z, co_r, co_z,
-                              gap_i, gap_o, tab_i, tab_o, m_om2, g_i, g_o)
+                              grooves, m_om2, g_i, g_o)
             if t[0] * t[0] + t[1] * t[1] <= norm0 or step < 1e-6:
                 break
             step *= 0.5
@@ -154,7 +177,7 @@ def _newton_ball(ci_r, ci_z, co_r, co_z, gap_i, gap_o, tab_i, tab_o, m_om2, g_i,
 
 
 @numba.njit(cache=True)
-def solve_ball(ci_r, ci_z, co_r, co_z, gap_i, gap_o, tab_i, tab_o, m_om2, g_i, g_o, x, warm):
+def solve_ball(ci_r, ci_z, co_r, co_z, grooves, m_om2, g_i, g_o, x, warm):
     """Equilibrium position x = (r, z) of one ball (in/out); returns a status.
 
     warm: start from x, falling back to the cold start if that fails. STATUS_LOOSE: no
@@ -163,25 +186,24 @@ def solve_ball(ci_r, ci_z, co_r, co_z, gap_i, gap_o, tab_i, tab_o, m_om2, g_i, g
     """
     if m_om2 <= 0.0:
         e_r, e_z = ci_r - co_r, ci_z - co_z
-        if math.sqrt(e_r * e_r + e_z * e_z) <= gap_i + gap_o:
-            _initial_ball_position(ci_r, ci_z, co_r, co_z, gap_i, gap_o, tab_i, tab_o, m_om2, x)
+        if math.sqrt(e_r * e_r + e_z * e_z) <= grooves.gap_i + grooves.gap_o:
+            _initial_ball_position(ci_r, ci_z, co_r, co_z, grooves, m_om2, x)
             return STATUS_LOOSE
     if warm and math.isfinite(x[0]) and math.isfinite(x[1]):
-        if _newton_ball(ci_r, ci_z, co_r, co_z, gap_i, gap_o, tab_i, tab_o, m_om2, g_i, g_o, x):
+        if _newton_ball(ci_r, ci_z, co_r, co_z, grooves, m_om2, g_i, g_o, x):
             return STATUS_OK
-    _initial_ball_position(ci_r, ci_z, co_r, co_z, gap_i, gap_o, tab_i, tab_o, m_om2, x)
-    if _newton_ball(ci_r, ci_z, co_r, co_z, gap_i, gap_o, tab_i, tab_o, m_om2, g_i, g_o, x):
+    _initial_ball_position(ci_r, ci_z, co_r, co_z, grooves, m_om2, x)
+    if _newton_ball(ci_r, ci_z, co_r, co_z, grooves, m_om2, g_i, g_o, x):
         return STATUS_OK
     return STATUS_FAILED
 
 
 @numba.njit(cache=True)
-def bearing_equilibrium(ci, gmat, R_co, gap_i, gap_o, tab_i, tab_o, m_om2, g_i, g_o, xb, warm,
-                        out_force, out_stiffness, out_ball):
+def bearing_equilibrium(ci, gmat, R_co, grooves, loads, xb, warm, out_force, out_stiffness, out_ball):
     """Contact load on the inner race and its condensed stiffness, balls in equilibrium.
 
     ci (Z, 2): inner curvature centres (r, z) [m]; gmat (Z, 2, 5): ∂C_i/∂q; R_co = d_o/2 [m];
-    m_om2, g_i, g_o (Z): see `ball_residual`. xb (Z, 2): ball positions (in/out; used as
+    grooves: `Grooves`; loads: `BallLoads`. xb (Z, 2): ball positions (in/out; used as
     the start when warm). Writes out_force (5) = Σ Gᵀ(−F_i − F_fric,i) [N, N·m],
     out_stiffness (5×5) = Σ Gᵀ [J_i − J_i (J_i + J_o − C)⁻¹ J_i] G (−∂out_force/∂q with
     the balls re-equilibrated, at fixed G; friction Jacobian neglected), out_ball (Z,
@@ -193,10 +215,9 @@ def bearing_equilibrium(ci, gmat, R_co, gap_i, gap_o, tab_i, tab_o, m_om2, g_i, 
     out_stiffness[:, :] = 0.0
     for k in range(ci.shape[0]):
         ci_r, ci_z = ci[k, 0], ci[k, 1]
-        status = solve_ball(ci_r, ci_z, R_co, 0.0, gap_i, gap_o, tab_i, tab_o, m_om2[k], g_i[k], g_o[k],
-                            xb[k], warm)
-        res = ball_residual(xb[k, 0], xb[k, 1], ci_r, ci_z, R_co, 0.0, gap_i, gap_o, tab_i, tab_o,
-                            m_om2[k], g_i[k], g_o[k])
+        m_om2, g_i, g_o = loads.m_om2[k], loads.g_i[k], loads.g_o[k]
+        status = solve_ball(ci_r, ci_z, R_co, 0.0, grooves, m_om2, g_i, g_o, xb[k], warm)
+        res = ball_residual(xb[k, 0], xb[k, 1], ci_r, ci_z, R_co, 0.0, grooves, m_om2, g_i, g_o)
         c_i, c_o, fr_r, fr_z = res[6], res[7], res[8], res[9]
         if status == STATUS_FAILED:
             failed += 1

@@ -28,7 +28,8 @@ from bearingsim.dynamics.geometry import BearingGeometry, Material, effective_mo
 from bearingsim.dynamics.contact.hertz import (DEFAULT_TABLE_NODES, TAB_DKH, TAB_KH, hertz_table_eval, max_pressure,
                             race_hertz_table)
 from bearingsim.dynamics.quasistatic.kernels import (BALL_COLUMNS, B_AI, B_AO, B_DI, B_DO, B_FR, B_FZ, B_QI, B_QO,
-                                          B_STATUS, STATUS_FAILED, ball_kinematics, bearing_equilibrium)
+                                          B_STATUS, STATUS_FAILED, BallLoads, Grooves, ball_kinematics,
+                                          bearing_equilibrium)
 from bearingsim.dynamics.quasistatic.result import QuasiStaticResult, tilt_rotation_matrix
 
 
@@ -94,8 +95,8 @@ class _Problem:
         ci, g, v = self.inner_centres(q)
         force, stiff = np.zeros(5), np.zeros((5, 5))
         balls = np.zeros((self.psi.size, BALL_COLUMNS))
-        failed = bearing_equilibrium(ci, g, self.R_co, self.gap_i, self.gap_o, self.tab_i, self.tab_o,
-                                     self.m_om2, self.g_i, self.g_o, self.xb, warm, force, stiff, balls)
+        failed = bearing_equilibrium(ci, g, self.R_co, Grooves(self.tab_i, self.tab_o, self.gap_i, self.gap_o),
+                                     BallLoads(self.m_om2, self.g_i, self.g_o), self.xb, warm, force, stiff, balls)
         e_r = np.column_stack([np.cos(self.psi), np.sin(self.psi)])
         for a in range(2):
             for b in range(2):

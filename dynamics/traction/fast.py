@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numba
 import numpy as np
@@ -58,6 +59,42 @@ _SQRT2_MANTISSA = 0x6A09E667F3BCD  # mantissa bits of sqrt(2)
 _WORK_ROWS = 9
 # fast-math without nnan/ninf: pole_position returns inf for "no pole", which must compare correctly
 _VEC = {"fastmath": {"nsz", "arcp", "contract", "afn", "reassoc"}, "error_model": "numpy", **NO_REFCOUNT}
+
+
+class TractionRule(NamedTuple):
+    """What `traction_fast` needs besides the contact: one per lubricant and temperature
+    (`FastTraction.traction_rule`), with a scratch workspace for one thread."""
+
+    eta_table: np.ndarray  # (n, 2): eta [Pa.s] at p = i p_step, and eta_(i+1) - eta_i
+    p_step: float          # [Pa]
+    tau0: float            # Eyring stress [Pa]
+    rule: np.ndarray       # packed quadrature rule, `traction_nodes.pack_rule`
+    work: np.ndarray       # (9, n_max) float64 scratch
+    iwork: np.ndarray      # (n_max,) int64 scratch
+
+
+def unused_traction_rule() -> TractionRule:
+    """A placeholder of the right types for a model without Eyring traction."""
+    return TractionRule(np.zeros((2, 2)), 0.0, 0.0, np.zeros(1), np.zeros((1, 1)), np.zeros(1, dtype=np.int64))
+
+
+class _Nodes(NamedTuple):
+    """Quadrature nodes in the scaled plane (X = x/a, Y = y/b) and area weights W [m^2]."""
+
+    X: np.ndarray
+    Y: np.ndarray
+    W: np.ndarray
+
+
+class _NodeValues(NamedTuple):
+    """Per node: eta/(tau0 h) k [s/m], |s| r [m/s], Eyring argument x, z = x + sqrt(1 + x^2),
+    asinh x = ln z (ash)."""
+
+    k: np.ndarray
+    r: np.ndarray
+    x: np.ndarray
+    z: np.ndarray
+    ash: np.ndarray
 
 
 @numba.njit(**_VEC)
@@ -134,12 +171,14 @@ def _node_slip(X, Y, m, a, b, du0, dv0, w_s):
 
 
 @numba.njit(**_VEC)
-def _accumulate(X, Y, W, n, a, b, du0, dv0, w_s, k, r, x, z, ash, out):
+def _accumulate(nodes, values, n, a, b, du0, dv0, w_s, out):
     """Sum tau = g s over the nodes into out[0:3] and its Jacobian into out[3:12] (tau0 = 1).
 
     g = asinh(x)/|s|, c = (x/sqrt(1+x^2) - asinh x)/|s|^3, d tau/d s = g I + c s s^T; below
     SMALL_ARG the series g = k(1 - x^2/6), c = k^3(-1/3 + 3x^2/10) (asinh Taylor series).
     """
+    X, Y, W = nodes.X, nodes.Y, nodes.W
+    k, r, x, z, ash = values.k, values.r, values.x, values.z, values.ash
     Fx = Fy = Mz = 0.0
     j00 = j01 = j02 = j11 = j12 = j20 = j21 = j22 = 0.0
     for m in range(n):
@@ -186,11 +225,13 @@ def _accumulate(X, Y, W, n, a, b, du0, dv0, w_s, k, r, x, z, ash, out):
 
 
 @numba.njit(**_VEC)
-def _accumulate_force(X, Y, W, n, a, b, du0, dv0, w_s, k, r, x, ash, out):
+def _accumulate_force(nodes, values, n, a, b, du0, dv0, w_s, out):
     """`_accumulate` without the Jacobian: out[0:3] = (F_x, F_y, M_z) (tau0 = 1), out[3:12] = 0.
 
     A residual-only evaluation needs no d tau/d s: skipping it saves one division and two
     thirds of the arithmetic per node."""
+    X, Y, W = nodes.X, nodes.Y, nodes.W
+    k, r, x, ash = values.k, values.r, values.x, values.ash
     Fx = Fy = Mz = 0.0
     for m in range(n):
         xp, yp, sx, sy = _node_slip(X, Y, m, a, b, du0, dv0, w_s)
@@ -209,15 +250,13 @@ def _accumulate_force(X, Y, W, n, a, b, du0, dv0, w_s, k, r, x, ash, out):
 
 
 @numba.njit(**NO_REFCOUNT)
-def traction_fast(a, b, p_h, h, tau0, du0, dv0, w_s, eta_table, p_step, rule, work, iwork, out, jacobian=True):
-    """Eyring traction on the ball by pole-centred quadrature (docs/model.md §6.4).
+def traction_fast(a, b, p_h, h, du0, dv0, w_s, tr, out, jacobian=True):
+    """Eyring traction on the ball by pole-centred quadrature (docs/model.md §6.4, M.72–M.74).
 
-    a, b [m] Hertz semi-axes (x = entrainment), p_h [Pa], h [m] central film, tau0 [Pa]
-    Eyring stress, du0, dv0 [m/s] sliding velocity ball - race at the centre, w_s [rad/s]
-    spin (ball - race, along the normal). eta_table (n, 2): eta [Pa.s] at p = i p_step [Pa]
-    and its step to the next row (`FastTraction.build`);
-    rule: packed quadrature rule (`traction_nodes.pack_rule`); work (9, n_max) float64 and iwork (n_max,) int64
-    scratch. Writes out[0:3] = (F_x [N], F_y [N], M_z [N.m]) and out[3:12] =
+    a, b [m] Hertz semi-axes (x = entrainment), p_h [Pa], h [m] central film, du0, dv0 [m/s]
+    sliding velocity ball - race at the centre, w_s [rad/s] spin (ball - race, along the
+    normal); tr: the `TractionRule` (viscosity table, Eyring stress tau0, quadrature rule,
+    scratch). Writes out[0:3] = (F_x [N], F_y [N], M_z [N.m]) and out[3:12] =
     d(F_x, F_y, M_z)/d(du0, dv0, w_s) row-major (zeros when jacobian is False: a
     residual-only evaluation, ~20 % cheaper); returns the flag bits (FLAG_*).
     """
@@ -225,6 +264,7 @@ def traction_fast(a, b, p_h, h, tau0, du0, dv0, w_s, eta_table, p_step, rule, wo
         out[m] = 0.0
     if not (a > 0.0 and b > 0.0 and p_h > 0.0 and h > 0.0):
         return FLAG_NO_CONTACT
+    eta_table, p_step, tau0, work = tr.eta_table, tr.p_step, tr.tau0, tr.work
     flag = FLAG_OK
     if p_h > p_step * (eta_table.shape[0] - 1):
         flag |= FLAG_PRESSURE_CLAMPED
@@ -236,33 +276,35 @@ def traction_fast(a, b, p_h, h, tau0, du0, dv0, w_s, eta_table, p_step, rule, wo
         du0 = min(max(du0, -SLIP_MAX), SLIP_MAX)
         dv0 = min(max(dv0, -SLIP_MAX), SLIP_MAX)
         w_s = min(max(w_s, -SLIP_MAX / b), SLIP_MAX / b)
-    X, Y, W = work[0], work[1], work[2]
-    n = place_nodes(a, b, du0, dv0, w_s, rule, X, Y, W, work[3:8])  # rows 3..7 are free until the next pass
-    f_index, r, k, x, z, ash = work[3], work[4], work[5], work[6], work[7], work[8]
-    _slip_and_table_index(X, Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / p_step, f_index, r)
-    _viscosity_lookup(f_index, n, eta_table, 1.0 / (tau0 * h), k)
-    _eyring_argument(k, r, n, x, z)
-    log_ge1(z, n, f_index, iwork, ash)  # f_index is spent: reuse it for the exponents
+    # scratch rows: X, Y, W; then 3..7 are place_nodes' own until it returns, and become
+    # f_index (table position), r, k, x, z; 8 is asinh x
+    nodes = _Nodes(work[0], work[1], work[2])
+    n = place_nodes(a, b, du0, dv0, w_s, tr.rule, nodes.X, nodes.Y, nodes.W, work[3:8])
+    f_index = work[3]
+    values = _NodeValues(k=work[5], r=work[4], x=work[6], z=work[7], ash=work[8])
+    _slip_and_table_index(nodes.X, nodes.Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / p_step, f_index, values.r)
+    _viscosity_lookup(f_index, n, eta_table, 1.0 / (tau0 * h), values.k)
+    _eyring_argument(values.k, values.r, n, values.x, values.z)
+    log_ge1(values.z, n, f_index, tr.iwork, values.ash)  # f_index is spent: reuse it for the exponents
     if jacobian:
-        _accumulate(X, Y, W, n, a, b, du0, dv0, w_s, k, r, x, z, ash, out)
+        _accumulate(nodes, values, n, a, b, du0, dv0, w_s, out)
     else:
-        _accumulate_force(X, Y, W, n, a, b, du0, dv0, w_s, k, r, x, ash, out)
+        _accumulate_force(nodes, values, n, a, b, du0, dv0, w_s, out)
     for m in range(12):
         out[m] *= tau0
     return flag
 
 
 @numba.njit(cache=True)
-def traction_fast_batch(a, b, p_h, h, du0, dv0, w_s, tau0, eta_table, p_step, rule, work, iwork, F, J, flags):
-    """traction_fast over n contacts: inputs (n,) arrays (units as traction_fast).
+def traction_fast_batch(a, b, p_h, h, du0, dv0, w_s, tr, F, J, flags):
+    """traction_fast over n contacts: inputs (n,) arrays (units as traction_fast), one rule.
 
     Writes F[i] = (F_x, F_y, M_z) [N, N, N.m], J[i] = d(F_x, F_y, M_z)/d(du0, dv0, w_s)
-    (3 x 3) and flags[i]. One call per residual evaluation of the bearing (44 ball-race contacts).
+    (3 x 3) and flags[i].
     """
     out = np.empty(12)
     for i in range(a.shape[0]):
-        flags[i] = traction_fast(a[i], b[i], p_h[i], h[i], tau0, du0[i], dv0[i], w_s[i],
-                                 eta_table, p_step, rule, work, iwork, out)
+        flags[i] = traction_fast(a[i], b[i], p_h[i], h[i], du0[i], dv0[i], w_s[i], tr, out)
         for c in range(3):
             F[i, c] = out[c]
             for d in range(3):
@@ -274,8 +316,8 @@ class FastTraction:
     """Viscosity table and quadrature rule for `traction_fast`: one per lubricant and temperature.
 
     Build with `FastTraction.build(lubricant)`. From Python call `evaluate(...)` (one contact)
-    or `evaluate_batch(...)` (arrays of contacts); from other kernels pass `args()` -- the
-    trailing arguments of `traction_fast` after (..., w_s), including a fresh workspace.
+    or `evaluate_batch(...)` (arrays of contacts); kernels take `traction_rule()`, the
+    `TractionRule` bundle with a fresh workspace.
     """
 
     eta_table: np.ndarray  # (n, 2): eta [Pa.s] at p = i p_step, and eta_(i+1) - eta_i (0 in the last row)
@@ -321,15 +363,15 @@ class FastTraction:
         """Fresh scratch (work, iwork) for one thread."""
         return np.empty((_WORK_ROWS, self.max_nodes)), np.empty(self.max_nodes, dtype=np.int64)
 
-    def args(self) -> tuple:
-        """Trailing arguments of traction_fast after (a, b, p_h, h, tau0, du0, dv0, w_s), except `out`."""
-        return (self.eta_table, self.p_step, self.rule, *self.workspace())
+    def traction_rule(self) -> TractionRule:
+        """The bundle `traction_fast` takes, with a fresh workspace (one per thread)."""
+        return TractionRule(self.eta_table, self.p_step, self.tau0, self.rule, *self.workspace())
 
     def evaluate(self, a, b, p_h, h, du0, dv0, w_s) -> tuple[np.ndarray, np.ndarray, int]:
         """(F = [F_x, F_y, M_z], J[3, 3], flag) on the ball; units as traction_fast."""
         out = np.empty(12)
-        flag = traction_fast(float(a), float(b), float(p_h), float(h), self.tau0, float(du0), float(dv0),
-                             float(w_s), *self.args(), out)
+        flag = traction_fast(float(a), float(b), float(p_h), float(h), float(du0), float(dv0), float(w_s),
+                             self.traction_rule(), out)
         return out[:3].copy(), out[3:].reshape(3, 3).copy(), int(flag)
 
     def evaluate_batch(self, a, b, p_h, h, du0, dv0, w_s) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -339,5 +381,5 @@ class FastTraction:
         if any(c.shape != (n,) for c in cols):
             raise ValueError(f"evaluate_batch: all inputs must be 1-D of one length; got shapes {[c.shape for c in cols]}.")
         F, J, flags = np.empty((n, 3)), np.empty((n, 3, 3)), np.empty(n, dtype=np.int64)
-        traction_fast_batch(*cols, self.tau0, self.eta_table, self.p_step, self.rule, *self.workspace(), F, J, flags)
+        traction_fast_batch(*cols, self.traction_rule(), F, J, flags)
         return F, J, flags

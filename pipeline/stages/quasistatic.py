@@ -25,6 +25,8 @@ def quasistatic_inputs(scene: Scene) -> dict:
         "cage": dataclasses.asdict(scene.cage) if scene.cage is not None else None,
         "land_viscosity": scene.lubricant.eta0 if scene.lubricant is not None and scene.cage is not None else None,
         "land": (scene.physics.cage_race_boundary, scene.physics.cage_race_lands) if scene.cage is not None else None,
+        # only when off, so the keys of existing runs (figures on) stay valid
+        **({"figures": False} if not scene.output.figures else {}),
     }
 
 
@@ -66,9 +68,10 @@ def compute(ctx: StageContext) -> dict:
     if screen is not None:
         payload["cage_screen"] = screen.to_json_dict()
     atomic_write_json(ctx.out_dir / RESULT_FILE, payload)
-    ctx.progress("drawing load distribution", 0.7)
-    # in the worker `bearingsim quasistatic` prestarted, if any (see figures.worker)
-    draw("load_distribution", payload, ctx.out_dir / FIGURE_FILE, title=ctx.scene.name)
+    if ctx.scene.output.figures:
+        ctx.progress("drawing load distribution", 0.7)
+        # in the worker `bearingsim quasistatic` prestarted, if any (see figures.worker)
+        draw("load_distribution", payload, ctx.out_dir / FIGURE_FILE, title=ctx.scene.name)
     return {"converged": bool(payload.get("converged")),
             "max_inner_load_N": max(b["inner_load"] for b in payload["balls"])}
 

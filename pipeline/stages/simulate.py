@@ -40,25 +40,17 @@ def hinge_matrices(scene: Scene, identify_dir) -> tuple | None:
     return np.asarray(H_u, float), np.asarray(H_psi, float), h.damping_ratio_time
 
 
-def model_options(scene: Scene):
-    from bearingsim.dynamics.bearing import ModelOptions
+def check_dynamic_physics(scene: Scene) -> None:
+    """Refuse the `[physics]` keys the dynamic run cannot honour, naming the key."""
+    from ..schema import SceneError
 
     if not scene.physics.centrifugal:
-        from ..schema import SceneError
-
         raise SceneError("physics.centrifugal", "false acts only on the quasi-static solve: the dynamic "
                          "model's inertia always carries the balls' centrifugal force; remove the key "
                          "(or set it true) to run the dynamics")
-    names = {f.name for f in dataclasses.fields(ModelOptions)}
-    return ModelOptions(**{k: v for k, v in dataclasses.asdict(scene.physics).items() if k in names})
-
-
-def hht_settings(scene: Scene):
-    from bearingsim.dynamics.multibody.settings import HHTSettings
-
-    s = scene.solver
-    return HHTSettings(alpha=s.alpha, first_step=s.first_step, min_step=s.min_step,
-                       max_step=s.max_step, rtol=s.rtol, atol=s.atol)
+    if scene.physics.ehd_film and scene.lubricant is None:
+        raise SceneError("physics.ehd_film", "true needs a [lubricant] table (the film's viscosity); give "
+                         "one, or remove the key (without a lubricant the film is off)")
 
 
 def build_model(scene: Scene, identify_dir=None):
@@ -68,6 +60,7 @@ def build_model(scene: Scene, identify_dir=None):
 
     from .quasistatic import solve
 
+    check_dynamic_physics(scene)
     start = initial_state(solve(scene))
     s, m = scene, scene.materials
     params = build_model_params(
@@ -75,7 +68,7 @@ def build_model(scene: Scene, identify_dir=None):
         axial=s.load.axial, radial=s.load.radial, moment=s.load.moment,
         inner_speed=s.speed.inner, outer_speed=s.speed.outer,
         hinge=hinge_matrices(s, identify_dir), static_x=start["inner_race_displacement"],
-        static_R=start["inner_race_rotation"], options=model_options(s), load_step=s.load.load_step)
+        static_R=start["inner_race_rotation"], options=s.physics, load_step=s.load.load_step)
     return params, start
 
 
@@ -87,13 +80,13 @@ def compute(ctx: StageContext) -> dict:
     scene = ctx.scene
     ctx.progress("quasi-static start", 0.0)
     params, start = build_model(scene, ctx.upstream.get("identify"))
-    duration = scene.solver.duration
     wall0 = time.perf_counter()
 
     def progress(t: float, t_end: float, h: float) -> None:
         ctx.progress(f"t = {t * 1e3:7.2f} / {t_end * 1e3:.1f} ms, h = {h:.2e} s", t / t_end)
 
-    run = simulate_bearing(params, start, hht_settings(scene), duration,
+    # scene.solver is the integrator's own settings (HHTSettings) plus the run's duration
+    run = simulate_bearing(params, start, scene.solver, scene.solver.duration,
                            scene.output.sample_interval, progress=progress)
     ctx.progress("writing results", 1.0)
     summary = write_simulation_results(ctx.out_dir, scene, params, start, run,

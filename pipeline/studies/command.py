@@ -13,13 +13,13 @@ from pathlib import Path
 def run_bench(scene, identify_dir, quick: bool, out_dir: Path, with_fe: bool = True,
               progress=print) -> tuple[list[Path], str]:
     """Run the studies; returns (written files, markdown tables)."""
-    from bearingsim.pipeline.stages.simulate import build_model, hht_settings
+    from bearingsim.pipeline.stages.simulate import build_model
 
     from . import work_precision as wp
 
     progress(f"{scene.name}: quasi-static start and model")
     params, start = build_model(scene, identify_dir)
-    study = wp.run_study(params, start, hht_settings(scene), quick, progress=progress)
+    study = wp.run_study(params, start, scene.solver, quick, progress=progress)
     paths = wp.write_study(study, Path(out_dir))
     tables = ["## Dynamics: error against wall time", "", wp.markdown_table(study)]
     if with_fe and scene.fe is not None:

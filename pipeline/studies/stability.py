@@ -89,8 +89,7 @@ def perturbed_start(params, start: dict, perturbation: dict) -> tuple[np.ndarray
 
 def physical_checks(params, run, q0, v0) -> dict:
     """The checks that tell a physical result from garbage; values and whether each holds."""
-    from bearingsim.dynamics.bearing import BearingModel
-    from bearingsim.dynamics.bearing.params import FP_D, FP_DM
+    from bearingsim.dynamics.bearing import BearingModel, layout
 
     model = BearingModel(params)
     q, v = run.q, run.v
@@ -106,8 +105,8 @@ def physical_checks(params, run, q0, v0) -> dict:
         eps, force = _land_contact(model, run)
         out["land_penetration_max"] = float(max(0.0, (eps.max() - 1.0) * params.guide_clearance))
         out["land_metal_force_max"] = float(force.max())
-    D, r_pitch = params.fp[FP_D], 0.5 * params.fp[FP_DM]
-    balls = q[:, :6 * Z].reshape(q.shape[0], Z, 6)[:, :, :3]
+    D, r_pitch = params.ball_diameter, 0.5 * params.pitch_diameter
+    balls = layout.ball_states(q, Z)[:, :, :3]
     radial = np.hypot(balls[..., 0], balls[..., 1]) - r_pitch
     out["ball_drift_max"] = float(max(np.abs(radial).max(), np.abs(balls[..., 2]).max()) / D)
     out["ok"] = (out["kinetic_ratio_max"] <= MAX_KINETIC_RATIO
@@ -119,14 +118,13 @@ def physical_checks(params, run, q0, v0) -> dict:
 def _land_contact(model, run) -> tuple[np.ndarray, np.ndarray]:
     """Eccentricity ratio e/C at the guide land and metal-contact force [N] at every sample,
     from the model's own journal diagnostics (docs/model.md §8)."""
-    from bearingsim.dynamics.bearing.assembly import DG_EPS, DG_METAL
-
     n = model.n_dof
     ma, g, a = np.zeros(n), np.zeros(n), np.zeros(n)
     eps, force = np.zeros(run.t.size), np.zeros(run.t.size)
     for i in range(run.t.size):
         model.evaluate(float(run.t[i]), run.q[i], run.v[i], a, ma, g)
-        eps[i], force[i] = model.diag[DG_EPS], model.diag[DG_METAL]
+        eps[i] = model.channel("cage_race/eccentricity_ratio")
+        force[i] = model.channel("cage_race/metal_force")
     return eps, force
 
 
@@ -146,7 +144,7 @@ def run_case(name: str, window: float = DEFAULT_WINDOW, wall_budget: float = DEF
     """Run one case; every failure becomes a 'refused' result with its message."""
     from bearingsim.pipeline.scene import load_scene
     from bearingsim.pipeline.schema import SceneError
-    from bearingsim.pipeline.stages.simulate import build_model, hht_settings
+    from bearingsim.pipeline.stages.simulate import build_model
 
     from .instrumented import bearing_window
 
@@ -155,7 +153,7 @@ def run_case(name: str, window: float = DEFAULT_WINDOW, wall_budget: float = DEF
     try:
         scene = load_scene(scene_path or case_path(name))
         params, start = build_model(scene, None)
-        settings = hht_settings(scene)
+        settings = scene.solver
     except (SceneError, ValueError, RuntimeError, ArithmeticError) as exc:
         return CaseResult(name, "refused", f"set-up: {type(exc).__name__}: {exc}",
                           time.perf_counter() - t0, window, {}, {}, empty)

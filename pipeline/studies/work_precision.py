@@ -223,11 +223,11 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--set", action="append", default=[], dest="overrides")
     args = ap.parse_args(argv)
     from bearingsim.pipeline.scene import load_scene
-    from bearingsim.pipeline.stages.simulate import build_model, hht_settings
+    from bearingsim.pipeline.stages.simulate import build_model
 
     scene = load_scene(args.scene, args.overrides)
     params, start = build_model(scene, None)
-    study = run_study(params, start, hht_settings(scene), args.quick)
+    study = run_study(params, start, scene.solver, args.quick)
     write_study(study, args.out)
     print(markdown_table(study))
 

@@ -26,7 +26,7 @@ from typing import Callable
 from ..artefacts import atomic_write_json
 from ..scene import NAME_MAX, apply_overrides, check_name, read_scene_table, resolve
 from ..schema import SceneError
-from .point_runner import NO_FIGURES, PointRequest, finished_record, run_point
+from .point_runner import PointRequest, finished_record, run_point
 from .points import SweepPoint, expand, point_table, scene_hash
 from .spec import MAX_POINTS, SweepSection, build_sweep_section, check_size, with_command_line
 from .table import result_row, write_table
@@ -76,8 +76,6 @@ def plan_sweep(scene: str | Path, sets: list[str] | None = None, vary: list[str]
     check_size(section, max_points)
     base = {k: v for k, v in table.items() if k != "sweep"}
     resolve(base, origin)
-    if not section.figures:
-        _check_figures_can_be_skipped(base, origin)
     sweep_name = section.name or f"{base['name']}-sweep"
     check_name("sweep.name", sweep_name, max_length=NAME_MAX + len("-sweep"))
     sweep_dir = Path(out if out is not None else Path("runs") / sweep_name).resolve()
@@ -90,17 +88,6 @@ def plan_sweep(scene: str | Path, sets: list[str] | None = None, vary: list[str]
                                      str(sweep_dir / "points" / p.id), str(store), section.target,
                                      section.figures))
     return SweepPlan(sweep_name, origin, sweep_dir, section, points, tuple(requests))
-
-
-def _check_figures_can_be_skipped(base: dict, origin: str) -> None:
-    """`figures = false` runs every point with the scene key `output.figures = false`: it must
-    validate (a version of the scene schema without that key cannot skip figures)."""
-    try:
-        resolve(apply_overrides(base, [NO_FIGURES]), origin)
-    except SceneError as exc:
-        raise SceneError("sweep.figures", f"false needs the scene key output.figures, which this "
-                                          f"version does not accept ({exc}); remove figures = false "
-                                          f"or --no-figures") from None
 
 
 def unfinished(plan: SweepPlan, retry_failed: bool = False) -> tuple[dict[str, dict], list[PointRequest]]:

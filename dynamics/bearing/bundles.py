@@ -1,0 +1,106 @@
+"""The named bundles the bearing kernels take instead of long positional argument lists.
+
+numba accepts NamedTuples of arrays and floats as arguments and builds them inside kernels;
+attribute access compiles to a field load, and a bundle of borrowed arrays needs no
+reference counting, so the kernels compiled without it (dynamics/_kernel_options.py) take
+them too. A call passes the same arrays as before, now under their names; the hot per-contact
+kernels get only the small bundles they read (a body, a race table, the traction rule).
+
+Built once outside the time loop (`BearingModelParams`, `BearingModel`), except `Ball`,
+`Body` and `Bodies`, which the residual kernel makes per evaluation from views of (q, v).
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+from bearingsim.dynamics.traction.fast import TractionRule
+
+
+class Ball(NamedTuple):
+    """One ball: centre x [m], velocity v [m/s], angular velocity w [rad/s] (views of q, v)."""
+
+    x: np.ndarray
+    v: np.ndarray
+    w: np.ndarray
+
+
+class Body(NamedTuple):
+    """A race or the cage, global frame: centre x [m], rotation R (body -> global), velocity
+    v [m/s], spatial angular velocity w [rad/s]."""
+
+    x: np.ndarray
+    R: np.ndarray
+    v: np.ndarray
+    w: np.ndarray
+
+
+class Bodies(NamedTuple):
+    """The bodies a ball touches, in one state; `cage` is read only when there is a cage."""
+
+    inner: Body
+    outer: Body
+    cage: Body
+
+
+class RaceTables(NamedTuple):
+    """Contact tables of the two races (race_table.race_contact_table)."""
+
+    inner: np.ndarray
+    outer: np.ndarray
+
+
+class HingeArrays(NamedTuple):
+    """Viscoelastic hinge of the inner race (docs/model.md §5): stiffnesses H_u (3x3) [N/m],
+    H_psi (2) [N m/rad], dampings G = c_G H, and the static frame A (x_A [m], R_A)."""
+
+    H_u: np.ndarray
+    H_psi: np.ndarray
+    G_u: np.ndarray
+    G_psi: np.ndarray
+    x_A: np.ndarray
+    R_A: np.ndarray
+
+
+class CageArrays(NamedTuple):
+    """Ball–pocket parameters (contact/pocket.py P_*), cage–land parameters (journal/hybrid.py
+    J_*), pocket azimuths psi [rad] and the impact speeds v_0 [m/s] the hysteresis law
+    remembers per pocket (state of the model, updated after every accepted step)."""
+
+    pocket: np.ndarray
+    journal: np.ndarray
+    psi: np.ndarray
+    impact_speeds: np.ndarray
+
+
+class ModelArrays(NamedTuple):
+    """Everything the residual kernel reads besides the state: the float and integer
+    parameter vectors (params.FP_*, IP_*), the diagonal mass, and the bundles above."""
+
+    fp: np.ndarray
+    ip: np.ndarray
+    mass: np.ndarray
+    races: RaceTables
+    traction: TractionRule
+    cage: CageArrays
+    hinge: HingeArrays
+
+
+class BorderLoads(NamedTuple):
+    """Sums of the contact wrenches on the inner race and the cage, spatial, about their
+    centres [N, N m]; filled ball by ball."""
+
+    F_inner: np.ndarray
+    M_inner: np.ndarray
+    F_cage: np.ndarray
+    M_cage: np.ndarray
+
+
+class ContactScratch(NamedTuple):
+    """Work rows of one contact evaluation: its geometry (contact/race.py, N_CONTACT_SCRATCH)
+    and its traction result (12: T, dT/ds)."""
+
+    contact: np.ndarray
+    traction: np.ndarray

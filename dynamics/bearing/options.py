@@ -1,0 +1,64 @@
+"""Physics switches and contact parameters of the bearing model: the scene's `[physics]` table.
+
+The scene loader builds this class straight from `[physics]` (pipeline/scene_sections.py),
+so the field metadata below (unit, range, choices, doc) is the one definition of every
+physics key; docs/scenes.md is generated from it. SI units.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from bearingsim.dynamics.field_checks import check_fields
+
+
+@dataclass(frozen=True)
+class ModelOptions:
+    """Which laws the contacts use and their parameters (docs/model.md §6–§8, §10)."""
+
+    ehd_film: bool = field(default=True, metadata={
+        "doc": "compute the EHD central film of every ball-race contact (needs [lubricant])"})
+    traction: str = field(default="eyring", metadata={
+        "choices": ("eyring", "coulomb", "none"),
+        "doc": "ball-race traction: Eyring lubricant (film needed), Coulomb (dry) or none"})
+    cage_race: str = field(default="hybrid", metadata={
+        "choices": ("hybrid", "hydrodynamic", "dry", "none"),
+        "doc": "cage-land law: hybrid film/metal (paper eqs. 25-31), film only, metal only, or no contact"})
+    centrifugal: bool = field(default=True, metadata={
+        "doc": "ball centrifugal force in the quasi-static solve; the dynamic model's inertia always has it, "
+               "so a dynamic run refuses false"})
+    gyroscopic: bool = field(default=True, metadata={
+        "doc": "gyroscopic moments: of the balls in the quasi-static solve (race control), of every body in "
+               "the dynamics"})
+    film_formula: str = field(default="nvm", metadata={
+        "choices": ("nvm", "hamrock-dowson"), "doc": "central film: Nijenbanning-Venner-Moes or Hamrock-Dowson"})
+    min_film: float = field(default=5e-8, metadata={
+        "unit": "m", "gt": 0.0, "doc": "floor of the film used by traction (mixed lubrication is not modelled)"})
+    dry_friction: float = field(default=0.1, metadata={
+        "unit": "-", "ge": 0.0, "le": 1.0, "doc": "ball-race Coulomb coefficient (traction = 'coulomb')"})
+    contact_damping_ratio: float = field(default=0.05, metadata={
+        "unit": "-", "ge": 0.0, "le": 1.0,
+        "doc": "ball-race normal damping, fraction of critical for a ball on its Hertz stiffness"})
+    pocket_friction: float = field(default=0.1, metadata={
+        "unit": "-", "ge": 0.0, "le": 1.0, "doc": "ball-pocket Coulomb coefficient (regularised)"})
+    pocket_restitution: float = field(default=0.7, metadata={
+        "unit": "-", "gt": 0.0, "le": 1.0,
+        "doc": "coefficient of restitution of ball-pocket impacts (Hunt-Crossley damping)"})
+    cage_race_friction: float = field(default=0.1, metadata={
+        "unit": "-", "ge": 0.0, "le": 1.0, "doc": "metal-to-metal friction at the guide land"})
+    cage_race_boundary: float = field(default=0.05, metadata={
+        "unit": "-", "gt": 0.0, "lt": 1.0, "doc": "epsilon_0: boundary-layer width of the hybrid model / C"})
+    cage_race_film: str = field(default="dynamic", metadata={
+        "choices": ("dynamic", "static"),
+        "doc": "land film force: 'dynamic' = short bearing with the squeeze and whirl terms of the Reynolds "
+               "equation (docs/model.md M.94b-M.94e); 'static' = the paper's eq. 25 (a centre at rest)"})
+    cage_race_lands: int = field(default=2, metadata={
+        "unit": "-", "ge": 1, "le": 2,
+        "doc": "separate guide lands the cage overlap is split into: 2 = one on each side of the race groove, "
+               "which vents the film (each a short bearing of half the length); 1 = the paper's single journal"})
+    coulomb_regularisation: float = field(default=1e-3, metadata={
+        "unit": "m/s", "gt": 0.0,
+        "doc": "slip speed over which Coulomb friction (traction = 'coulomb') reaches its full value"})
+
+    def __post_init__(self) -> None:
+        check_fields(self, "physics")

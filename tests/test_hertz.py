@@ -133,3 +133,18 @@ def test_normal_tangent_matches_finite_difference():
         assert np.allclose(out, fd, rtol=1e-6, atol=1e-6 * np.abs(fd).max())
     normal_tangent(k_h, -1e-6, w / s, s, out)
     assert not out.any()
+
+
+def test_semi_axis_coefficients_equal_the_table_evaluation_at_each_angle():
+    """The array form used by the burn-zone render equals `hertz_table_eval` angle by angle."""
+    from bearingsim.dynamics.contact.hertz import hertz_table_eval, race_hertz_table, semi_axis_coefficients
+    from bearingsim.dynamics.geometry import effective_modulus
+    from bearingsim.pipeline.scene import load_scene
+
+    scene = load_scene("helicopter-b-given-hinge")
+    table = race_hertz_table(scene.bearing, effective_modulus(scene.materials.ball, scene.materials.race), outer=True)
+    alpha = np.linspace(-0.8, 0.8, 33).reshape(3, 11)
+    c_a, c_b = semi_axis_coefficients(table, alpha)
+    for a, ca, cb in zip(alpha.ravel(), c_a.ravel(), c_b.ravel()):
+        _, _, _, ca_ref, cb_ref = hertz_table_eval(table, a)
+        assert (ca, cb) == (ca_ref, cb_ref)

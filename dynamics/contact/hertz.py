@@ -216,6 +216,18 @@ def hertz_table_eval(table, alpha):
 
 
 @numba.njit(cache=True)
+def semi_axis_coefficients(table, alpha):
+    """c_a, c_b [m/N^{1/3}] (a = c_a F^{1/3}, b = c_b F^{1/3}) of a Hertz table at every contact
+    angle of the array `alpha` [rad]: `hertz_table_eval` for many angles at once."""
+    c_a = np.empty(alpha.size)
+    c_b = np.empty(alpha.size)
+    flat = alpha.ravel()
+    for i in range(flat.size):
+        _, _, _, c_a[i], c_b[i] = hertz_table_eval(table, flat[i])
+    return c_a.reshape(alpha.shape), c_b.reshape(alpha.shape)
+
+
+@numba.njit(cache=True)
 def max_pressure(force, c_a, c_b):
     """p_max = 3F/(2π a b) [Pa] with a = c_a F^{1/3}, b = c_b F^{1/3} (docs/model.md §6.2)."""
     if force <= 0.0:

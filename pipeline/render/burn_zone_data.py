@@ -154,11 +154,10 @@ def outer_semi_major_axis(bearing, ball, race, outer_angle: np.ndarray, outer_lo
     """Hertz semi-major axis a = c_a(alpha) Q^{1/3} [m] of the ball–outer contacts, along
     the groove (§6.2, exact constants tabulated in alpha by `dynamics.contact.hertz`)."""
     from bearingsim.dynamics.geometry import effective_modulus
-    from bearingsim.dynamics.contact.hertz import TAB_CA, race_hertz_table
+    from bearingsim.dynamics.contact.hertz import race_hertz_table, semi_axis_coefficients
 
     table = race_hertz_table(bearing, effective_modulus(ball, race), outer=True)
-    nodes = np.linspace(0.0, 0.5 * math.pi, table.shape[0])
-    c_a = np.interp(np.abs(np.asarray(outer_angle, dtype=float)), nodes, table[:, TAB_CA])
+    c_a, _ = semi_axis_coefficients(table, np.ascontiguousarray(outer_angle, dtype=float))
     return c_a * np.cbrt(np.clip(np.asarray(outer_load, dtype=float), 0.0, None))
 
 

@@ -7,6 +7,7 @@ import os
 import pathlib
 import tempfile
 import tomllib
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -93,28 +94,96 @@ def von_mises(model, u: np.ndarray) -> np.ndarray:
 
 
 def write_case_vtu(path: pathlib.Path, model, u: np.ndarray, material_id: np.ndarray) -> None:
-    """One load case: quadratic (or linear) tetrahedra, point displacement, cell stress."""
-    import meshio
-
+    """One load case of the 3-D model: quadratic (or linear) tetrahedra, point displacement,
+    cell stress."""
     mesh = model.mesh
     U = u.reshape(-1, 3)
     if model.basis.elem.__class__.__name__ == "ElementTetP2":
         # skfem's local edge order (01, 12, 02, 03, 13, 23) is VTK's tetra10 order
         points = np.vstack([mesh.p.T, 0.5 * (mesh.p[:, mesh.edges[0]] + mesh.p[:, mesh.edges[1]]).T])
-        cells = [("tetra10", np.vstack([mesh.t, mesh.nvertices + mesh.t2e]).T)]
+        cells = ("tetra10", np.vstack([mesh.t, mesh.nvertices + mesh.t2e]).T)
     else:
-        points, cells = mesh.p.T, [("tetra", mesh.t.T)]
-    out = meshio.Mesh(
-        points,
-        cells,
-        point_data={"displacement": U[: points.shape[0]]},
-        cell_data={"von_mises": [von_mises(model, u)], "material": [material_id]},
-    )
+        points, cells = mesh.p.T, ("tetra", mesh.t.T)
+    write_vtu(path, points, cells, {"displacement": U[: points.shape[0]]},
+              {"von_mises": von_mises(model, u), "material": material_id})
+
+
+# Volume .vtu of the axisymmetric model: a uniform section mesh of VIEW_WALL_FRACTION x the
+# thinnest wall swept through VIEW_SECTORS sectors into wedges (what the renders and ParaView
+# need; the solution itself lives on the graded section mesh and is interpolated onto it).
+VIEW_SECTORS = 40
+VIEW_WALL_FRACTION = 0.4
+
+
+@dataclass
+class RevolvedView:
+    """The body of revolution as wedges, with what it takes to put a case's fields on it."""
+
+    solution: object  # axisymmetric.HarmonicSolution
+    points: np.ndarray  # (S P, 3) m
+    wedges: np.ndarray  # (S E, 6)
+    material: np.ndarray  # (S E,) int32
+    nodes: object  # SectionProbe at the section nodes
+    centroids: object  # SectionProbe at the section triangles' centroids
+    sectors: int
+
+    @classmethod
+    def of(cls, solution, geometry, cache_dir: pathlib.Path, material_ids: dict[str, int],
+           sectors: int = VIEW_SECTORS) -> "RevolvedView":
+        """The view of `solution` on the housing `geometry` (its section mesh cached in
+        `cache_dir`); `material_ids` maps a part name to the cell data `material`."""
+        from bearingsim.fe_model.axisymmetric import SectionProbe
+        from bearingsim.meshes.cache import cached_section_mesh
+        from bearingsim.meshes.housing import thinnest_wall
+        from bearingsim.meshes.section import revolved_points, revolved_wedges
+
+        section, _, _ = cached_section_mesh(geometry, VIEW_WALL_FRACTION * thinnest_wall(geometry), cache_dir)
+        part = np.zeros(section.n_elements, dtype=np.int32)
+        for name, tris in section.volumes.items():
+            part[tris] = material_ids.get(name, 0)
+        centroids = section.points[section.triangles].mean(axis=1)
+        return cls(solution, revolved_points(section.points, sectors),
+                   revolved_wedges(section.triangles, section.n_nodes, sectors), np.tile(part, sectors),
+                   SectionProbe(solution.model, section.points), SectionProbe(solution.model, centroids), sectors)
+
+    def fields(self, load: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(displacement (S P, 3) [m], von Mises (S E,) [Pa]) of a load (F, M) [N, N*m]:
+        displacement at the nodes, stress at the centroid of each wedge (mid-sector angle)."""
+        angles = 2.0 * np.pi * np.arange(self.sectors) / self.sectors
+        model, cells = self.solution.model, self.centroids.cells
+        u = self.solution.displacement(self.nodes, angles, load)
+        vm = self.solution.von_mises(self.centroids, angles + np.pi / self.sectors, load,
+                                     model.lam[cells], model.mu[cells])
+        return u, vm
+
+
+def write_revolved_case_vtu(path: pathlib.Path, view: RevolvedView, load: np.ndarray) -> None:
+    """One load case of the axisymmetric model on its revolved view: wedges, point
+    displacement, cell von Mises stress and material."""
+    u, vm = view.fields(load)
+    write_vtu(path, view.points, ("wedge", view.wedges), {"displacement": u},
+              {"von_mises": vm, "material": view.material})
+
+
+def write_vtu(path: pathlib.Path, points, cells: tuple[str, np.ndarray], point_data: dict, cell_data: dict,
+              compression: str | None = "zlib") -> None:
+    """A volume .vtu, written atomically (temp file in the same directory, then rename).
+    Real arrays are stored as float32 (7 digits: plenty for ParaView and the renders; half
+    the bytes), connectivity as int32."""
+    import meshio
+
+    def compact(a):
+        a = np.asarray(a)
+        return a.astype(np.float32) if a.dtype.kind == "f" else a.astype(np.int32) if a.dtype.kind in "iu" else a
+
+    out = meshio.Mesh(compact(points), [(cells[0], compact(cells[1]))],
+                      point_data={k: compact(v) for k, v in point_data.items()},
+                      cell_data={k: [compact(v)] for k, v in cell_data.items()})
     path = pathlib.Path(path)
     fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=path.name, suffix=".tmp.vtu")
     os.close(fd)
     try:
-        out.write(tmp, file_format="vtu", compression=None)  # zlib costs seconds, saves little
+        out.write(tmp, file_format="vtu", compression=compression)
         os.replace(tmp, path)
     finally:
         if os.path.exists(tmp):

@@ -22,14 +22,17 @@ class FEConfig:
     """Stage-1 settings (docs/model.md §3). Defaults suit the reference bearing (§2)."""
 
     # --- numerics -----------------------------------------------------------------------
-    mesh_size: float = _f(0.030, "m", "characteristic tetrahedron edge length", gt=0.0)
+    mesh_size: float = _f(
+        0.010, "m", "triangle size in the meridian (r, z) section of the axisymmetric model, away "
+        "from its corners", gt=0.0)
     edge_refinement: float = _f(
-        0.25, "-", "element size at the circular edges (corners, material junctions) as a "
-        "fraction of mesh_size, 0.32 x that at the support, web and seat edges; 1 = uniform mesh",
+        0.02, "-", "triangle size at the corners of the section (the circular edges: re-entrant "
+        "corners, material junctions, seat ends) as a fraction of mesh_size, growing linearly back "
+        "to mesh_size at 3 thinnest walls from them; 1 = uniform mesh",
         gt=0.0, le=1.0,
     )
     element_order: int = _f(
-        2, "-", "displacement order: 2 (accurate) or 1 (fast preview, ~5 % stiff in bending)",
+        2, "-", "displacement order: 2 (accurate) or 1 (fast preview, up to ~2 % stiff)",
         choices=(1, 2),
     )
     linear_solver: str = _f(

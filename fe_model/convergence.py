@@ -48,11 +48,13 @@ def richardson(h: np.ndarray, f: np.ndarray) -> tuple[float, float]:
     return float(f3 - C * h3**p), float(p)
 
 
-def _row(order: int, size: float, solved, fit, seconds: float) -> dict:
+def _row(order: int, size: float, solved, fit, seconds: float, model: str) -> dict:
     s = solved.mesh_stats
-    return {"element_order": order, "mesh_size": size, "effective_mesh_size": s["effective_mesh_size"],
+    return {"model": model, "element_order": order, "mesh_size": size, "edge_refinement": s["edge_refinement"],
+            "effective_mesh_size": s["effective_mesh_size"],
             "dofs": s["dofs"], "H_u_xx": fit.H_u[0, 0], "H_u_yy": fit.H_u[1, 1], "H_u_zz": fit.H_u[2, 2],
-            "H_psi_x": fit.H_psi[0], "H_psi_y": fit.H_psi[1], "seconds": seconds}
+            "H_psi_x": fit.H_psi[0], "H_psi_y": fit.H_psi[1], "seconds": seconds,
+            "timings": dict(solved.timings)}
 
 
 def convergence_study(
@@ -61,10 +63,13 @@ def convergence_study(
     mesh_sizes,
     orders,
     out_dir: pathlib.Path,
+    model: str = "axisymmetric",
 ) -> dict:
-    """Solve the identification for every (order, mesh size); write convergence.csv and
+    """Solve the identification for every (order, mesh size) at the config's edge_refinement
+    (a self-similar family: the meshes differ by a scale); write convergence.csv and
     convergence.md to `out_dir`. Returns {"rows": [...], "richardson": {order: {q: (f0, p)}}}
-    with the extrapolation in the effective element size (mean tetrahedron volume)."""
+    with the extrapolation in the effective element size (of the mean element's measure).
+    model: "axisymmetric" (default) or "3d" (fe_model.identify.solve_perturbations)."""
     out_dir = pathlib.Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     rows = []
@@ -72,9 +77,9 @@ def convergence_study(
         for size in sorted(mesh_sizes, reverse=True):
             cfg = dataclasses.replace(config, mesh_size=float(size), element_order=int(order))
             t0 = time.perf_counter()
-            solved = solve_perturbations(cfg, ring, out_dir, lambda stage, fraction: None)
+            solved = solve_perturbations(cfg, ring, out_dir, lambda stage, fraction: None, model)
             fit = fit_hinge(solved.loads, solved.responses, solved.groups)
-            rows.append(_row(order, size, solved, fit, time.perf_counter() - t0))
+            rows.append(_row(order, size, solved, fit, time.perf_counter() - t0, model))
             del solved
     extrapolated = {}
     for order in orders:
@@ -89,7 +94,8 @@ def convergence_study(
 def _write_tables(out_dir: pathlib.Path, table: dict) -> None:
     rows = table["rows"]
     buf = io.StringIO()
-    writer = csv.DictWriter(buf, fieldnames=list(rows[0]))
+    fields = [k for k in rows[0] if k != "timings"]
+    writer = csv.DictWriter(buf, fieldnames=fields, extrasaction="ignore")
     writer.writeheader()
     writer.writerows(rows)
     atomic_write_bytes(out_dir / "convergence.csv", buf.getvalue().encode())

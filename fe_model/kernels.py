@@ -51,6 +51,68 @@ def element_stiffness_upper(grads, dx, lam, mu):
 
 
 @numba.njit(cache=True)
+def harmonic_stiffness_upper(phi, grads, r, dx, lam, mu, n, c_cos, c_sin):
+    """Upper triangles of the element matrices of one Fourier mode of an axisymmetric body.
+
+    The displacement u_r = U_r cos n theta, u_theta = U_theta sin n theta, u_z = U_z cos n
+    theta has the engineering strains (docs/model.md §3, Zienkiewicz & Taylor, The Finite
+    Element Method, vol. 1, 6th ed., §9.4)
+        eps_rr = U_r,r c,  eps_tt = (U_r + n U_t)/r c,  eps_zz = U_z,z c,
+        g_rz = (U_r,z + U_z,r) c,  g_rt = (U_t,r - (n U_r + U_t)/r) s,  g_tz = (U_t,z - n U_z/r) s,
+    c = cos n theta, s = sin n theta; integrating lam tr(eps)^2 + 2 mu eps:eps round the axis
+    gives the weight c_cos to the terms in c^2 and c_sin to those in s^2 (pi and pi for
+    n >= 1; 2 pi and 0 for n = 0, where U_theta is torsion and decouples).
+
+    phi: (E, Q, A) scalar shape functions, grads: (E, Q, A, 2) their (r, z) gradients [1/m],
+    r: (E, Q) radius of the quadrature points [m], dx: (E, Q) weights times |det J| [m^2],
+    lam, mu: (E,) [Pa]. Returns (E, n(n+1)/2) [N/m], n = 3A, local dof 3a + (0: U_r, 1: U_theta,
+    2: U_z), entries (p, q) with p <= q in row-major order, as element_stiffness_upper.
+    """
+    n_el, n_q, n_a = phi.shape
+    m = 3 * n_a
+    out = np.zeros((n_el, m * (m + 1) // 2))
+    B = np.zeros((6, m))
+    block = np.empty((m, m))
+    for e in range(n_el):
+        block[:, :] = 0.0
+        for q in range(n_q):
+            rq = r[e, q]
+            for a in range(n_a):
+                f = phi[e, q, a] / rq
+                fr = grads[e, q, a, 0]
+                fz = grads[e, q, a, 1]
+                i = 3 * a
+                B[0, i] = fr
+                B[1, i] = f
+                B[1, i + 1] = n * f
+                B[2, i + 2] = fz
+                B[3, i] = fz
+                B[3, i + 2] = fr
+                B[4, i] = -n * f
+                B[4, i + 1] = fr - f
+                B[5, i + 1] = fz
+                B[5, i + 2] = -n * f
+            w = dx[e, q] * rq
+            wl = w * c_cos * lam[e]
+            wm = w * c_cos * mu[e]
+            ws = w * c_sin * mu[e]
+            for p in range(m):
+                tp = B[0, p] + B[1, p] + B[2, p]
+                for s in range(p, m):
+                    ts = B[0, s] + B[1, s] + B[2, s]
+                    block[p, s] += (wl * tp * ts
+                                    + 2.0 * wm * (B[0, p] * B[0, s] + B[1, p] * B[1, s] + B[2, p] * B[2, s])
+                                    + wm * B[3, p] * B[3, s]
+                                    + ws * (B[4, p] * B[4, s] + B[5, p] * B[5, s]))
+        k = 0
+        for p in range(m):
+            for s in range(p, m):
+                out[e, k] = block[p, s]
+                k += 1
+    return out
+
+
+@numba.njit(cache=True)
 def upper_triplet_indices(dofs):
     """Global (row, col) of every upper-triangle element entry, swapped so row <= col.
 

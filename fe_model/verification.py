@@ -7,7 +7,12 @@
   rectangle kappa = 10 (1 + nu)/(12 + 11 nu) (Cowper, J. Appl. Mech. 33:335, 1966, Table 1).
 - Thick-walled open tube under internal pressure p (Lamé; Timoshenko & Goodier §28):
   u_r(r) = [(1 - nu) A r + (1 + nu) B / r]/E, A = p a^2/(b^2 - a^2), B = A b^2,
-  with sigma_z = 0 (free ends), an exact 3-D solution.
+  with sigma_z = 0 (free ends), an exact 3-D solution. Solved in 3-D (`solve`) and as
+  Fourier mode 0 of the axisymmetric model (`solve_axisymmetric`).
+- Tube cantilever with an end shear load (Fourier mode 1 of the axisymmetric model) against
+  Timoshenko beam theory, shear coefficient of a hollow circle
+  kappa = 6 (1 + nu)(1 + m^2)^2 / [(7 + 6 nu)(1 + m^2)^2 + (20 + 12 nu) m^2], m = a/b
+  (Cowper 1966, Table 1).
 """
 
 from __future__ import annotations
@@ -15,6 +20,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+
+import math
 
 from bearingsim.fe_model.elasticity import ElasticModel
 from bearingsim.fe_model.loads import RegionMoments, distributed_load_matrix, rigid_fit_operator
@@ -99,3 +106,76 @@ class LameTube:
         area_bore = 0.5 * np.pi * self.inner_radius * self.half_length
         area_out = 0.5 * np.pi * self.outer_radius * self.half_length
         return float(bore @ u / area_bore), float(outside @ u / area_out), model.n_dofs
+
+    def solve_axisymmetric(self, mesh_size: float, order: int) -> tuple[float, float, int]:
+        """Mode 0 of the axisymmetric model on the section [a, b] x [0, H], U_z = 0 at z = 0:
+        surface-mean radial displacement at the bore and outside [m], and dofs."""
+        from skfem import FacetBasis, LinearForm
+
+        from bearingsim.fe_model.axisymmetric import HarmonicModel
+
+        a, b, H = self.inner_radius, self.outer_radius, self.half_length
+        mesh = _section(a, b, 0.0, H, mesh_size, {
+            "bore": lambda k: k[0] == "r" and math.isclose(k[1], a, abs_tol=1e-6),
+            "outside": lambda k: k[0] == "r" and math.isclose(k[1], b, abs_tol=1e-6),
+            "sym_z": lambda k: k[0] == "z" and math.isclose(k[1], 0.0, abs_tol=1e-6)})
+        model = HarmonicModel.build(mesh, order, {"tube": (self.youngs_modulus, self.poisson_ratio)})
+        K, reduction = model.stiffness_upper(0, model.boundary_dofs("sym_z", (2,)))
+
+        def radial_moments(group: str) -> np.ndarray:
+            """(3N,) m with m . U = int U_r r dz over the line (the surface integral / 2 pi)."""
+            fb = FacetBasis(mesh, model.basis.elem, facets=mesh.boundaries[group], intorder=order + 2)
+            m = np.zeros((model.basis.N, 3))
+            m[:, 0] = LinearForm(lambda v, w: w.x[0] * v).assemble(fb)
+            return m.ravel()
+
+        bore, outside = radial_moments("bore"), radial_moments("outside")
+        f = 2.0 * np.pi * self.pressure * bore  # p e_r on the bore, round the axis
+        u = reduction.expand(SPDFactorization(K).solve(reduction.restrict(f)))
+        return float(bore @ u / (a * H)), float(outside @ u / (b * H)), model.n_dofs
+
+
+@dataclass(frozen=True)
+class TubeCantilever:
+    length: float = 1.0  # m
+    inner_radius: float = 0.04  # m
+    outer_radius: float = 0.05  # m
+    youngs_modulus: float = 210e9  # Pa
+    poisson_ratio: float = 0.3
+    load: float = 1.0e4  # N, along +x at the tip
+
+    def timoshenko(self) -> tuple[float, float]:
+        """(tip deflection w [m], tip cross-section rotation phi [rad])."""
+        a, b, L, P = self.inner_radius, self.outer_radius, self.length, self.load
+        E, nu = self.youngs_modulus, self.poisson_ratio
+        I, A, G, m2 = math.pi * (b**4 - a**4) / 4.0, math.pi * (b**2 - a**2), E / (2.0 * (1.0 + nu)), (a / b) ** 2
+        kappa = 6.0 * (1.0 + nu) * (1.0 + m2) ** 2 / ((7.0 + 6.0 * nu) * (1.0 + m2) ** 2 + (20.0 + 12.0 * nu) * m2)
+        return P * L**3 / (3 * E * I) + P * L / (kappa * G * A), P * L**2 / (2 * E * I)
+
+    def solve(self, mesh_size: float, order: int) -> tuple[float, float, int]:
+        """Mode 1 of the axisymmetric model: root z = -L clamped, M.43 shear traction on the
+        tip face z = 0 (its centroid is the origin), tip face rigid-fitted (M.44):
+        (tip deflection [m], tip rotation [rad], dofs)."""
+        from skfem import FacetBasis
+
+        from bearingsim.fe_model.axisymmetric import AxisymmetricRegion, HarmonicModel, mode1_load, rigid_fit_rows
+
+        a, b, L = self.inner_radius, self.outer_radius, self.length
+        mesh = _section(a, b, -L, 0.0, mesh_size, {
+            "root": lambda k: k[0] == "z" and math.isclose(k[1], -L, abs_tol=1e-6),
+            "tip": lambda k: k[0] == "z" and math.isclose(k[1], 0.0, abs_tol=1e-6)})
+        model = HarmonicModel.build(mesh, order, {"tube": (self.youngs_modulus, self.poisson_ratio)})
+        K, reduction = model.stiffness_upper(1, model.boundary_dofs("root"))
+        tip = AxisymmetricRegion.of(FacetBasis(mesh, model.basis.elem, facets=mesh.boundaries["tip"],
+                                               intorder=order + 3))
+        u = reduction.expand(SPDFactorization(K).solve(reduction.restrict(mode1_load(tip, self.load, 0.0))))
+        q = rigid_fit_rows(tip)[0] @ u
+        # a rotation theta_y about +y moves points at +z towards +x: phi = theta_y
+        return float(q[0]), float(q[4]), model.n_dofs
+
+
+def _section(r0: float, r1: float, z0: float, z1: float, mesh_size: float, lines: dict):
+    """skfem MeshTri of the rectangle [r0, r1] x [z0, z1] (part "tube"), uniform triangles."""
+    from bearingsim.meshes.section import mesh_rectangles
+
+    return mesh_rectangles({"tube": [(r0, r1, z0, z1)]}, lines, mesh_size, mesh_size, 1.0, 1e-6).to_skfem()

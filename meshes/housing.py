@@ -1,7 +1,8 @@
 """Parametric shaft / inner ring / supports / housing geometry (docs/model.md §3), gmsh OCC.
 
-Axisymmetric about z, built from tubes and fragmented so that every interface is
-conforming (the ring is tied to the shaft, the supports to shaft and housing):
+Axisymmetric about z, built from tubes (rectangles of the meridian section) and fragmented
+so that every interface is conforming (the ring is tied to the shaft, the supports to shaft
+and housing):
 
     z:   support_a ........ inner ring (|z| <= B/2) ........ support_b ..... flange
     r:   shaft [r_si, r_b]; ring [r_b, r_race]; support annuli [r_b, r_b + t_s];
@@ -9,11 +10,14 @@ conforming (the ring is tied to the shaft, the supports to shaft and housing):
          [R_seat, R_seat + t_h] from support a to the flange; flange disc at the end.
 
 The bearing's outer ring is not meshed: its seat is the housing bore over the ring width.
+Two meshes of the same geometry: `build_section_mesh`, triangles of the (r, z) section for
+the axisymmetric solver (the default, fe_model.axisymmetric), and `build_housing_mesh`,
+tetrahedra of the 3-D body (fe_model's 3-D solver, kept as an independent cross-check).
 Physical groups (the contract with fe_model): volumes `shaft`, `inner_ring`, `support_a`,
 `support_b`, `housing`; surfaces `inner_ring_bore` = `inner_ring_seat` (ring–shaft interface),
 `inner_ring_race` (ring outside diameter, where the balls push), `outer_ring_seat`
 (housing bore over the ring width), `support_a`, `support_b` (shaft–support interfaces),
-`housing_flange` (the clamped mounting face).
+`housing_flange` (the clamped mounting face). In a section they are parts and boundary lines.
 """
 
 from __future__ import annotations
@@ -23,12 +27,18 @@ from dataclasses import dataclass
 
 from bearingsim.meshes.gmsh_io import classify_surface, close, extract_mesh, gmsh_session, grade_towards_curves, set_uniform_size
 from bearingsim.meshes.mesh_data import MeshData
+from bearingsim.meshes.section import SectionMesh, mesh_rectangles
 
-# Graded refinement (see build_housing_mesh): the edges that set the axial stiffness get
+# Section mesh (build_section_mesh): the size grows linearly from edge_refinement x mesh_size at
+# every corner of the section back to mesh_size at CORNER_REACH x the thinnest wall from it.
+# Fixed in metres for a geometry, so meshes of different mesh_size are self-similar.
+CORNER_REACH = 3.0
+
+# Graded refinement of the 3-D mesh (see build_housing_mesh): the edges that set the axial stiffness get
 # SINGULAR_EDGE_FACTOR x the size of the other circular edges; sizes grow back to
-# mesh_size within EDGE_REACH x mesh_size. Chosen by the convergence study:
-# with the [fe] defaults (0.030 m, 0.25) H_u_zz is +1.9 % and H_psi +1.6 % above their
-# Richardson limits at 482k P2 dofs; all edges at 0.3 x 0.020 m gave +2.9 % at 354k.
+# mesh_size within EDGE_REACH x mesh_size. At 0.030 m and 0.25 (the 3-D default until the
+# axisymmetric model replaced it) H_u_zz is +1.7 % and H_psi +1.2 % above the converged
+# hinge at 482k P2 dofs: isotropic tetrahedra cannot resolve edge singularities cheaply.
 SINGULAR_EDGE_FACTOR = 0.32
 EDGE_REACH = 1.0
 
@@ -112,6 +122,40 @@ def build_housing_mesh(geometry: HousingGeometry, mesh_size: float, edge_refinem
         return extract_mesh(gmsh)
 
 
+def thinnest_wall(g: HousingGeometry) -> float:
+    """Thinnest radial wall [m] of ring, housing shell, support annulus and shaft."""
+    return min(0.5 * (g.ring.inner_outer_diameter - g.ring.inner_bore_diameter), g.housing_wall_thickness,
+               g.support_radial_thickness, 0.5 * (g.ring.inner_bore_diameter - g.shaft_inner_diameter))
+
+
+def build_section_mesh(geometry: HousingGeometry, mesh_size: float, edge_refinement: float = 1.0) -> SectionMesh:
+    """Mesh the assembly's meridian section with triangles of size `mesh_size` [m], graded
+    to `edge_refinement * mesh_size` at every corner of the section (the circular edges of
+    the body: re-entrant corners, material junctions, seat and support ends), back to
+    `mesh_size` at CORNER_REACH thinnest walls from the corner; 1 = uniform."""
+    g = geometry
+    tol = 1e-5 * g.housing_flange_diameter  # OCC pads bounding boxes by ~1e-7
+    r_b = 0.5 * g.ring.inner_bore_diameter
+    half_b, half_w = 0.5 * g.ring.width, 0.5 * g.support_width
+
+    def cylinder(radius: float, z0: float, z1: float):
+        return lambda kind: (kind[0] == "r" and math.isclose(kind[1], radius, abs_tol=tol)
+                             and kind[2] >= z0 - tol and kind[3] <= z1 + tol)
+
+    lines = {
+        "inner_ring_bore": cylinder(r_b, -half_b, half_b),
+        "inner_ring_seat": cylinder(r_b, -half_b, half_b),  # docs/model.md's name: same lines as the bore
+        "inner_ring_race": cylinder(0.5 * g.ring.inner_outer_diameter, -half_b, half_b),
+        "outer_ring_seat": cylinder(g.seat_radius, -half_b, half_b),
+        "support_a": cylinder(r_b, g.support_a_position - half_w, g.support_a_position + half_w),
+        "support_b": cylinder(r_b, g.support_b_position - half_w, g.support_b_position + half_w),
+        "housing_flange": lambda kind: (kind[0] == "z" and math.isclose(kind[1], g.housing_flange_position, abs_tol=tol)
+                                        and kind[2] >= g.seat_radius - tol),
+    }
+    return mesh_rectangles(section_rectangles(g), lines, mesh_size, edge_refinement * mesh_size,
+                           CORNER_REACH * thinnest_wall(g), tol)
+
+
 def _tube(gmsh, r_in: float, r_out: float, z0: float, z1: float) -> list[tuple[int, int]]:
     occ = gmsh.model.occ
     outer = occ.addCylinder(0.0, 0.0, z0, 0.0, 0.0, z1 - z0, r_out)
@@ -122,7 +166,10 @@ def _tube(gmsh, r_in: float, r_out: float, z0: float, z1: float) -> list[tuple[i
     return result
 
 
-def _add_parts(gmsh, g: HousingGeometry) -> dict[str, list[tuple[int, int]]]:
+def section_rectangles(g: HousingGeometry) -> dict[str, list[tuple[float, float, float, float]]]:
+    """The assembly's meridian section as (r0, r1, z0, z1) rectangles [m] per part: the one
+    description of the geometry, swept round z by `build_housing_mesh` and meshed in the
+    (r, z) plane by `build_section_mesh`."""
     r_b = 0.5 * g.ring.inner_bore_diameter
     half_b = 0.5 * g.ring.width
     half_w = 0.5 * g.support_width
@@ -130,21 +177,31 @@ def _add_parts(gmsh, g: HousingGeometry) -> dict[str, list[tuple[int, int]]]:
     r_s, R = g.support_outer_radius, g.seat_radius
     R_out = R + g.housing_wall_thickness
     z_end = g.housing_flange_position
-    housing = (
-        _tube(gmsh, R, R_out, z_a - half_w, -half_b)  # shell, support-a side
-        + _tube(gmsh, R, R_out, -half_b, half_b)  # shell at the seat (own bore face)
-        + _tube(gmsh, R, R_out, half_b, z_end)  # shell, flange side
-        + _tube(gmsh, r_s, R, z_a - half_w, z_a + half_w)  # web at support a
-        + _tube(gmsh, r_s, R, z_b - half_w, z_b + half_w)  # web at support b
-        + _tube(gmsh, R_out, 0.5 * g.housing_flange_diameter, z_end - g.housing_flange_thickness, z_end)
-    )
+    housing = [
+        (R, R_out, z_a - half_w, -half_b),  # shell, support-a side
+        (R, R_out, -half_b, half_b),  # shell at the seat (own bore face)
+        (R, R_out, half_b, z_end),  # shell, flange side
+        (r_s, R, z_a - half_w, z_a + half_w),  # web at support a
+        (r_s, R, z_b - half_w, z_b + half_w),  # web at support b
+        (R_out, 0.5 * g.housing_flange_diameter, z_end - g.housing_flange_thickness, z_end),
+    ]
     return {
-        "shaft": _tube(gmsh, 0.5 * g.shaft_inner_diameter, r_b, z_a - half_w, z_b + half_w),
-        "inner_ring": _tube(gmsh, r_b, 0.5 * g.ring.inner_outer_diameter, -half_b, half_b),
-        "support_a": _tube(gmsh, r_b, r_s, z_a - half_w, z_a + half_w),
-        "support_b": _tube(gmsh, r_b, r_s, z_b - half_w, z_b + half_w),
+        "shaft": [(0.5 * g.shaft_inner_diameter, r_b, z_a - half_w, z_b + half_w)],
+        "inner_ring": [(r_b, 0.5 * g.ring.inner_outer_diameter, -half_b, half_b)],
+        "support_a": [(r_b, r_s, z_a - half_w, z_a + half_w)],
+        "support_b": [(r_b, r_s, z_b - half_w, z_b + half_w)],
         "housing": housing,
     }
+
+
+def _add_parts(gmsh, g: HousingGeometry) -> dict[str, list[tuple[int, int]]]:
+    rects = section_rectangles(g)
+    # the housing's tubes first: the OCC tags, and so the meshes, of builder version 2
+    tubes = {name: [] for name in ("housing", *rects)}
+    for name in tubes:
+        for r0, r1, z0, z1 in rects[name]:
+            tubes[name] += _tube(gmsh, r0, r1, z0, z1)
+    return {name: tubes[name] for name in rects}
 
 
 def _volume_owners(parts, tags, children) -> dict[int, str]:

@@ -35,12 +35,34 @@ def test_artefacts_are_written_and_hinge_toml_round_trips(identified):
 
 
 def test_vtu_holds_displacement_and_stress(identified):
+    """The axisymmetric solution on its revolved view: wedges of the whole body, compressed."""
     _, out, result, _ = identified
     mesh = meshio.read(out / "case_mx.vtu")
-    assert mesh.cells[0].type == "tetra10"
+    assert mesh.cells[0].type == "wedge"
     assert mesh.point_data["displacement"].shape == (mesh.points.shape[0], 3)
     vm = mesh.cell_data["von_mises"][0]
     assert np.all(vm >= 0) and vm.max() > 0
+    assert set(np.unique(mesh.cell_data["material"][0])) == {1, 2, 3, 4}
+    assert b'compressor="vtkZLibDataCompressor"' in (out / "case_mx.vtu").read_bytes()[:2000]
+    # M_x tilts the ring about x: the inner race moves along +/-y, symmetric in x
+    p, u = mesh.points, mesh.point_data["displacement"]
+    race = (np.abs(np.hypot(p[:, 0], p[:, 1]) - 0.075) < 1e-6) & (np.abs(p[:, 2]) < 0.017)
+    assert np.abs(u[race, 1]).max() > 10 * np.abs(u[race, 0]).max()
+
+
+def test_vtu_fields_follow_the_load_direction(identified):
+    """F_y is F_x turned by 90 degrees: the displacement fields are the same turned."""
+    _, out, _, _ = identified
+    fx, fy = meshio.read(out / "case_fx.vtu"), meshio.read(out / "case_fy.vtu")
+    p = fx.points.astype(float)
+    turned = np.column_stack([-p[:, 1], p[:, 0], p[:, 2]])
+    # pair each point with the point a quarter turn further round (the sectors are a multiple of 4)
+    key = lambda q: np.round(q / 1e-6).astype(np.int64).tolist()
+    index = {tuple(k): i for i, k in enumerate(key(p))}
+    j = np.array([index[tuple(k)] for k in key(turned)])
+    ux, uy = fx.point_data["displacement"].astype(float), fy.point_data["displacement"].astype(float)
+    np.testing.assert_allclose(uy[j], np.column_stack([-ux[:, 1], ux[:, 0], ux[:, 2]]),
+                               atol=1e-6 * np.abs(ux).max())
 
 
 def test_hinge_is_spd_axisymmetric_and_bounded_by_the_supports(identified):

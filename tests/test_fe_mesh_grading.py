@@ -28,3 +28,27 @@ def test_singular_edges_are_refined_beyond_the_other_edges():
     assert web_corner < 1.5 * SINGULAR_EDGE_FACTOR * ratio * h
     assert race_corner > 0.5 * SINGULAR_EDGE_FACTOR * ratio * h
     assert web_corner < race_corner
+
+
+def test_section_is_graded_to_its_corners():
+    """Triangles touching a corner of the section are edge_refinement x mesh_size; the size
+    grows back to mesh_size away from the corners (h = mesh_size * clip(d / reach, ratio, 1))."""
+    from bearingsim.meshes.housing import CORNER_REACH, build_section_mesh, section_rectangles, thinnest_wall
+
+    config, ring = FEConfig(), RingSeat()
+    geometry = config.housing_geometry(ring)
+    h, ratio = 0.01, 0.05
+    section = build_section_mesh(geometry, h, ratio)
+    p, t = section.points, section.triangles
+    edges = np.max([np.linalg.norm(p[t[:, i]] - p[t[:, j]], axis=1) for i, j in ((0, 1), (1, 2), (0, 2))], axis=0)
+    web_corner = np.array([0.5 * ring.outer_outside_diameter, config.support_b_position + 0.5 * config.support_width])
+    distance = np.linalg.norm(p[t].mean(axis=1) - web_corner, axis=1)
+    at_corner = edges[distance < ratio * h]
+    assert at_corner.size and at_corner.max() < 2.0 * ratio * h
+    reach = CORNER_REACH * thinnest_wall(geometry)
+    corners = np.array([(r, z) for rects in section_rectangles(geometry).values()
+                        for r0, r1, z0, z1 in rects for r in (r0, r1) for z in (z0, z1)])
+    centroids = p[t].mean(axis=1)
+    nearest = np.min(np.linalg.norm(centroids[:, None, :] - corners[None, :, :], axis=2), axis=1)
+    far = edges[nearest > reach]
+    assert far.size and np.median(far) > 0.7 * h

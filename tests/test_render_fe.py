@@ -83,3 +83,23 @@ def test_render_case_draws_and_writes_paraview_file(tmp_path):
     assert "von_mises" in surface.cell_data
     assert np.max(surface.point_data["displacement_magnitude"]) == pytest.approx(2e-6, rel=1e-6)
     assert float(surface.field_data["warp_scale"][0]) == 2000.0
+
+
+def test_render_case_reads_the_identify_stage_view(tmp_path):
+    """The identify stage's own files (the axisymmetric solution on revolved wedges, zlib,
+    float32) render like any case: the largest displacement drawn is the file's."""
+    import dataclasses
+
+    import meshio
+
+    from bearingsim.fe_model import FEConfig, RingSeat, identify_hinge
+
+    config = dataclasses.replace(FEConfig(), mesh_size=0.03, edge_refinement=1.0)
+    identify_hinge(config, RingSeat(), tmp_path)
+    case = find_cases(tmp_path)[-1]
+    assert case.axis == "my" and case.load == -1000.0  # largest magnitude, first of equals
+    record = render_case(case, tmp_path / "my.png", tmp_path / "my_surface.vtu", "t")
+    u = meshio.read(case.path).point_data["displacement"].astype(float)
+    assert record["max_displacement_m"] == pytest.approx(np.linalg.norm(u, axis=1).max(), rel=1e-6)
+    assert record["max_von_mises_Pa"] > 0
+    assert (_image(tmp_path / "my.png") < 0.9).mean() > 0.02

@@ -1,8 +1,9 @@
 """A tetrahedral mesh with named physical groups, as plain arrays.
 
-This is the only thing `meshes/` hands to `fe_model/` (docs/model.md §3: the physical-group
-names are the contract). It is taken straight from the gmsh API rather than through a
-.msh file: meshio 5.3.5 cannot read back its own .msh 4.1 and .msh 2.2 drops interior
+With `SectionMesh` (meshes/section.py: the axisymmetric section the identify stage solves; this
+3-D mesh serves its cross-check), this is what `meshes/` hands to `fe_model/` (docs/model.md §3:
+the physical-group names are the contract). It is taken straight from the gmsh API rather than
+through a .msh file: meshio 5.3.5 cannot read back its own .msh 4.1 and .msh 2.2 drops interior
 groups (the ring–shaft interface is interior). Saved as .npz so a mesh is a cacheable
 artefact keyed by the hash of what built it.
 """

@@ -1,8 +1,8 @@
 """FE deflection renders of the identification load cases (docs/model.md §3, §11).
 
 Input: the `case_<axis>.vtu` files of the identify stage (`fe_model/artefacts.py`):
-tetrahedra with point data `displacement` [m] and cell data `von_mises` [Pa] and
-`material`. For each case one PNG, two panels of the same warped half model: |u| [µm]
+cells (wedges: the section swept round the axis) with point data `displacement` [m] and cell
+data `von_mises` [Pa] and `material`. For each case one PNG, two panels of the same warped half model: |u| [µm]
 and von Mises stress [MPa], each coloured from 0 to the case's maximum. The model is cut
 by the plane through the bearing axis that contains the load's lateral direction (x-z
 for fx, fz, my; y-z for fy, mx), so the bending of shaft and housing shows in the cut

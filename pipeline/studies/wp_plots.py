@@ -34,24 +34,6 @@ def plot_work_precision(study: dict, path: Path) -> Path:
     return path
 
 
-def plot_identification(rows: list[dict], path: Path) -> Path:
-    """Hinge stiffness error against wall time and peak memory, one curve per element order."""
-    fig = new_figure(figsize=(10, 4), layout="tight")
-    axes = fig.subplots(1, 2)
-    for order in sorted({r["element_order"] for r in rows}):
-        mine = [r for r in rows if r["element_order"] == order and r["relative_error"] > 0]
-        for ax, key in zip(axes, ("seconds", "peak_rss_gb")):
-            ax.loglog([r[key] for r in mine], [r["relative_error"] for r in mine], "o-", label=f"P{order}")
-    axes[0].set_xlabel("wall time [s]")
-    axes[1].set_xlabel("peak memory [GB]")
-    for ax in axes:
-        ax.set_ylabel("|H_u_xx / Richardson - 1|")
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8)
-    save_png(fig, path, dpi=80)
-    return path
-
-
 def plot_stability(results: list[dict], path: Path) -> Path:
     """Step size and Newton work per accepted step against time, one line per case."""
     fig = new_figure(figsize=(10, 7), layout="tight")

@@ -70,7 +70,8 @@ def read_scene_table(scene: str | Path) -> tuple[dict, str]:
     path = Path(scene)
     shown = text_arg if len(text_arg) <= 80 else text_arg[:77] + "..."
     try:
-        is_path = path.suffix == ".toml" or path.exists()
+        # a built-in name wins over a folder of the same name (e.g. a run directory runs/<name>/)
+        is_path = path.suffix == ".toml" or (path.exists() and not (path.is_dir() and text_arg in builtin_scene_names()))
     except (OSError, ValueError):
         is_path = True  # e.g. a name too long for the file system: reported below
     if is_path:

@@ -145,3 +145,12 @@ def test_unknown_scene_name_lists_builtins():
 def test_geometry_rejects_direct_construction_errors():
     with pytest.raises(ValueError, match="outer_groove_radius"):
         BearingGeometry(0.01905, 22, 0.1584, 0.1573, 0.009753, 0.009)
+
+
+def test_a_built_in_name_wins_over_a_folder_of_that_name(tmp_path, monkeypatch):
+    """`bearingsim run helicopter-b` from a folder holding the run directory helicopter-b/."""
+    from bearingsim.pipeline.scene import load_scene
+
+    (tmp_path / "helicopter-b").mkdir()
+    monkeypatch.chdir(tmp_path)
+    assert load_scene("helicopter-b").name == "helicopter-b"

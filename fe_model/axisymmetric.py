@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from bearingsim.fe_model.elasticity import full_from_upper, lame_parameters
+from bearingsim.fe_model.elasticity import full_from_upper, lame_fields
 from bearingsim.fe_model.kernels import csr_from_triplets, harmonic_stiffness_upper, upper_triplet_indices
 from bearingsim.fe_model.loads import EPS
 
@@ -89,14 +89,7 @@ class HarmonicModel:
         """`materials` maps a subdomain name to (E [Pa], nu [-]); every element needs one."""
         from skfem import Basis
 
-        lam = np.full(mesh.nelements, np.nan)
-        mu = np.full(mesh.nelements, np.nan)
-        for name, (E, nu) in materials.items():
-            if name not in mesh.subdomains:
-                raise ValueError(f"no part {name!r} in the section (have {sorted(mesh.subdomains)})")
-            lam[mesh.subdomains[name]], mu[mesh.subdomains[name]] = lame_parameters(E, nu)
-        if np.isnan(lam).any():
-            raise ValueError(f"{int(np.isnan(lam).sum())} elements have no material; parts given: {sorted(materials)}")
+        lam, mu = lame_fields(mesh, materials, "part")
         if mesh.p[0].min() < -AXIS_TOL:
             raise ValueError("the section must lie in r >= 0 (x is the radius)")
         # the integrand is polynomial (degree 3 for P2) plus phi^2 / r, smooth off the axis: a

@@ -16,6 +16,20 @@ import scipy.sparse as sp
 from bearingsim.fe_model.kernels import csr_from_triplets, element_stiffness_upper, upper_triplet_indices
 
 
+def lame_fields(mesh, materials: dict[str, tuple[float, float]], what: str) -> tuple[np.ndarray, np.ndarray]:
+    """Lamé parameters (lambda, mu) [Pa] per element from `materials` (subdomain name ->
+    (E [Pa], nu [-])); every element needs one. `what` names a subdomain in messages."""
+    lam = np.full(mesh.nelements, np.nan)
+    mu = np.full(mesh.nelements, np.nan)
+    for name, (E, nu) in materials.items():
+        if name not in mesh.subdomains:
+            raise ValueError(f"no {what} {name!r} in the mesh (have {sorted(mesh.subdomains)})")
+        lam[mesh.subdomains[name]], mu[mesh.subdomains[name]] = lame_parameters(E, nu)
+    if np.isnan(lam).any():
+        raise ValueError(f"{int(np.isnan(lam).sum())} elements have no material; {what}s given: {sorted(materials)}")
+    return lam, mu
+
+
 def lame_parameters(youngs_modulus: float, poisson_ratio: float) -> tuple[float, float]:
     """(lambda, mu) [Pa] from E [Pa] and nu [-]."""
     E, nu = youngs_modulus, poisson_ratio
@@ -48,14 +62,7 @@ class ElasticModel:
         """`materials` maps a subdomain name to (E [Pa], nu [-]); every element needs one."""
         from skfem import Basis
 
-        lam = np.full(mesh.nelements, np.nan)
-        mu = np.full(mesh.nelements, np.nan)
-        for name, (E, nu) in materials.items():
-            if name not in mesh.subdomains:
-                raise ValueError(f"no volume group {name!r} in the mesh (have {sorted(mesh.subdomains)})")
-            lam[mesh.subdomains[name]], mu[mesh.subdomains[name]] = lame_parameters(E, nu)
-        if np.isnan(lam).any():
-            raise ValueError(f"{int(np.isnan(lam).sum())} elements have no material; groups given: {sorted(materials)}")
+        lam, mu = lame_fields(mesh, materials, "volume group")
         # gradients of P2 are linear on straight tets: the degree-2 rule integrates K exactly
         basis = Basis(mesh, scalar_element(order), intorder=2 * (order - 1))
         return cls(mesh, basis, lam, mu)

@@ -57,26 +57,12 @@ class MeshData:
         return mesh.with_subdomains(subdomains).with_boundaries(boundaries)
 
     def save(self, path: pathlib.Path) -> None:
-        """Write atomically to `path` (.npz): temp file in the same directory, then rename."""
-        path = pathlib.Path(path)
-        arrays = {"points": self.points, "tets": self.tets}
-        arrays.update({f"volume:{k}": v for k, v in self.volumes.items()})
-        arrays.update({f"surface:{k}": v for k, v in self.surfaces.items()})
-        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=path.name, suffix=".tmp.npz")
-        os.close(fd)
-        try:
-            np.savez(tmp, **arrays)
-            os.replace(tmp, path)
-        finally:
-            if os.path.exists(tmp):
-                os.remove(tmp)
+        """Write atomically to `path` (.npz)."""
+        save_grouped_mesh(path, self.points, "tets", self.tets, self.volumes, self.surfaces)
 
     @classmethod
     def load(cls, path: pathlib.Path) -> "MeshData":
-        with np.load(path) as data:
-            volumes = {k.split(":", 1)[1]: data[k] for k in data.files if k.startswith("volume:")}
-            surfaces = {k.split(":", 1)[1]: data[k] for k in data.files if k.startswith("surface:")}
-            return cls(data["points"], data["tets"], volumes, surfaces)
+        return cls(*load_grouped_mesh(path, "tets"))
 
 
 def _facet_lookup(facets: np.ndarray) -> dict[tuple[int, int, int], int]:
@@ -94,3 +80,28 @@ def _match_facets(name: str, triangles: np.ndarray, lookup: dict) -> np.ndarray:
             f"surface group {name!r} has a triangle {err.args[0]} that is not a facet of the "
             "volume mesh; the surface mesh is not conforming (was the geometry fragmented?)"
         ) from None
+
+
+def save_grouped_mesh(path, points, cells_name: str, cells, volumes: dict, surfaces: dict) -> None:
+    """Write a mesh with named groups atomically to `path` (.npz): a temporary file in the
+    same directory, then a rename (a reader never sees a partial file)."""
+    path = pathlib.Path(path)
+    arrays = {"points": points, cells_name: cells}
+    arrays.update({f"volume:{k}": v for k, v in volumes.items()})
+    arrays.update({f"surface:{k}": v for k, v in surfaces.items()})
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=path.name, suffix=".tmp.npz")
+    os.close(fd)
+    try:
+        np.savez(tmp, **arrays)
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+
+
+def load_grouped_mesh(path, cells_name: str):
+    """(points, cells, volumes, surfaces) of a file written by `save_grouped_mesh`."""
+    with np.load(path) as data:
+        volumes = {k.split(":", 1)[1]: data[k] for k in data.files if k.startswith("volume:")}
+        surfaces = {k.split(":", 1)[1]: data[k] for k in data.files if k.startswith("surface:")}
+        return data["points"], data[cells_name], volumes, surfaces

@@ -14,14 +14,12 @@ Like `MeshData`, a section is plain arrays with named groups, saved as `.npz`.
 from __future__ import annotations
 
 import math
-import os
 import pathlib
-import tempfile
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from bearingsim.meshes.mesh_data import MeshData
+from bearingsim.meshes.mesh_data import MeshData, load_grouped_mesh, save_grouped_mesh
 
 Rectangle = tuple[float, float, float, float]  # r0, r1, z0, z1 [m]
 
@@ -74,26 +72,12 @@ class SectionMesh:
         return mesh.with_subdomains(subdomains).with_boundaries(boundaries)
 
     def save(self, path: pathlib.Path) -> None:
-        """Write atomically to `path` (.npz): temp file in the same directory, then rename."""
-        path = pathlib.Path(path)
-        arrays = {"points": self.points, "triangles": self.triangles}
-        arrays.update({f"volume:{k}": v for k, v in self.volumes.items()})
-        arrays.update({f"surface:{k}": v for k, v in self.surfaces.items()})
-        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=path.name, suffix=".tmp.npz")
-        os.close(fd)
-        try:
-            np.savez(tmp, **arrays)
-            os.replace(tmp, path)
-        finally:
-            if os.path.exists(tmp):
-                os.remove(tmp)
+        """Write atomically to `path` (.npz)."""
+        save_grouped_mesh(path, self.points, "triangles", self.triangles, self.volumes, self.surfaces)
 
     @classmethod
     def load(cls, path: pathlib.Path) -> "SectionMesh":
-        with np.load(path) as data:
-            volumes = {k.split(":", 1)[1]: data[k] for k in data.files if k.startswith("volume:")}
-            surfaces = {k.split(":", 1)[1]: data[k] for k in data.files if k.startswith("surface:")}
-            return cls(data["points"], data["triangles"], volumes, surfaces)
+        return cls(*load_grouped_mesh(path, "triangles"))
 
 
 def mesh_rectangles(

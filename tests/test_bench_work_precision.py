@@ -116,3 +116,30 @@ def test_method_grid_and_table_report_failures():
              "load_average": 1.0}
     table = markdown_table(study)
     assert "failed: stopped at t = 1 s" in table and "2.00 (2 expected)" in table
+
+
+def test_the_scipy_baseline_sparsity_pattern_covers_the_jacobian():
+    """Every non-zero of a finite-difference Jacobian of the first-order bearing ODE lies in
+    the pattern passed to Radau/BDF as jac_sparsity (a wrong pattern would make the baseline
+    solve another problem), and the pattern is sparse (block-arrow)."""
+    from bearingsim.dynamics.bearing import BearingModel, layout
+    from bearingsim.dynamics.bearing.run import initial_coordinates
+    from bearingsim.pipeline.scene import load_scene
+    from bearingsim.pipeline.stages.simulate import build_model
+    from bearingsim.pipeline.studies.scipy_baseline import jac_sparsity, ode_rhs
+
+    params, start = build_model(load_scene("helicopter-b-given-hinge"))
+    model = BearingModel(params)
+    q0, v0 = initial_coordinates(params, start)
+    rhs, _ = ode_rhs(model, model.rotation_slots, layout.spin_row(params.ball_count))
+    y0 = np.concatenate([q0, v0 + 1e-3])  # off pure rolling: every traction term slides
+    f0 = rhs(0.0, y0)
+    n2 = y0.size
+    pattern = jac_sparsity(params.ball_count, params.has_cage, model.rotation_slots).toarray()
+    assert pattern.shape == (n2, n2) and pattern.mean() < 0.25
+    for j in range(n2):
+        dy = np.zeros(n2)
+        dy[j] = 1e-9 * max(1.0, abs(y0[j]))
+        column = rhs(0.0, y0 + dy) - f0
+        outside = np.nonzero((np.abs(column) > 0.0) & ~pattern[:, j])[0]
+        assert outside.size == 0, (j, outside[:5])

@@ -9,19 +9,11 @@ The names below load their module on first use, so that the scene loader, which 
 `ModelOptions` from `[physics]`, imports neither numba nor the kernels.
 """
 
-import importlib
+from bearingsim.dynamics._lazy import lazy_exports
 
 _EXPORTS = {
     "BearingModel": ".model", "BearingModelParams": ".params", "BearingRun": ".run",
     "ModelOptions": ".options", "RunSeries": ".run", "build_model_params": ".params",
     "simulate_bearing": ".run",
 }
-__all__ = sorted(_EXPORTS)
-
-
-def __getattr__(name):
-    if name not in _EXPORTS:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(importlib.import_module(_EXPORTS[name], __name__), name)
-    globals()[name] = value
-    return value
+__getattr__, __all__ = lazy_exports(__name__, _EXPORTS)

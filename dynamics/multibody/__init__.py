@@ -7,7 +7,7 @@ The names below load their module on first use, so that the scene loader, which 
 integrator's `HHTSettings` from `[solver]`, imports neither numba nor the kernels.
 """
 
-import importlib
+from bearingsim.dynamics._lazy import lazy_exports
 
 _EXPORTS = {
     "HingeStiffness": ".hinge", "hinge_energy": ".hinge", "hinge_forces": ".hinge", "hinge_strains": ".hinge",
@@ -17,12 +17,4 @@ _EXPORTS = {
     "IntegrationError": ".results", "Result": ".results", "Solution": ".results", "SolverStats": ".results",
     "FixedIntervalSampler": ".sampling", "HHTSettings": ".settings", "JacobianReuse": ".settings",
 }
-__all__ = sorted(_EXPORTS)
-
-
-def __getattr__(name):
-    if name not in _EXPORTS:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(importlib.import_module(_EXPORTS[name], __name__), name)
-    globals()[name] = value
-    return value
+__getattr__, __all__ = lazy_exports(__name__, _EXPORTS)

@@ -98,6 +98,9 @@ def _pipeline(scene_arg: str, overrides, out, targets: list[str], force: set[str
         for o in outcomes:
             extra = (f" in {o.wall_time:.2f} s" if o.status == "computed"
                      else " (reused: same inputs as an earlier run)" if o.status == "from store" else "")
+            if o.status == "computed" and o.info.get("kernel_load_time", 0.0) > 5.0:
+                # numba compiles the kernels on a machine's first run (and after a code change)
+                extra += f", of which {o.info['kernel_load_time']:.0f} s compiling the force kernels (once)"
             err_console.print(f"  {o.name:<12} {o.status}{extra}", highlight=False)
     for o in outcomes:
         _print_findings(o.warnings, f"{o.name}: ")

@@ -289,3 +289,33 @@ def test_the_direct_kernel_call_is_taken_only_for_arrays_it_can_read(dry):
     for bad in (np.zeros(2 * n)[::2], np.zeros(n, dtype=np.float32), np.zeros(n, dtype=np.int64),
                 np.zeros(n + 1), np.zeros((1, n)), list(np.zeros(n))):
         assert not call._fits(bad), bad
+
+
+def test_error_scales_follow_contact_stiffness_and_clearances(dry):
+    """M.99b: L_i = Q_mean / K_ii, or the clearance a coordinate moves freely in. The inner race's
+    K_xx with the balls held is its inner contacts' Hertz stiffness dQ/d(delta) = 1.5 Q / delta
+    (Q = K delta^1.5) projected on x, plus the hinge's 1e9 N/m — computed here from the
+    quasi-static solver's loads, approaches and angles, not from the dynamic model."""
+    from bearingsim.dynamics.contact.pocket import P_BALL_RADIUS, P_POCKET_RADIUS
+    from bearingsim.dynamics.quasistatic.solver import solve_quasistatic
+
+    from .bearing_fixtures import INNER_SPEED
+
+    params, start, model, q, v = dry
+    scales = model.error_scales(0.0, q, v)
+    Z = params.ball_count
+    qs = solve_quasistatic(REFERENCE, STEEL, STEEL, axial=34000.0, radial=0.0, moment=430.0,
+                           inner_speed=INNER_SPEED, gyroscopic=True)
+    q_mean = np.mean(np.concatenate([qs.inner_load, qs.outer_load]))
+    loaded = qs.inner_deflection > 0
+    k_contact = 1.5 * qs.inner_load[loaded] / qs.inner_deflection[loaded]
+    k_xx = np.sum(k_contact * np.cos(qs.inner_contact_angle[loaded]) ** 2 * np.cos(qs.azimuth[loaded]) ** 2) + 1e9
+    o = layout.inner_offset(Z)
+    assert scales[o] == pytest.approx(q_mean / k_xx, rel=0.1)
+    c = layout.cage_offset(Z, True)
+    pocket_clearance = params.pocket[P_POCKET_RADIUS] - params.pocket[P_BALL_RADIUS]
+    np.testing.assert_allclose(scales[c:c + 3], params.guide_clearance)  # a free cage: its guide clearance
+    np.testing.assert_allclose(scales[c + 3:c + 6], pocket_clearance)    # its rotation: the pockets'
+    ball0 = scales[:3]  # ball 0 sits on +x: x radial (contacts), y along the orbit (free in its pocket)
+    assert ball0[1] == pytest.approx(pocket_clearance)
+    assert ball0[0] < 1e-4 * params.pitch_diameter and ball0[0] < ball0[2] < ball0[1]

@@ -10,6 +10,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
+from bearingsim.dynamics.contact.pocket import P_BALL_RADIUS, P_POCKET_RADIUS
 from bearingsim.dynamics.multibody.joints import prescribe_velocity_block_arrow
 from bearingsim.dynamics.multibody.linear_solvers import BlockArrowMatrix
 
@@ -145,6 +146,33 @@ class BearingModel:
         S.B += np.diag(c_m * self.mass[layout.inner_offset(Z):])
         prescribe_velocity_block_arrow(S, layout.spin_row(Z), c_m, c_v, 1.0)
         return S
+
+    def error_scales(self, t0, q0, v0) -> np.ndarray:
+        """Physical scale L_i of each weighted coordinate for the step controller (M.99b) [m]:
+        the displacement that changes the coordinate's elastic force by a mean ball-race load,
+        Q_mean / K_ii, from the tangent stiffness at the initial state (rotations as arcs at the
+        pitch radius, like their error weights). A coordinate that carries no elastic force there
+        moves freely over its clearance, which is its scale: a ball or the cage along the orbit
+        within the pocket clearance, the cage across within its guide clearance."""
+        P, Z, n = self.params, self.params.ball_count, self.n_dof
+        w = self.error_weights
+        zeros = np.zeros(n)
+        self.evaluate(t0, q0, v0, zeros, self._ma, self._g)
+        loads = np.concatenate([self.channel("contacts/inner_load"), self.channel("contacts/outer_load")])
+        q_mean = float(np.mean(loads))
+        S = self.jacobian(t0, q0, v0, zeros, 0.0, 0.0, 1.0)
+        k_diag = np.concatenate([np.einsum("kii->ki", S.D).ravel(), np.diag(S.B)])
+        free = np.full(n, 0.5 * P.ball_diameter)  # no cage: a ball's orbital position acts on nothing
+        if P.has_cage:
+            free[:] = P.pocket[P_POCKET_RADIUS] - P.pocket[P_BALL_RADIUS]
+            c = layout.cage_offset(Z, True)
+            free[c:c + 3] = P.guide_clearance
+        k_weighted = k_diag / np.where(w > 0.0, w * w, 1.0)  # stiffness per unit of weighted error
+        with np.errstate(divide="ignore", invalid="ignore"):
+            elastic = np.where(k_weighted > 0.0, q_mean / k_weighted, np.inf)
+        scales = np.minimum(elastic, free) if q_mean > 0.0 else free
+        self.evaluate(t0, q0, v0, zeros, self._ma, self._g)  # leave the diagnostics at the start
+        return scales
 
     def on_accepted_step(self, t, q, v, a) -> None:
         """Impact log and energy balance from the converged state's diagnostics."""

@@ -30,6 +30,10 @@ Members:
 Optional:
 
     on_accepted_step(t, q, v, a) -> None   called after every accepted step (impact logs)
+    error_scales(t0, q0, v0) -> float array (n,)  > 0 where w_i > 0: the physical scale of each
+        weighted coordinate in the unit of atol, from the initial state; the step controller
+        then holds each local error below atol + rtol L_i (step_control.py). Without it the
+        relative part scales with |q|, which is meaningless for coordinates far from 0.
 
 Residual of one HHT step: r = M a_{n+1} - (1 - alpha) g_{n+1} - alpha g_n (hht.py).
 """
@@ -73,3 +77,15 @@ def check_problem(problem: Any) -> None:
     if slots.ndim != 1 or np.any(slots < 0) or np.any(slots + 3 > n):
         raise ValueError(f"{type(problem).__name__}.rotation_slots {slots!r} must be start "
                          f"indices of CRV triples inside 0..{n - 1}")
+
+
+def checked_error_scales(problem: Any, t0: float, q0, v0) -> np.ndarray:
+    """problem.error_scales(t0, q0, v0), checked: finite and > 0 on every weighted coordinate."""
+    n = int(problem.n_dof)
+    scales = np.asarray(problem.error_scales(t0, np.asarray(q0, dtype=float), np.asarray(v0, dtype=float)),
+                        dtype=float)
+    w = np.asarray(problem.error_weights)
+    if scales.shape != (n,) or np.any(~np.isfinite(scales[w > 0])) or np.any(scales[w > 0] <= 0.0):
+        raise ValueError(f"{type(problem).__name__}.error_scales must return {n} finite values > 0 on "
+                         f"the weighted coordinates, got shape {scales.shape}")
+    return scales

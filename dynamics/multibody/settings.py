@@ -30,27 +30,45 @@ class JacobianReuse(enum.StrEnum):
 
 @dataclass(frozen=True)
 class HHTSettings:
-    """HHT-α, Newton and step-control settings. Tolerances, see `step_control.error_norm`:
-    `atol` is in the units of the weighted coordinates (m when rotations are weighted by a
-    length in m/rad); `newton_tol` is relative to the same scale as the error test."""
+    """HHT-α, Newton and step-control settings. Tolerances, see `step_control`: each local
+    error is held below atol + rtol L_i, L_i the coordinate's physical scale (the problem's
+    `error_scales`; |q_i| for a problem without); `atol` is in the units of the weighted
+    coordinates (m when rotations are weighted by a length in m/rad); `newton_tol` is relative
+    to the same scale as the error test. The step controller sets the step; `max_step` only
+    bounds it."""
 
     alpha: float = field(default=0.1, metadata={
         "unit": "-", "ge": 0.0, "le": 1.0 / 3.0, "doc": "HHT-alpha numerical damping (0: trapezoidal rule)"})
     first_step: float = field(default=1e-6, metadata={"unit": "s", "gt": 0.0, "doc": "first time step"})
     min_step: float = field(default=1e-8, metadata={
         "unit": "s", "gt": 0.0, "doc": "smallest step before the run gives up"})
-    max_step: float = field(default=2e-6, metadata={"unit": "s", "gt": 0.0, "doc": "largest step"})
-    rtol: float = field(default=1e-4, metadata={
+    max_step: float = field(default=1e-4, metadata={
+        "unit": "s", "gt": 0.0, "doc": "largest step: a safety bound, the tolerance sets the step"})
+    rtol: float = field(default=1e-6, metadata={
         "unit": "-", "ge": 0.0, "lt": 1.0,
-        "doc": "relative tolerance of the step controller (of the position coordinates; 0: absolute only)"})
-    atol: float = field(default=1e-9, metadata={
-        "unit": "m", "gt": 0.0, "doc": "absolute tolerance of the step controller (positions)"})
+        "doc": "tolerance of the step controller, relative to each coordinate's physical scale (for a bearing: "
+               "the displacement that changes the coordinate's elastic force by a mean ball load, capped by the "
+               "clearances; docs/model.md M.99b)"})
+    atol: float = field(default=1e-15, metadata={
+        "unit": "m", "gt": 0.0, "doc": "absolute floor of the step controller's tolerance (positions)"})
+    error_norm: str = field(default="max", metadata={
+        "choices": ("max", "rms"),
+        "doc": "how the coordinates' scaled errors are combined: 'max' (the worst coordinate decides, so an "
+               "impact shortens the step) or 'rms'"})
     adaptive: bool = field(default=True, metadata={
         "doc": "adapt the step to the error estimate (M.99-M.101); false: fixed steps of first_step"})
     newton_tol: float = field(default=1e-2, metadata={
         "unit": "-", "gt": 0.0, "doc": "Newton converges when its position correction, in the error norm, is below this (M.102)"})
     residual_tol: float = field(default=0.0, metadata={
         "unit": "N", "ge": 0.0, "doc": "Newton also converges when max |residual| is below this (0: off)"})
+    newton_test: str = field(default="estimate", metadata={
+        "choices": ("estimate", "correction"),
+        "doc": "Newton's convergence test: 'estimate' stops when the remaining error, estimated from the "
+               "contraction rate (Hairer & Wanner), is below newton_tol; 'correction' when the last correction is"})
+    predictor: str = field(default="linear", metadata={
+        "choices": ("linear", "constant"),
+        "doc": "Newton's start for the new acceleration: 'linear' extrapolates the last step's change, "
+               "'constant' starts from the old acceleration"})
     max_newton_iter: int = field(default=8, metadata={
         "unit": "-", "ge": 1, "doc": "Newton iterations before the step is rejected"})
     reuse_jacobian: str = field(default=JacobianReuse.ADAPTIVE, metadata={
@@ -59,7 +77,7 @@ class HHTSettings:
                "step barely changes, 'step' once per step, 'newton' every iteration"})
     refactor_rate: float = field(default=0.3, metadata={
         "unit": "-", "gt": 0.0, "lt": 1.0, "doc": "('adaptive') rebuild the matrix when Newton contracts by less than this"})
-    refactor_step_ratio: float = field(default=1.5, metadata={
+    refactor_step_ratio: float = field(default=3.0, metadata={
         "unit": "-", "ge": 1.0, "doc": "('adaptive') rebuild the matrix when the step changed by more than this factor"})
     safety: float = field(default=0.9, metadata={
         "unit": "-", "gt": 0.0, "le": 1.0, "doc": "safety factor of the step controller (M.101)"})

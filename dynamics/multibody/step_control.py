@@ -1,15 +1,18 @@
-"""Local-error norm and step-size proposal (docs/model.md §9).
+"""Local-error norm and step-size proposal (docs/model.md §9, M.99–M.101).
 
 Error estimate of HHT-α/Newmark: e = (beta - 1/6) h^2 (a_{n+1} - a_n) — the difference between
 the Newmark displacement and the cubic Taylor term (Zienkiewicz & Xie, Earthq. Eng. Struct.
-Dyn. 20 (1991) 871–887). Its weighted RMS norm (Hairer, Nørsett & Wanner, "Solving ODE I",
-eq. II.4.11) with per-coordinate weights w_i >= 0:
+Dyn. 20 (1991) 871–887). Each coordinate's error is divided by its own scale
 
-    ||e|| = sqrt( mean_{i: w_i > 0} ( w_i e_i / (atol + rtol w_i max(|q_n,i|, |q_n+1,i|)) )^2 )
+    s_i = atol + rtol L_i,     L_i = the coordinate's physical scale (problem.error_scales),
+                               or, for a problem without one, w_i max(|q_n,i|, |q_n+1,i|)
 
-w_i converts coordinate i into the unit of atol (1 for a position in m; a length in m/rad for
-a rotation, e.g. the body radius, so that an angle error reads as an arc length); w_i = 0
-excludes the coordinate (dummy rotations of balls, prescribed rows). Accept when ||e|| <= 1.
+and the norm is the largest of these ratios ("max", each coordinate on its own scale, so one
+impacting ball shortens the step however many others move smoothly) or their RMS over the
+weighted coordinates ("rms", Hairer, Nørsett & Wanner, "Solving ODE I", eq. II.4.11).
+w_i >= 0 converts coordinate i into the unit of atol (1 for a position in m; a length in
+m/rad for a rotation, so that an angle error reads as an arc length); w_i = 0 excludes the
+coordinate (dummy rotations of balls, prescribed rows). Accept when ||e|| <= 1.
 """
 
 from __future__ import annotations
@@ -22,25 +25,31 @@ from .settings import HHTSettings
 
 
 @numba.njit(cache=True)
-def scaled_difference_norm(x, y, coef, q_a, q_b, weights, atol, rtol):
-    """Weighted RMS of coef (x - y) with the scale of the module docstring (dimensionless).
+def scaled_difference_norm(x, y, coef, q_a, q_b, weights, scales, atol, rtol, use_max):
+    """Norm of coef (x - y) on the scales of the module docstring (dimensionless).
 
+    `scales` (n,): the physical scales L_i, or an empty array to scale by |q| instead.
     Returns inf if any weighted entry is not finite.
     """
+    physical = scales.shape[0] == x.shape[0]
     s = 0.0
     count = 0
     for i in range(x.shape[0]):
         w = weights[i]
         if w == 0.0:
             continue
-        sc = atol + rtol * w * max(abs(q_a[i]), abs(q_b[i]))
-        d = w * coef * (x[i] - y[i]) / sc
-        s += d * d
+        ref = scales[i] if physical else w * max(abs(q_a[i]), abs(q_b[i]))
+        d = w * coef * (x[i] - y[i]) / (atol + rtol * ref)
+        if not math.isfinite(d):
+            return math.inf
+        if use_max:
+            s = max(s, abs(d))
+        else:
+            s += d * d
         count += 1
     if count == 0:
         return 0.0
-    val = math.sqrt(s / count)
-    return val if math.isfinite(val) else math.inf
+    return s if use_max else math.sqrt(s / count)
 
 
 def step_factor(err: float, settings: HHTSettings) -> float:

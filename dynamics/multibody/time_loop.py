@@ -16,7 +16,7 @@ import numpy as np
 
 from .hht import HHTState, HHTStepper
 from .linear_solvers import DenseSolver
-from .problem import check_problem
+from .problem import check_problem, checked_error_scales
 from .results import IntegrationError, Result, Solution, SolverStats
 from .settings import HHTSettings
 from .step_control import next_step
@@ -58,6 +58,8 @@ def integrate(problem, t0: float, t1: float, q0, v0, settings: HHTSettings | Non
     stats = SolverStats()
     wall0 = time.perf_counter()
     stepper = HHTStepper(problem, settings, solver, stats)
+    if hasattr(problem, "error_scales"):
+        stepper.set_error_scales(checked_error_scales(problem, t0, q0, v0))
     y = HHTState(n)
     y.q[:] = q0
     y.v[:] = v0
@@ -98,6 +100,7 @@ def integrate(problem, t0: float, t1: float, q0, v0, settings: HHTSettings | Non
         if sampler is not None:
             sampler.observe(t, h, y, y1, stepper.rotation_slots)
         t = t0 + (stats.steps + 1) * h if not settings.adaptive else t + h
+        stepper.accepted(y, y1, h)
         y, stepper.y1 = y1, y  # swap buffers: no copies
         stats.steps += 1
         if on_step is not None:

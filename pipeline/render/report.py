@@ -18,7 +18,7 @@ import tomllib
 from pathlib import Path
 
 SUMMARY_UNITS = {
-    "duration": "s", "wall_time": "s", "integration_wall_time": "s", "cage_speed_mean": "rad/s",
+    "duration": "s", "wall_time": "s", "integration_wall_time": "s", "kernel_load_time": "s", "cage_speed_mean": "rad/s",
     "kinematic_cage_speed": "rad/s", "cage_speed_variation": "-", "cage_metal_contact_fraction": "-",
     "cage_contact_angle_spread": "rad", "cage_whirl_ratio": "-", "inner_race_axial_mean": "m",
     "pocket_impacts": "count", "pocket_impact_force_p95": "N", "burn_zone_sector": "rad",
@@ -32,7 +32,8 @@ SUMMARY_UNITS = {
     "film_energy": "J", "land_force_peak": "N", "metal_contact_fraction": "-", "pocket_impact_force_max": "N",
 }
 SOLVER_COUNTERS = ("steps", "rejected_steps", "newton_failures", "newton_iterations", "factorizations",
-                   "residual_evaluations", "min_step_accepts", "integration_wall_time", "wall_time")
+                   "residual_evaluations", "min_step_accepts", "integration_wall_time", "kernel_load_time",
+                   "wall_time")
 DYNAMIC_FIGURES = ("cage_orbit.png", "cage_speed.png", "cage_race_force.png", "pocket_impacts.png",
                    "phase_portraits.png")
 STYLE = """

@@ -92,7 +92,8 @@ def compute(ctx: StageContext) -> dict:
     summary = write_simulation_results(ctx.out_dir, scene, params, start, run,
                                        wall_time=time.perf_counter() - wall0)
     atomic_write_json(ctx.out_dir / SUMMARY_FILE, summary)
-    return {k: summary[k] for k in ("steps", "wall_time", "cage_speed_mean", "cage_metal_contact_fraction")}
+    return {k: summary[k] for k in ("steps", "wall_time", "integration_wall_time", "kernel_load_time",
+                                    "cage_speed_mean", "cage_metal_contact_fraction")}
 
 
 STAGE = Stage(

@@ -97,6 +97,8 @@ class Instrumented:
         self.model = model
         self.n_dof, self.rotation_slots = model.n_dof, model.rotation_slots
         self.error_weights = model.error_weights
+        if hasattr(model, "error_scales"):
+            self.error_scales = model.error_scales
         self.exact_tangent = exact_tangent
         self.wall_budget = wall_budget
         self.deadline = time.perf_counter() + wall_budget

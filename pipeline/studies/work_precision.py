@@ -7,10 +7,10 @@ For a scene, the bearing is integrated over a fixed window from its quasi-static
 several methods, each over a range of tolerances, and compared with a tight reference run
 (HHT-α, alpha 0.1, fixed step `reference_step`) on the quantities of `wp_metrics`:
 
-* HHT-α fixed step h (what the built-in scenes do: the controller never shrinks the step
-  below max_step at rtol 1e-4, so max_step sets the accuracy);
-* HHT-α adaptive with a pure absolute tolerance atol [m] (rtol = 0: rtol multiplies the
-  absolute position of a ball, ~0.08 m, which is not a useful scale), alpha 0.1, 0 and 0.3;
+* HHT-α fixed step h (h = 2e-6 s was the scene default before the physical error scales);
+* HHT-α adaptive, the scene default's error control (each coordinate on its physical scale,
+  docs/model.md M.99b–M.100) over a range of rtol, alpha 0.1, 0 and 0.3, and with one choice
+  of the default undone at a time (Newton from a_n, the correction test, an RMS norm);
 * HHT-α adaptive with a finite-difference ("exact") tangent instead of the model's
   approximate analytic one (`instrumented.fd_tangent`);
 * scipy `solve_ivp` Radau and BDF on the same residual as a first-order ODE (the baseline
@@ -50,19 +50,30 @@ class Method:
 def method_grid(quick: bool) -> list[Method]:
     """The methods and tolerances of the study (`quick`: CI-sized subset)."""
     steps = (4e-6, 2e-6, 1e-6) if quick else (4e-6, 2e-6, 1e-6, 5e-7)
-    atols = (1e-8, 1e-10) if quick else (1e-7, 1e-8, 1e-9, 1e-10, 1e-11)
-    short = (1e-8, 1e-10)
-    adaptive = {"rtol": 0.0, "max_step": 1e-4, "first_step": 1e-6, "min_step": 1e-9}
+    rtols = (3e-6, 1e-6) if quick else (1e-5, 3e-6, 1e-6, 3e-7, 1e-7)
+    short = (1e-5, 1e-6)
+    # the scene default's error control: each coordinate on its physical scale (M.99b), max norm
+    adaptive = {"rtol": 1e-6, "atol": 1e-15, "max_step": 1e-4, "first_step": 1e-6, "min_step": 1e-9}
+    # fixed steps with the Newton rules of the time (start from a_n, correction test, refactor
+    # at a step ratio of 1.5): h = 2e-6 s is the previous scene default as it was
+    previous_newton = {"predictor": "constant", "newton_test": "correction", "refactor_step_ratio": 1.5}
     grid = [Method("HHT a=0.1 fixed h", f"h = {h:g} s",
-                   {"adaptive": False, "first_step": h, "max_step": h, "min_step": min(h, 1e-8)})
+                   {"adaptive": False, "first_step": h, "max_step": h, "min_step": min(h, 1e-8), **previous_newton})
             for h in steps]
-    grid += [Method("HHT a=0.1 adaptive", f"atol = {a:g} m", {**adaptive, "atol": a}) for a in atols]
+    grid += [Method("HHT a=0.1 adaptive", f"rtol = {r:g}", {**adaptive, "rtol": r}) for r in rtols]
     if not quick:
         for alpha in (0.0, 0.3):
-            grid += [Method(f"HHT a={alpha:g} adaptive", f"atol = {a:g} m", {**adaptive, "atol": a, "alpha": alpha})
-                     for a in short]
-    grid += [Method("HHT a=0.1 adaptive, FD tangent", f"atol = {a:g} m", {**adaptive, "atol": a}, True)
-             for a in (short[:1] if quick else short)]
+            grid += [Method(f"HHT a={alpha:g} adaptive", f"rtol = {r:g}", {**adaptive, "rtol": r, "alpha": alpha})
+                     for r in short]
+        # what each choice of the default buys, one change at a time (docs/model.md M.100, M.102)
+        grid += [Method("HHT a=0.1 adaptive, Newton from a_n", f"rtol = {r:g}",
+                        {**adaptive, "rtol": r, "predictor": "constant"}) for r in short]
+        grid += [Method("HHT a=0.1 adaptive, correction test", f"rtol = {r:g}",
+                        {**adaptive, "rtol": r, "newton_test": "correction"}) for r in short]
+        grid += [Method("HHT a=0.1 adaptive, RMS norm", f"rtol = {r:g}",
+                        {**adaptive, "rtol": r, "error_norm": "rms"}) for r in (1e-6, 1e-7)]
+    grid += [Method("HHT a=0.1 adaptive, FD tangent", f"rtol = {r:g}", {**adaptive, "rtol": r}, True)
+             for r in (short[:1] if quick else short)]
     ivp = [("Radau", 1e-3), ("Radau", 1e-4), ("BDF", 1e-3)] if not quick else [("Radau", 1e-3)]
     if not quick:
         ivp += [("Radau", 1e-5), ("BDF", 1e-4)]
@@ -72,7 +83,7 @@ def method_grid(quick: bool) -> list[Method]:
         # the block-arrow pattern as jac_sparsity: measured, because a careful scipy user would try it
         grid += [Method(f"solve_ivp {m}, jac_sparsity", f"rtol = {r:g}",
                         ivp={"method": m, "rtol": r, "atol": r * 1e-5, "sparse": True})
-                 for m, r in (("Radau", 1e-3), ("BDF", 1e-3))]
+                 for m, r in (("Radau", 1e-3), ("Radau", 1e-4), ("BDF", 1e-3), ("BDF", 1e-4))]
     return grid
 
 

@@ -1,0 +1,76 @@
+"""First-run cost of the numba kernels (issue: fast by default, cold start).
+
+    python -m benchmarks.cold_start [SCENE]
+
+Runs a 1 ms `simulate` of the scene twice in this process's children: once with an empty numba
+cache (a fresh machine, or the first run after the dynamics code changed) and once with the cache
+that run filled, and reports the difference. Then, in-process with an empty cache, it lists the
+kernels that take longest to compile (numba's `numba:compile` events, outermost dispatchers only,
+nested compilations counted inside their caller). Run it on a quiet machine.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+
+def timed_run(scene: str, cache: Path, out: Path) -> float:
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache))
+    t0 = time.perf_counter()
+    subprocess.run([sys.executable, "-c", "from bearingsim.pipeline.cli import main; main()", "simulate", scene, "--out", str(out),
+                    "--force", "--set", "solver.duration=1e-3"], env=env, check=True, capture_output=True)
+    return time.perf_counter() - t0
+
+
+def compile_profile(scene: str, cache: Path, top: int = 12) -> list[tuple[str, float]]:
+    """(kernel, seconds) of the outermost compilations of a 1 ms run with an empty cache."""
+    os.environ["NUMBA_CACHE_DIR"] = str(cache)
+    from numba.core import event
+
+    from bearingsim.dynamics.bearing.run import simulate_bearing
+    from bearingsim.pipeline.scene import load_scene
+    from bearingsim.pipeline.stages.simulate import build_model
+
+    stack: list[list] = []
+    totals: dict[str, float] = {}
+
+    class Outermost(event.Listener):
+        def on_start(self, ev):
+            stack.append([ev.data["dispatcher"].py_func.__qualname__, time.perf_counter()])
+
+        def on_end(self, ev):
+            name, t0 = stack.pop()
+            if not stack:
+                totals[name] = totals.get(name, 0.0) + time.perf_counter() - t0
+
+    scene_obj = load_scene(scene, ["solver.duration=1e-3"])
+    with event.install_listener("numba:compile", Outermost()):
+        params, start = build_model(scene_obj, None)
+        simulate_bearing(params, start, scene_obj.solver, 1e-3, 1e-5)
+    return sorted(totals.items(), key=lambda kv: -kv[1])[:top]
+
+
+def main(argv=None) -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("scene", nargs="?", default="helicopter-b-given-hinge")
+    args = ap.parse_args(argv)
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = Path(tmp)
+        cold = timed_run(args.scene, tmp / "cache", tmp / "cold")
+        warm = timed_run(args.scene, tmp / "cache", tmp / "warm")
+        print(f"{args.scene}, 1 ms simulate: cold cache {cold:.1f} s, warm cache {warm:.1f} s: "
+              f"compiling costs {cold - warm:.1f} s once (load average {os.getloadavg()[0]:.2f})")
+        rows = compile_profile(args.scene, tmp / "cache2")
+    print("longest compilations (outermost kernels, in-process, simulate stage only):")
+    for name, seconds in rows:
+        print(f"  {seconds:6.1f} s  {name}")
+
+
+if __name__ == "__main__":
+    main()

@@ -31,8 +31,8 @@ INTEGRATION_HINTS = {
         "cut the step further); a very stiff hinge (hinge.translational, hinge.bending) or contact "
         "(physics.contact_damping_ratio) needs smaller steps"),
     "Newton did not converge within max_newton_iter iterations": (
-        "raise solver.max_newton_iter, or lower solver.min_step so the step controller may cut the step "
-        "further; a tighter solver.rtol gives smaller steps everywhere"),
+        "lower solver.min_step so the step controller may cut the step further; a tighter solver.rtol "
+        "gives smaller steps everywhere"),
     "residual is NaN or infinite": (
         "a force became NaN or infinite: check the scene's units (lengths in m, loads in N and N.m, "
         "speeds in rev/min), lower solver.first_step, and check physics.min_film"),

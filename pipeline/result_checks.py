@@ -157,10 +157,14 @@ def failure_finding(stage: str, scene, exc: BaseException) -> Finding | None:
     if stage == "quasistatic" and type(exc).__name__ == "QuasiStaticError" and "rides over the shoulder" in text:
         key = _main_load_key(scene)
         detail = text.split(": the ball rides over", 1)[0]
+        if key == "load.axial":
+            what = "reduce load.axial or load.moment"
+        else:  # a light thrust under a radial load or moment lets the race pivot onto far balls
+            what = f"reduce {key}, or raise load.axial (a thrust seats every ball in its groove)"
         return error(key, f"{_load_text(scene, key)} drives a contact past its land: {detail}; the contact ellipse "
                           f"would lie on the shoulder, outside the groove model; allowed: loads that keep every "
                           f"contact angle below the land angles (set by bearing.inner_shoulder_diameter and "
-                          f"bearing.outer_shoulder_diameter) [deg]")
+                          f"bearing.outer_shoulder_diameter) [deg]: {what}")
     return None
 
 

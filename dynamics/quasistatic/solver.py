@@ -5,7 +5,8 @@ centre (r, z) in its azimuth plane. Balls are equilibrated one by one (2×2 Newt
 `dynamics.quasistatic.kernels`), the inner race by Newton on the five loads with the
 exact condensed tangent; the condensed tangent at the solution is the bearing stiffness.
 Start: a one-dimensional search along the load direction (rigid-ring estimate that takes
-up the clearance), then Newton with line search, then load continuation if needed.
+up the clearance), then Newton with a line search on the potential energy (M.119), then,
+if needed, load continuation from the axial load alone, radial load and moment ramped up.
 Ball orbital speed, centrifugal force and gyroscopic friction use pure-rolling
 kinematics with race control, updated by fixed-point passes until they settle.
 
@@ -53,6 +54,8 @@ class _Problem:
     g_o: np.ndarray
     xb: np.ndarray
     linear_kinematics: bool = False
+    land_i: float = math.nan  # angle at which the groove meets its land [rad] (NaN: no land)
+    land_o: float = math.nan
 
     @property
     def lever(self) -> float:
@@ -155,7 +158,15 @@ def _initial_guess(problem: _Problem, load: np.ndarray) -> np.ndarray:
 
 
 def _newton(problem: _Problem, load: np.ndarray, q0: np.ndarray, tol: float, max_iter: int):
-    """Newton with backtracking on the inner-race equilibrium. Returns (q, iters, ok, res)."""
+    """Newton on the inner-race equilibrium, globalised on the potential energy (docs/model.md
+    §10, M.119). Returns (q, iters, ok, res).
+
+    The equilibrium is the minimum of Π(q) = Σ contact energies − load·q. Each step is a
+    descent direction of Π and the line search looks for the minimum of Π along it. A
+    backtracking on |residual| instead stalls where the tangent is singular and the
+    out-of-balance load lies in its null space (e.g. a race pivoting about a loaded zone
+    with all other balls loose): a stationary point of |residual|², not an equilibrium.
+    """
     sc = _scale(problem)
     cap = 0.5 * (problem.gap_i + problem.gap_o)  # largest step [m]: half the groove play
     q = q0.copy()
@@ -166,28 +177,63 @@ def _newton(problem: _Problem, load: np.ndarray, q0: np.ndarray, tol: float, max
         ref = max(np.max(np.abs(load * sc)), np.sum(balls[:, B_QI]), 1.0)
         if failed == 0 and np.max(np.abs(res)) <= tol * ref:
             return q, it - 1, True, float(np.max(np.abs(res)))
-        k_hat = stiff * sc[:, None] * sc[None, :]
-        k_hat = k_hat + np.eye(5) * 1e-12 * max(np.trace(k_hat), 1.0)  # zero-load directions
-        try:
-            step = np.linalg.solve(k_hat, res) * sc
-        except np.linalg.LinAlgError:
-            return q, it, False, float(np.max(np.abs(res)))
-        step_len = np.max(np.abs(step / sc))
+        step_hat = _descent_step(stiff * sc[:, None] * sc[None, :], res)
+        step_len = np.max(np.abs(step_hat))
         if step_len > cap:
-            step *= cap / step_len
-        merit0, lam = np.linalg.norm(res), 1.0
-        for _ in range(30):
-            f_new, k_new, balls, failed = problem.contact(q + lam * step)
-            res_new = (load + f_new) * sc
-            if failed == 0 and np.linalg.norm(res_new) < merit0:
-                break
-            lam *= 0.5
-        else:
+            step_hat *= cap / step_len
+        found = _energy_line_search(problem, load, q, step_hat, res)
+        if found is None:
             return q, it, False, float(np.max(np.abs(res)))
-        q, force, stiff, res = q + lam * step, f_new, k_new, res_new
+        q, (force, stiff, balls, failed), res = found
     ref = max(np.max(np.abs(load * sc)), np.sum(balls[:, B_QI]), 1.0)
     ok = failed == 0 and np.max(np.abs(res)) <= tol * ref
     return q, max_iter, ok, float(np.max(np.abs(res)))
+
+
+def _descent_step(k_hat: np.ndarray, res: np.ndarray) -> np.ndarray:
+    """Scaled Newton step K̂⁻¹ r̂, or — when that is no descent direction of Π (r̂·step ≤ 0:
+    K̂ indefinite, from the rotation's geometric term or the centrifugal force) — the step
+    of the symmetric part shifted to be positive definite (a Levenberg–Marquardt step)."""
+    k_hat = k_hat + np.eye(5) * 1e-12 * max(np.trace(k_hat), 1.0)  # directions without load
+    try:
+        step = np.linalg.solve(k_hat, res)
+        if res @ step > 0.0 and np.all(np.isfinite(step)):
+            return step
+    except np.linalg.LinAlgError:
+        pass
+    k_sym = 0.5 * (k_hat + k_hat.T)
+    eig = np.linalg.eigvalsh(k_sym)
+    shift = max(0.0, -eig[0]) + 1e-6 * max(eig[-1], 1.0)
+    return np.linalg.solve(k_sym + shift * np.eye(5), res)
+
+
+def _energy_line_search(problem: _Problem, load: np.ndarray, q: np.ndarray, step_hat: np.ndarray,
+                        res: np.ndarray):
+    """Step length λ along the scaled step towards the minimum of Π; None if none is found.
+
+    Π itself is not evaluated (k_h(α) makes the contact force slightly non-conservative);
+    its slope along the step is: dΠ/dλ = −φ(λ), φ(λ) = r̂(q + λ s)·ŝ (the work rate of the
+    out-of-balance load). φ(0) > 0 (descent). λ = 1 is taken unless it overshoots the
+    minimum by more than half the initial slope (φ(1) < −φ(0)/2, where Π may have risen);
+    then the secant of φ moves λ towards its zero. A ball that fails to converge halves λ.
+    """
+    sc = _scale(problem)
+    step = step_hat * sc
+    slope0 = res @ step_hat
+    lam = 1.0
+    for _ in range(40):
+        trial = problem.contact(q + lam * step)
+        res_new = (load + trial[0]) * sc
+        slope = res_new @ step_hat
+        if trial[3] == 0 and slope >= -0.5 * slope0:
+            return q + lam * step, trial, res_new
+        if trial[3] != 0 or not np.isfinite(slope):
+            lam *= 0.5
+        else:  # overshoot: secant towards φ = 0, kept within [0.1 λ, 0.9 λ]
+            lam *= min(0.9, max(0.1, slope0 / (slope0 - slope)))
+        if lam < 1e-12:
+            break
+    return None
 
 
 def _solve_load(problem: _Problem, load: np.ndarray, q0, tol: float, max_iter: int):
@@ -196,30 +242,85 @@ def _solve_load(problem: _Problem, load: np.ndarray, q0, tol: float, max_iter: i
     q, its, ok, res = _newton(problem, load, start, tol, max_iter)
     if ok:
         return q, its, res
-    total, frac, step = its, 0.0, 0.1
-    q_prev = _initial_guess(problem, 0.1 * load)
-    while frac < 1.0:
+    return _continuation(problem, load, tol, max_iter, its)
+
+
+def _load_path(load: np.ndarray):
+    """Continuation path t ∈ [0, 1] → loads: the axial load alone at t = 0 (every ball takes
+    an equal share: a well-posed start, unlike the zero load where all contacts open), then
+    the radial load and the moment ramped up with t."""
+    def path(t: float) -> np.ndarray:
+        out = t * load
+        out[2] = load[2]
+        return out
+    return path
+
+
+def _continuation(problem: _Problem, load: np.ndarray, tol: float, max_iter: int, total: int):
+    """Follow `_load_path` with adaptive steps, each Newton from the previous equilibrium."""
+    path = _load_path(load)
+    q_prev, its, ok, res = _newton(problem, path(0.0), _initial_guess(problem, path(0.0)), tol, max_iter)
+    total += its
+    frac, step = (0.0, 0.25) if ok else (None, 0.0)
+    while ok and frac < 1.0:
         trial = min(1.0, frac + step)
-        q_new, its, ok, res = _newton(problem, trial * load, q_prev, tol, max_iter)
+        # an equilibrium that carries nothing (no axial load) gives Newton no tangent: rigid-ring start
+        start = q_prev if np.any(problem.contact(q_prev)[2][:, B_QI] > 0.0) else _initial_guess(problem, path(trial))
+        q_new, its, converged, res = _newton(problem, path(trial), start, tol, max_iter)
         total += its
-        if ok:
+        if converged:
             frac, q_prev, step = trial, q_new, min(2.0 * step, 0.5)
         else:
             step *= 0.5
-            if step < 1e-4:
-                raise QuasiStaticError(
-                    f"Newton diverged at {100 * trial:.2f} % of the load (residual {res:.3g} N): the "
-                    "bearing probably cannot carry it (contact angles near the groove limit). "
-                    "Try a smaller load, check the clearance and groove radii, or loosen `tol`.")
-    return q_prev, total, res
+            ok = step >= 1e-4
+    if ok:
+        return q_prev, total, res
+    raise _no_equilibrium(problem, q_prev if frac is not None else None, frac, res)
+
+
+def _no_equilibrium(problem: _Problem, q_last, frac, res: float) -> QuasiStaticError:
+    """Why the continuation stopped: past a land (the ball rides over the shoulder: no
+    equilibrium inside the groove model, a limit of the load) or a solver failure."""
+    if q_last is not None:
+        hit = _past_land(problem, problem.contact(q_last)[2])
+        if hit is not None:
+            k, side, angle, limit = hit
+            has_land = math.isfinite(problem.land_i if side == "inner" else problem.land_o)
+            edge = f"the {side} land at {math.degrees(limit):.2f}°" if has_land else "90°, the edge of the groove"
+            return QuasiStaticError(
+                f"with {100 * frac:.1f} % of the radial load and moment on top of the axial load, ball {k}: "
+                f"the {side} contact angle {math.degrees(angle):.2f}° already reaches {edge}: the ball rides "
+                f"over the shoulder on the way to the full load, which the groove model cannot follow. Reduce "
+                f"the radial load or the moment.")
+    where = ("under the axial load alone" if frac is None
+             else f"beyond {100 * frac:.2f} % of the radial load and moment")
+    return QuasiStaticError(
+        f"Newton diverged {where} (residual {res:.3g} N): the bearing probably cannot carry it (contact "
+        "angles near the groove limit). Try a smaller load, check the clearance and groove radii, or loosen `tol`.")
+
+
+def _past_land(problem: _Problem, balls: np.ndarray):
+    """(ball, side, |α|, limit) of the first loaded contact at or past its land — 90°, the
+    edge of the groove, where there is none — else None."""
+    for side, col_q, col_a, land in (("inner", B_QI, B_AI, problem.land_i), ("outer", B_QO, B_AO, problem.land_o)):
+        limit = land if math.isfinite(land) else 0.5 * math.pi
+        over = np.flatnonzero((balls[:, col_q] > 0.0) & (np.abs(balls[:, col_a]) >= limit))
+        if over.size:
+            k = int(over[0])
+            return k, side, float(abs(balls[k, col_a])), limit
+    return None
 
 
 def _kinematics(problem, balls, D, inner_speed, outer_speed, inner_control):
     """Per-ball pure-rolling (ω_m, ω_r, ω_z) [rad/s] at the current contact angles."""
     out = np.zeros((problem.psi.size, 3))
     for k in range(problem.psi.size):
-        out[k] = ball_kinematics(balls[k, B_AI], balls[k, B_AO], problem.xb[k, 0], D,
-                                 inner_speed, outer_speed, inner_control)
+        alpha_i, alpha_o = balls[k, B_AI], balls[k, B_AO]
+        if 1.0 + math.cos(alpha_i - alpha_o) < 1e-9:
+            # the normals point the same way (only for a ball the race has pushed through the groove,
+            # far outside the model): pure rolling is singular there; roll as if collinear
+            alpha_i = alpha_o
+        out[k] = ball_kinematics(alpha_i, alpha_o, problem.xb[k, 0], D, inner_speed, outer_speed, inner_control)
     return out
 
 
@@ -244,6 +345,22 @@ def _hertz_tables(geometry, e_eff, contact_constants, nodes):
         for tab, k in zip((tab_i, tab_o), contact_constants):
             tab[:, TAB_KH], tab[:, TAB_DKH] = float(k), 0.0
     return tab_i, tab_o
+
+
+def _make_problem(geometry: BearingGeometry, ball_material: Material, race_material: Material,
+                  contact_constants=None, kinematics: str = "exact",
+                  table_nodes: int = DEFAULT_TABLE_NODES) -> _Problem:
+    """The kernels' arrays for `geometry`, balls at rest (no centrifugal force, no friction)."""
+    e_eff = effective_modulus(ball_material, race_material)
+    tab_i, tab_o = _hertz_tables(geometry, e_eff, contact_constants, table_nodes)
+    Z, D = geometry.ball_count, geometry.ball_diameter
+    R_ci, R_co = 0.5 * geometry.inner_groove_center_diameter, 0.5 * geometry.outer_groove_center_diameter
+    return _Problem(
+        psi=2.0 * np.pi * np.arange(Z) / Z, R_ci=R_ci, R_co=R_co, gap_i=geometry.inner_groove_radius - 0.5 * D,
+        gap_o=geometry.outer_groove_radius - 0.5 * D, tab_i=tab_i, tab_o=tab_o, m_om2=np.zeros(Z),
+        g_i=np.zeros(Z), g_o=np.zeros(Z), xb=np.full((Z, 2), np.nan), linear_kinematics=kinematics == "linear",
+        land_i=_shoulder_angle(geometry.inner_shoulder_diameter, R_ci, geometry.inner_groove_radius, outer=False),
+        land_o=_shoulder_angle(geometry.outer_shoulder_diameter, R_co, geometry.outer_groove_radius, outer=True))
 
 
 def solve_quasistatic(
@@ -282,14 +399,8 @@ def solve_quasistatic(
     loads = {"axial": axial, "radial": radial, "moment": moment, "inner_speed": inner_speed,
              "outer_speed": outer_speed}
     _validate(geometry, race_control, kinematics, loads)
-    e_eff = effective_modulus(ball_material, race_material)
-    tab_i, tab_o = _hertz_tables(geometry, e_eff, contact_constants, table_nodes)
+    problem = _make_problem(geometry, ball_material, race_material, contact_constants, kinematics, table_nodes)
     Z, D = geometry.ball_count, geometry.ball_diameter
-    problem = _Problem(
-        psi=2.0 * np.pi * np.arange(Z) / Z, R_ci=0.5 * geometry.inner_groove_center_diameter,
-        R_co=0.5 * geometry.outer_groove_center_diameter, gap_i=geometry.inner_groove_radius - 0.5 * D,
-        gap_o=geometry.outer_groove_radius - 0.5 * D, tab_i=tab_i, tab_o=tab_o, m_om2=np.zeros(Z),
-        g_i=np.zeros(Z), g_o=np.zeros(Z), xb=np.full((Z, 2), np.nan), linear_kinematics=kinematics == "linear")
     load = np.array([radial, 0.0, axial, 0.0, moment], dtype=float)
     mass, inertia = geometry.ball_mass(ball_material), geometry.ball_inertia(ball_material)
     inner_control = race_control == "inner"
@@ -333,6 +444,19 @@ def _ellipse(tab, loads, angles):
     return p, a
 
 
+def _land_error(geometry, problem: _Problem, balls: np.ndarray, k: int, side: str, land_angle: float):
+    """QuasiStaticError: ball k's loaded `side` contact has reached the land at land_angle [rad].
+    Its azimuth and load say where (e.g. a light contact opposite a radial load)."""
+    land = geometry.inner_shoulder_diameter if side == "inner" else geometry.outer_shoulder_diameter
+    col_q, col_a = (B_QI, B_AI) if side == "inner" else (B_QO, B_AO)
+    where = f"ball {k} (azimuth {math.degrees(problem.psi[k]):.1f}°, {balls[k, col_q]:.4g} N)"
+    return QuasiStaticError(
+        f"{where}: the {side} contact angle {math.degrees(abs(balls[k, col_a])):.2f}° reaches the "
+        f"{side} land at {math.degrees(land_angle):.2f}° ({side}_shoulder_diameter = {land} m): the ball "
+        f"rides over the shoulder and the contact ellipse is cut off by the land, so the groove "
+        f"cannot carry this load. Reduce the axial load or moment, or check the shoulder diameter.")
+
+
 def _truncation(geometry, problem, balls, a_i, a_o):
     """Margins r(θ_land − |α|) − a [m]; raise if a loaded contact centre passes a land."""
     margins, notes = [], []
@@ -345,11 +469,7 @@ def _truncation(geometry, problem, balls, a_i, a_o):
         over = np.flatnonzero(loaded & (np.abs(balls[:, col_a]) >= theta))
         if over.size:
             k = int(over[0])
-            raise QuasiStaticError(
-                f"ball {k}: the {side} contact angle {math.degrees(abs(balls[k, col_a])):.2f}° reaches the "
-                f"{side} land at {math.degrees(theta):.2f}° ({side}_shoulder_diameter = {land} m): the ball "
-                f"rides over the shoulder and the contact ellipse is cut off by the land, so the groove "
-                f"cannot carry this load. Reduce the axial load or moment, or check the shoulder diameter.")
+            raise _land_error(geometry, problem, balls, k, side, theta)
         for k in np.flatnonzero(loaded & (margin < 0.0)):
             notes.append(f"ball {int(k)}: {side} contact ellipse truncated by the land by "
                          f"{-margin[k] * 1e3:.3f} mm (semi-axis a = {a[k] * 1e3:.3f} mm)")

@@ -16,13 +16,17 @@ def plot_work_precision(study: dict, path: Path) -> Path:
     axes = fig.subplots(2, 2)
     curves = list(dict.fromkeys(r["curve"] for r in study["rows"]))
     markers = "os^vD<>ph*"
+    from matplotlib import colormaps
+
+    colours = colormaps["tab20"].colors  # one colour per curve (the default cycle has 10)
     for ax, q in zip(axes.ravel(), wm.QUANTITIES):
         for i, curve in enumerate(curves):
             rows = [r for r in study["rows"] if r["curve"] == curve and not r["error_text"]
                     and np.isfinite(r[q]) and r[q] > 0]
             if rows:
                 ax.loglog([r["wall"] for r in rows], [r[q] * wm.DISPLAY_SCALE[q] for r in rows],
-                          marker=markers[i % len(markers)], label=curve, ms=5, lw=1.2)
+                          marker=markers[i % len(markers)], color=colours[(2 * i) % 20 + (2 * i) // 20],
+                          ls="--" if curve.startswith("solve_ivp") else "-", label=curve, ms=5, lw=1.2)
         ax.set_xlabel("wall time [s]")
         ax.set_ylabel(wm.LABELS[q])
         ax.grid(True, which="both", alpha=0.3)

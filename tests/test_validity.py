@@ -250,3 +250,20 @@ def test_json_writer_never_writes_nan_or_infinity(tmp_path):
 
     data = json.loads((tmp_path / "x.json").read_text(), parse_constant=reject)
     assert data == {"a": None, "b": [None, None, 1.5], "c": [None, 2.0], "d": None}
+
+
+def test_crush_screen_is_flagged_when_balls_sit_in_the_unloaded_zone():
+    """The screen assumes every ball rolls at its own pure-rolling speed; a ball under a tenth of the
+    mean load cannot hold it (the unloaded zone of a radial load), so the screen only bounds the push."""
+    s = load_scene("deep-groove-209")
+    loaded = payload()
+    loaded["cage_screen"] = {"regime": "pressed"}
+    assert validity.quasistatic_findings(s, loaded) == []
+    zone = copy.deepcopy(loaded)
+    for ball in zone["balls"][:3]:
+        ball["inner_load"] = ball["outer_load"] = 50.0  # mean (3 x 50 + 6 x 1000) / 9 = 683 N; 50 < 68.3
+    warned = validity.quasistatic_findings(s, zone)
+    assert [f.level for f in warned] == ["warning"]
+    assert "3 of 9 balls in the unloaded zone" in warned[0].message and "'pressed'" in warned[0].message
+    del zone["cage_screen"]  # no cage, no screen: nothing to flag
+    assert validity.quasistatic_findings(s, zone) == []

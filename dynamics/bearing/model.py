@@ -156,11 +156,10 @@ class BearingModel:
         within the pocket clearance, the cage across within its guide clearance."""
         P, Z, n = self.params, self.params.ball_count, self.n_dof
         w = self.error_weights
-        zeros = np.zeros(n)
-        self.evaluate(t0, q0, v0, zeros, self._ma, self._g)
+        # the tangent's evaluation also leaves the start state's diagnostics (its loads) behind
+        S = self.jacobian(t0, q0, v0, np.zeros(n), 0.0, 0.0, 1.0)
         loads = np.concatenate([self.channel("contacts/inner_load"), self.channel("contacts/outer_load")])
         q_mean = float(np.mean(loads))
-        S = self.jacobian(t0, q0, v0, zeros, 0.0, 0.0, 1.0)
         k_diag = np.concatenate([np.einsum("kii->ki", S.D).ravel(), np.diag(S.B)])
         free = np.full(n, 0.5 * P.ball_diameter)  # no cage: a ball's orbital position acts on nothing
         if P.has_cage:
@@ -170,9 +169,7 @@ class BearingModel:
         k_weighted = k_diag / np.where(w > 0.0, w * w, 1.0)  # stiffness per unit of weighted error
         with np.errstate(divide="ignore", invalid="ignore"):
             elastic = np.where(k_weighted > 0.0, q_mean / k_weighted, np.inf)
-        scales = np.minimum(elastic, free) if q_mean > 0.0 else free
-        self.evaluate(t0, q0, v0, zeros, self._ma, self._g)  # leave the diagnostics at the start
-        return scales
+        return np.minimum(elastic, free) if q_mean > 0.0 else free
 
     def on_accepted_step(self, t, q, v, a) -> None:
         """Impact log and energy balance from the converged state's diagnostics."""

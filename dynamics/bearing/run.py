@@ -176,7 +176,6 @@ def simulate_bearing(params: BearingModelParams, start: dict, settings: HHTSetti
     # The first calls compile the force kernels (or load them from numba's cache): timed apart,
     # so that the integration's wall time is the integration's.
     warm0 = time.perf_counter()
-    model.jacobian(0.0, q0, v0, np.zeros(n), 1.0, 0.0, 0.0)
     solver.factor(model.jacobian(0.0, q0, v0, np.zeros(n), 1.0, 0.0, 0.0))
     # the initial diagnostics come from the initial-acceleration evaluation
     model.evaluate(0.0, q0, v0, np.zeros(n), np.zeros(n), np.zeros(n))

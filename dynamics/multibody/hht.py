@@ -116,10 +116,6 @@ class HHTStepper:
         np.subtract(y_new.a, y_old.a, out=self._da_prev)
         self._h_prev = h
 
-    def reset_history(self) -> None:
-        """Forget the previous step (after a discontinuity the time loop knows of)."""
-        self._h_prev = 0.0
-
     def step(self, t: float, h: float, y: HHTState) -> tuple[HHTState, float, Result]:
         """Try a step from (t, y) of size h: returns (y1, error norm, result).
 

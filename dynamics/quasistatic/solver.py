@@ -460,10 +460,9 @@ def _land_error(geometry, problem: _Problem, balls: np.ndarray, k: int, side: st
 def _truncation(geometry, problem, balls, a_i, a_o):
     """Margins r(θ_land − |α|) − a [m]; raise if a loaded contact centre passes a land."""
     margins, notes = [], []
-    for side, land, rc, r, col_q, col_a, a in (
-            ("inner", geometry.inner_shoulder_diameter, problem.R_ci, geometry.inner_groove_radius, B_QI, B_AI, a_i),
-            ("outer", geometry.outer_shoulder_diameter, problem.R_co, geometry.outer_groove_radius, B_QO, B_AO, a_o)):
-        theta = _shoulder_angle(land, rc, r, side == "outer")
+    for side, theta, r, col_q, col_a, a in (
+            ("inner", problem.land_i, geometry.inner_groove_radius, B_QI, B_AI, a_i),
+            ("outer", problem.land_o, geometry.outer_groove_radius, B_QO, B_AO, a_o)):
         margin = r * (theta - np.abs(balls[:, col_a])) - a
         loaded = balls[:, col_q] > 0.0
         over = np.flatnonzero(loaded & (np.abs(balls[:, col_a]) >= theta))

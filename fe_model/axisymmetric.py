@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from bearingsim.fe_model.elasticity import full_from_upper, lame_fields
+from bearingsim.fe_model.elasticity import VectorFieldModel, full_from_upper, lame_fields
 from bearingsim.fe_model.kernels import csr_from_triplets, harmonic_stiffness_upper, upper_triplet_indices
 from bearingsim.fe_model.loads import EPS
 
@@ -70,19 +70,9 @@ class Reduction:
         return out
 
 
-@dataclass
-class HarmonicModel:
+class HarmonicModel(VectorFieldModel):
     """A meshed meridian section ready to assemble: skfem MeshTri (x = r, y = z), scalar
-    basis, Lamé parameters per element [Pa]."""
-
-    mesh: object
-    basis: object
-    lam: np.ndarray
-    mu: np.ndarray
-
-    @property
-    def n_dofs(self) -> int:
-        return 3 * self.basis.N
+    basis, Lamé parameters per element [Pa]; components U_r, U_theta, U_z of a Fourier mode."""
 
     @classmethod
     def build(cls, mesh, order: int, materials: dict[str, tuple[float, float]]) -> "HarmonicModel":
@@ -96,18 +86,6 @@ class HarmonicModel:
         # 4th-order rule (the Lamé tube converges to 1e-6, tests/test_fe_axisymmetric.py)
         basis = Basis(mesh, scalar_triangle(order), intorder=2 * order)
         return cls(mesh, basis, lam, mu)
-
-    def vector_dofs(self) -> np.ndarray:
-        """(E, 3A) global dofs of each element, local order 3a + i."""
-        scalar = self.basis.element_dofs.T.astype(np.int64)
-        return (3 * scalar[:, :, None] + np.arange(3)).reshape(scalar.shape[0], -1)
-
-    def boundary_dofs(self, group: str, components=(0, 1, 2)) -> np.ndarray:
-        """Dofs of `components` (0 = U_r, 1 = U_theta, 2 = U_z) on boundary group `group`."""
-        if group not in self.mesh.boundaries:
-            raise ValueError(f"no boundary group {group!r} in the section (have {sorted(self.mesh.boundaries)})")
-        scalar = self.basis.get_dofs(self.mesh.boundaries[group]).all()
-        return np.sort((3 * scalar[:, None] + np.asarray(components)).ravel())
 
     def axis_nodes(self) -> np.ndarray:
         """Scalar dofs on the axis r = 0 (a solid shaft)."""

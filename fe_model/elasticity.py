@@ -45,8 +45,10 @@ def scalar_element(order: int):
 
 
 @dataclass
-class ElasticModel:
-    """A meshed body ready to assemble: skfem mesh, scalar basis, Lamé field per element."""
+class VectorFieldModel:
+    """A meshed body with three displacement components per scalar node: skfem mesh, scalar
+    basis, Lamé field per element [Pa]. Its vector dofs are 3 a + i (node a, component i:
+    x, y, z in 3-D; U_r, U_theta, U_z of a Fourier mode on a meridian section)."""
 
     mesh: object
     basis: object
@@ -57,6 +59,22 @@ class ElasticModel:
     def n_dofs(self) -> int:
         return 3 * self.basis.N
 
+    def vector_dofs(self) -> np.ndarray:
+        """(E, 3A) global vector dofs of each element, local order 3a + i."""
+        scalar = self.basis.element_dofs.T.astype(np.int64)
+        return (3 * scalar[:, :, None] + np.arange(3)).reshape(scalar.shape[0], -1)
+
+    def boundary_dofs(self, group: str, components=(0, 1, 2)) -> np.ndarray:
+        """Vector dofs of `components` on boundary group `group`."""
+        if group not in self.mesh.boundaries:
+            raise ValueError(f"no boundary group {group!r} in the mesh (have {sorted(self.mesh.boundaries)})")
+        scalar = self.basis.get_dofs(self.mesh.boundaries[group]).all()
+        return np.sort((3 * scalar[:, None] + np.asarray(components)).ravel())
+
+
+class ElasticModel(VectorFieldModel):
+    """A meshed 3-D body ready to assemble (tetrahedra, components x, y, z)."""
+
     @classmethod
     def build(cls, mesh, order: int, materials: dict[str, tuple[float, float]]) -> "ElasticModel":
         """`materials` maps a subdomain name to (E [Pa], nu [-]); every element needs one."""
@@ -66,18 +84,6 @@ class ElasticModel:
         # gradients of P2 are linear on straight tets: the degree-2 rule integrates K exactly
         basis = Basis(mesh, scalar_element(order), intorder=2 * (order - 1))
         return cls(mesh, basis, lam, mu)
-
-    def vector_dofs(self) -> np.ndarray:
-        """(E, 3A) global vector dofs of each element, local order 3a + i."""
-        scalar = self.basis.element_dofs.T.astype(np.int64)
-        return (3 * scalar[:, :, None] + np.arange(3)).reshape(scalar.shape[0], -1)
-
-    def boundary_dofs(self, group: str, components=(0, 1, 2)) -> np.ndarray:
-        """Vector dofs of `components` (0 = x, 1 = y, 2 = z) on surface group `group`."""
-        if group not in self.mesh.boundaries:
-            raise ValueError(f"no surface group {group!r} in the mesh (have {sorted(self.mesh.boundaries)})")
-        scalar = self.basis.get_dofs(self.mesh.boundaries[group]).all()
-        return np.sort((3 * scalar[:, None] + np.asarray(components)).ravel())
 
     def stiffness_upper(self, fixed: np.ndarray | None = None) -> tuple[sp.csr_matrix, np.ndarray]:
         """Upper triangle of K on the free dofs, and the free-dof index array.

@@ -28,6 +28,12 @@ from bearingsim.fe_model.loads import RegionMoments, distributed_load_matrix, ri
 from bearingsim.fe_model.solvers import SPDFactorization
 
 
+def timoshenko_tip(P: float, L: float, E: float, G: float, I: float, A: float, kappa: float) -> tuple[float, float]:
+    """Tip of a cantilever under a tip shear load P: (deflection [m], cross-section rotation
+    [rad]) of Timoshenko's beam, PL^3/(3EI) + PL/(kappa G A) and PL^2/(2EI)."""
+    return P * L**3 / (3 * E * I) + P * L / (kappa * G * A), P * L**2 / (2 * E * I)
+
+
 @dataclass(frozen=True)
 class Cantilever:
     length: float = 1.0  # m
@@ -43,7 +49,7 @@ class Cantilever:
         E, nu = self.youngs_modulus, self.poisson_ratio
         I, A, G = b * h**3 / 12.0, b * h, E / (2.0 * (1.0 + nu))
         kappa = 10.0 * (1.0 + nu) / (12.0 + 11.0 * nu)
-        return P * L**3 / (3 * E * I) + P * L / (kappa * G * A), P * L**2 / (2 * E * I)
+        return timoshenko_tip(P, L, E, G, I, A, kappa)
 
     def solve(self, mesh_size: float, order: int) -> tuple[float, float, int]:
         """FE (tip deflection [m], tip rotation [rad], dofs): root clamped, uniform shear
@@ -150,7 +156,7 @@ class TubeCantilever:
         E, nu = self.youngs_modulus, self.poisson_ratio
         I, A, G, m2 = math.pi * (b**4 - a**4) / 4.0, math.pi * (b**2 - a**2), E / (2.0 * (1.0 + nu)), (a / b) ** 2
         kappa = 6.0 * (1.0 + nu) * (1.0 + m2) ** 2 / ((7.0 + 6.0 * nu) * (1.0 + m2) ** 2 + (20.0 + 12.0 * nu) * m2)
-        return P * L**3 / (3 * E * I) + P * L / (kappa * G * A), P * L**2 / (2 * E * I)
+        return timoshenko_tip(P, L, E, G, I, A, kappa)
 
     def solve(self, mesh_size: float, order: int) -> tuple[float, float, int]:
         """Mode 1 of the axisymmetric model: root z = -L clamped, M.43 shear traction on the

@@ -134,26 +134,41 @@ def build_section_mesh(geometry: HousingGeometry, mesh_size: float, edge_refinem
     the body: re-entrant corners, material junctions, seat and support ends), back to
     `mesh_size` at CORNER_REACH thinnest walls from the corner; 1 = uniform."""
     g = geometry
-    tol = 1e-5 * g.housing_flange_diameter  # OCC pads bounding boxes by ~1e-7
+    # a boundary line of the section, ("r", r, z0, z1) or ("z", z, r0, r1), revolves into the surface
+    lines = surface_rules(g, cylinder_kind="r", plane_kind="z")
+    return mesh_rectangles(section_rectangles(g), lines, mesh_size, edge_refinement * mesh_size,
+                           CORNER_REACH * thinnest_wall(g), match_tolerance(g))
+
+
+def match_tolerance(g: HousingGeometry) -> float:
+    """Length tolerance [m] for matching gmsh entities (surfaces, lines, edges) to the geometry."""
+    return 1e-5 * g.housing_flange_diameter  # OCC pads bounding boxes by ~1e-7
+
+
+def surface_rules(g: HousingGeometry, cylinder_kind: str, plane_kind: str) -> dict:
+    """The named surfaces of the assembly (docs/model.md §3) as rules on a boundary entity's
+    kind: (cylinder_kind, radius, z0, z1) for a cylinder, (plane_kind, z, r0, ...) for a plane
+    normal to the axis. The 3-D mesh classifies gmsh surfaces, the section mesh its boundary
+    lines, each with its own kind names; one table serves both."""
+    tol = match_tolerance(g)
     r_b = 0.5 * g.ring.inner_bore_diameter
     half_b, half_w = 0.5 * g.ring.width, 0.5 * g.support_width
 
     def cylinder(radius: float, z0: float, z1: float):
-        return lambda kind: (kind[0] == "r" and math.isclose(kind[1], radius, abs_tol=tol)
+        return lambda kind: (kind[0] == cylinder_kind and math.isclose(kind[1], radius, abs_tol=tol)
                              and kind[2] >= z0 - tol and kind[3] <= z1 + tol)
 
-    lines = {
+    return {
         "inner_ring_bore": cylinder(r_b, -half_b, half_b),
-        "inner_ring_seat": cylinder(r_b, -half_b, half_b),  # docs/model.md's name: same lines as the bore
+        "inner_ring_seat": cylinder(r_b, -half_b, half_b),  # docs/model.md's name: same surface as the bore
         "inner_ring_race": cylinder(0.5 * g.ring.inner_outer_diameter, -half_b, half_b),
         "outer_ring_seat": cylinder(g.seat_radius, -half_b, half_b),
         "support_a": cylinder(r_b, g.support_a_position - half_w, g.support_a_position + half_w),
         "support_b": cylinder(r_b, g.support_b_position - half_w, g.support_b_position + half_w),
-        "housing_flange": lambda kind: (kind[0] == "z" and math.isclose(kind[1], g.housing_flange_position, abs_tol=tol)
+        "housing_flange": lambda kind: (kind[0] == plane_kind
+                                        and math.isclose(kind[1], g.housing_flange_position, abs_tol=tol)
                                         and kind[2] >= g.seat_radius - tol),
     }
-    return mesh_rectangles(section_rectangles(g), lines, mesh_size, edge_refinement * mesh_size,
-                           CORNER_REACH * thinnest_wall(g), tol)
 
 
 def _tube(gmsh, r_in: float, r_out: float, z0: float, z1: float) -> list[tuple[int, int]]:
@@ -216,31 +231,8 @@ def _volume_owners(parts, tags, children) -> dict[int, str]:
 
 
 def _named_surfaces(gmsh, g: HousingGeometry) -> dict[str, list[int]]:
-    tol = 1e-5 * g.housing_flange_diameter  # OCC pads bounding boxes by ~1e-7
-    r_b = 0.5 * g.ring.inner_bore_diameter
-    half_b, half_w = 0.5 * g.ring.width, 0.5 * g.support_width
-
-    def cylinder(radius: float, z0: float, z1: float):
-        return lambda kind: (
-            kind[0] == "cylinder"
-            and math.isclose(kind[1], radius, abs_tol=tol)
-            and kind[2] >= z0 - tol
-            and kind[3] <= z1 + tol
-        )
-
-    rules = {
-        "inner_ring_bore": cylinder(r_b, -half_b, half_b),
-        "inner_ring_seat": cylinder(r_b, -half_b, half_b),  # docs/model.md's name: same facets as the bore
-        "inner_ring_race": cylinder(0.5 * g.ring.inner_outer_diameter, -half_b, half_b),
-        "outer_ring_seat": cylinder(g.seat_radius, -half_b, half_b),
-        "support_a": cylinder(r_b, g.support_a_position - half_w, g.support_a_position + half_w),
-        "support_b": cylinder(r_b, g.support_b_position - half_w, g.support_b_position + half_w),
-        "housing_flange": lambda kind: (
-            kind[0] == "plane_z"
-            and math.isclose(kind[1], g.housing_flange_position, abs_tol=tol)
-            and kind[2] >= g.seat_radius - tol
-        ),
-    }
+    tol = match_tolerance(g)
+    rules = surface_rules(g, cylinder_kind="cylinder", plane_kind="plane_z")
     kinds = {tag: classify_surface(gmsh, tag, tol) for _, tag in gmsh.model.getEntities(2)}
     return {name: sorted(t for t, k in kinds.items() if rule(k)) for name, rule in rules.items()}
 
@@ -250,7 +242,7 @@ def _singular_curves(gmsh, g: HousingGeometry) -> list[int]:
     of each soft support annulus (bonded to shaft and web), the re-entrant corners where
     the webs meet the housing shell, and the edges of the outer-ring seat (end of the
     seat traction). Refining these moves H_u_zz most per degree of freedom."""
-    tol = 1e-5 * g.housing_flange_diameter
+    tol = match_tolerance(g)
     r_b, r_s, R = 0.5 * g.ring.inner_bore_diameter, g.support_outer_radius, g.seat_radius
     half_b, half_w = 0.5 * g.ring.width, 0.5 * g.support_width
     support_ends = [z + s * half_w for z in (g.support_a_position, g.support_b_position) for s in (-1.0, 1.0)]

@@ -49,10 +49,9 @@ class MeshData:
         from skfem import MeshTet
 
         mesh = MeshTet(np.ascontiguousarray(self.points.T), np.ascontiguousarray(self.tets.T))
-        facet_index = _facet_lookup(mesh.facets)
-        boundaries = {
-            name: _match_facets(name, tris, facet_index) for name, tris in self.surfaces.items()
-        }
+        facet_index = facet_lookup(mesh.facets)
+        boundaries = {name: match_facets(name, tris, facet_index, "triangle", "a facet of the volume mesh")
+                      for name, tris in self.surfaces.items()}
         subdomains = {name: np.asarray(idx, dtype=np.int64) for name, idx in self.volumes.items()}
         return mesh.with_subdomains(subdomains).with_boundaries(boundaries)
 
@@ -65,20 +64,24 @@ class MeshData:
         return cls(*load_grouped_mesh(path, "tets"))
 
 
-def _facet_lookup(facets: np.ndarray) -> dict[tuple[int, int, int], int]:
-    """Map sorted vertex triple -> facet index for skfem's (3, F) facet array."""
+def facet_lookup(facets: np.ndarray) -> dict[tuple[int, ...], int]:
+    """Map sorted vertex tuple -> facet index for skfem's (k, F) facet array (k = 3 for
+    tetrahedra, 2 for the edges of triangles)."""
     sorted_facets = np.sort(facets, axis=0).T
     return {tuple(f): i for i, f in enumerate(sorted_facets.tolist())}
 
 
-def _match_facets(name: str, triangles: np.ndarray, lookup: dict) -> np.ndarray:
-    keys = np.sort(np.asarray(triangles), axis=1).tolist()
+def match_facets(name: str, cells: np.ndarray, lookup: dict, cell: str, facet: str) -> np.ndarray:
+    """Facet indices of boundary group `name`'s `cells` (F, k) by their sorted vertices; a cell
+    that is no facet of the mesh (a non-conforming mesh) is an error naming the group.
+    `cell` and `facet` name them in the message ("triangle", "a facet of the volume mesh")."""
+    keys = np.sort(np.asarray(cells, dtype=np.int64), axis=1).tolist()
     try:
         return np.array([lookup[tuple(k)] for k in keys], dtype=np.int64)
     except KeyError as err:
         raise ValueError(
-            f"surface group {name!r} has a triangle {err.args[0]} that is not a facet of the "
-            "volume mesh; the surface mesh is not conforming (was the geometry fragmented?)"
+            f"surface group {name!r} has a {cell} {err.args[0]} that is not {facet}; the mesh is not "
+            "conforming (was the geometry fragmented?)"
         ) from None
 
 

@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from bearingsim.meshes.mesh_data import MeshData, load_grouped_mesh, save_grouped_mesh
+from bearingsim.meshes.mesh_data import MeshData, facet_lookup, load_grouped_mesh, match_facets, save_grouped_mesh
 
 Rectangle = tuple[float, float, float, float]  # r0, r1, z0, z1 [m]
 
@@ -53,21 +53,9 @@ class SectionMesh:
         from skfem import MeshTri
 
         mesh = MeshTri(np.ascontiguousarray(self.points.T), np.ascontiguousarray(self.triangles.T))
-        n = mesh.nvertices
-        facets = np.sort(mesh.facets, axis=0)
-        keys = facets[0].astype(np.int64) * n + facets[1]
-        order = np.argsort(keys)
-        boundaries = {}
-        for name, segments in self.surfaces.items():
-            s = np.sort(np.asarray(segments, dtype=np.int64), axis=1)
-            wanted = s[:, 0] * n + s[:, 1]
-            pos = np.searchsorted(keys, wanted, sorter=order)
-            pos = np.minimum(pos, keys.size - 1)
-            found = order[pos]
-            if not np.array_equal(keys[found], wanted):
-                raise ValueError(f"surface group {name!r} has a segment that is not an edge of the section "
-                                 "mesh; the mesh is not conforming (was the geometry fragmented?)")
-            boundaries[name] = found
+        edge_index = facet_lookup(mesh.facets)
+        boundaries = {name: match_facets(name, segments, edge_index, "segment", "an edge of the section mesh")
+                      for name, segments in self.surfaces.items()}
         subdomains = {name: np.asarray(idx, dtype=np.int64) for name, idx in self.volumes.items()}
         return mesh.with_subdomains(subdomains).with_boundaries(boundaries)
 

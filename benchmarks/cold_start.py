@@ -1,4 +1,4 @@
-"""First-run cost of the numba kernels (issue: fast by default, cold start).
+"""First-run cost of the numba kernels (README, Accuracy and run time).
 
     python -m benchmarks.cold_start [SCENE]
 

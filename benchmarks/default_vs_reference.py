@@ -1,4 +1,4 @@
-"""Do the shipped solver defaults give the statistics of a tight-tolerance run? (issue: fast by default)
+"""Do the shipped solver defaults give the statistics of a tight-tolerance run? (README, Accuracy and run time)
 
     python -m benchmarks.default_vs_reference [--cases helicopter-b helicopter-a] [--out DIR]
 

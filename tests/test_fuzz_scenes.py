@@ -8,7 +8,8 @@ A few dozen physically varied cases go through `quasistatic --json`: exit 0 must
 finite, strictly valid JSON result whose validity list flags what the result's own numbers
 say is doubtful (pressure beyond ISO 76's 4.2 GPa, contact ellipses cut by the lands), and
 exit 2 with a message; exit 1 (the solver giving up) is a failure, including under the mostly
-radial, lightly thrust loads of issue 17. The larger variants are marked slow.
+radial, lightly thrust loads where the free race pivots (docs/model.md §10, M.119). The larger
+variants are marked slow.
 """
 
 from __future__ import annotations
@@ -188,7 +189,7 @@ def physical_cases(n: int, seed: int):
                 sets.append(f"bearing.diametral_clearance={rng.uniform(-2e-5, 1.3e-3):.6g}")
             if rng.random() < 0.3:
                 sets.append(f"load.axial={rng.choice([-1, 1]) * 10 ** rng.uniform(1, 8):.6g}")
-        elif rng.random() < 0.3:  # mostly radial, light axial load: the free race pivots (issue 17)
+        elif rng.random() < 0.3:  # mostly radial, light axial load: the free race pivots (docs/model.md M.119)
             sets.append(f"load.axial={rng.choice([-1, 1]) * 10 ** rng.uniform(1, 4):.6g}")
             sets.append(f"load.radial={10 ** rng.uniform(3, 4.7):.6g}")
             sets.append(f"load.moment={rng.choice([0, -1, 1]) * 10 ** rng.uniform(0, 3):.6g}")
@@ -212,7 +213,7 @@ def finite_numbers(obj) -> bool:
 def check_quasistatic_case(runner, base, args, out: Path) -> str:
     argv = ["quasistatic", base, "--json", "--out", str(out), *args]
     result = runner.invoke(app, argv)
-    assert_clean(result, argv)  # exit 0 or 2: a solver failure (exit 1) is a defect (issue 17)
+    assert_clean(result, argv)  # exit 0 or 2: a solver failure (exit 1) is a defect (README, exit codes)
     if result.exit_code == 2:
         return "refused"
     payload = strict_json(result.stdout)
@@ -242,7 +243,7 @@ def test_quasistatic_results_are_finite_and_flagged(tmp_path):
 
 @pytest.mark.slow
 def test_quasistatic_fuzz_large(tmp_path):
-    """200 physical cases (issue 17: at least 200 fuzzed scenes, exit 0 or 2 only; a few minutes)."""
+    """200 physical cases, exit 0 or 2 only (README, exit codes; a few minutes)."""
     runner = CliRunner()
     for i, (base, args) in enumerate(physical_cases(200, SEED + 1)):
         check_quasistatic_case(runner, base, args, tmp_path / f"r{i}")

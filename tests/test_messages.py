@@ -1,4 +1,4 @@
-"""Messages speak in scene keys and keep their units (issue cases 6 and 7).
+"""Messages speak in scene keys and keep their units (README, exit codes and messages).
 
 Every dotted scene key a message names must exist in docs/scenes.md; the solvers' own hints
 (`tol`, `max_newton_iter`, ...), which name no scene key, are translated by

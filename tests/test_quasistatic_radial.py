@@ -1,4 +1,4 @@
-"""Quasi-static solver under mostly radial loads on a free inner race (issue 17; docs/model.md §10, M.119).
+"""Quasi-static solver under mostly radial loads on a free inner race (docs/model.md §10, M.119).
 
 An inner race free to tilt under a mostly radial load with a light axial load pivots about its
 loaded zone with almost no stiffness: zero moment needs the first harmonic of the axial ball forces

@@ -1,4 +1,4 @@
-"""Figures of the issue-9 studies (matplotlib imported inside each function, docs/contributing.md rule 6)."""
+"""Figures of the bench studies (matplotlib imported inside each function, docs/contributing.md rule 6)."""
 
 from __future__ import annotations
 

@@ -27,21 +27,13 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from bearingsim.fe_model.elasticity import VectorFieldModel, full_from_upper, lame_fields
+from bearingsim.fe_model.elasticity import VectorFieldModel, full_from_upper, lame_fields, scalar_element
 from bearingsim.fe_model.kernels import csr_from_triplets, harmonic_stiffness_upper, upper_triplet_indices
 from bearingsim.fe_model.loads import EPS
 
 # int_0^2pi cos^2(n theta) and sin^2(n theta) for the modes used
 MODE_WEIGHTS = {0: (2.0 * math.pi, 0.0), 1: (math.pi, math.pi)}
 AXIS_TOL = 1e-9  # m: nodes this close to the axis carry the regularity conditions
-
-
-def scalar_triangle(order: int):
-    from skfem import ElementTriP1, ElementTriP2
-
-    if order not in (1, 2):
-        raise ValueError(f"element_order = {order!r}: allowed 1 (preview) or 2 (accurate)")
-    return ElementTriP2() if order == 2 else ElementTriP1()
 
 
 @dataclass
@@ -84,7 +76,7 @@ class HarmonicModel(VectorFieldModel):
             raise ValueError("the section must lie in r >= 0 (x is the radius)")
         # the integrand is polynomial (degree 3 for P2) plus phi^2 / r, smooth off the axis: a
         # 4th-order rule (the Lamé tube converges to 1e-6, tests/test_fe_axisymmetric.py)
-        basis = Basis(mesh, scalar_triangle(order), intorder=2 * order)
+        basis = Basis(mesh, scalar_element(order, "tri"), intorder=2 * order)
         return cls(mesh, basis, lam, mu)
 
     def axis_nodes(self) -> np.ndarray:

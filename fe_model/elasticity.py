@@ -36,12 +36,14 @@ def lame_parameters(youngs_modulus: float, poisson_ratio: float) -> tuple[float,
     return E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)), E / (2.0 * (1.0 + nu))
 
 
-def scalar_element(order: int):
-    from skfem import ElementTetP1, ElementTetP2
+def scalar_element(order: int, cell: str = "tet"):
+    """Lagrange element of `order` on tetrahedra ("tet") or triangles ("tri", a meridian section)."""
+    from skfem import ElementTetP1, ElementTetP2, ElementTriP1, ElementTriP2
 
     if order not in (1, 2):
         raise ValueError(f"element_order = {order!r}: allowed 1 (preview) or 2 (accurate)")
-    return ElementTetP2() if order == 2 else ElementTetP1()
+    p1, p2 = {"tet": (ElementTetP1, ElementTetP2), "tri": (ElementTriP1, ElementTriP2)}[cell]
+    return p2() if order == 2 else p1()
 
 
 @dataclass

@@ -5,13 +5,16 @@
 Integrates the scene's bearing over `window` from its quasi-static start with the scene's
 solver settings, timing every residual evaluation, tangent build, factorisation and solve
 (perf_counter around each call), and reports them per step against the whole loop; the rest
-is the Python time loop (Newmark update, error norm, sampling, hooks). Kernels are compiled
-or loaded before anything is timed. Run it on a quiet core; the load average is printed.
+is the Python time loop (Newmark update, error norm, sampling, hooks). Then the same window
+runs untimed in the Python loop and in the compiled loop (`dynamics/multibody/compiled.py`,
+what `simulate` uses), alternated, best of three each. Kernels are compiled or loaded before
+anything is timed. Run it on a quiet core; the load average is printed.
 """
 
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import time
 
@@ -64,6 +67,7 @@ def main(argv=None) -> None:
     from bearingsim.dynamics.bearing import BearingModel
     from bearingsim.dynamics.bearing.run import initial_coordinates
     from bearingsim.dynamics.multibody import integrate
+    from bearingsim.dynamics.multibody.compiled import integrate_compiled
     from bearingsim.dynamics.multibody.linear_solvers import BlockArrowSolver
     from bearingsim.pipeline.scene import load_scene
     from bearingsim.pipeline.stages.simulate import build_model
@@ -71,6 +75,7 @@ def main(argv=None) -> None:
     scene = load_scene(args.scene, args.overrides)
     params, start = build_model(scene, None)
     q0, v0 = initial_coordinates(params, start)
+    integrate_compiled(BearingModel(params), 0.0, 2e-5, q0, v0, scene.solver)  # compile / load
     for window in (2e-5, args.window):  # the first run compiles / loads every kernel
         model = BearingModel(params)
         timed = Timed(model, BlockArrowSolver(params.ball_count, 6, model.nb))
@@ -88,6 +93,23 @@ def main(argv=None) -> None:
         print(f"{kind:<12}{calls:>9}{1e6 * seconds / max(calls, 1):>13.1f}{1e6 * seconds / s.steps:>13.1f}"
               f"{100 * seconds / wall:>7.0f}%")
     print(f"{'total':<12}{'':>9}{'':>13}{1e6 * wall / s.steps:>13.1f}{100:>7.0f}%")
+    # the same window in the Python loop (no timers) and in the compiled loop, alternated
+    best = {"Python loop": math.inf, "compiled loop": math.inf}
+    for _ in range(3):
+        for name in best:
+            model = BearingModel(params)
+            t0 = time.perf_counter()
+            if name == "compiled loop":
+                sol, _ = integrate_compiled(model, 0.0, window, q0, v0, scene.solver)
+            else:
+                sol = integrate(model, 0.0, window, q0, v0, scene.solver,
+                                linear_solver=BlockArrowSolver(params.ball_count, 6, model.nb))
+            best[name] = min(best[name], time.perf_counter() - t0)
+            assert sol.stats.steps == s.steps, "the two loops must take the same steps"
+    for name, seconds in best.items():
+        print(f"{name:<14} {seconds:6.3f} s  {1e6 * seconds / s.steps:6.1f} us per step (best of 3)")
+    print(f"compiled / Python: {best['compiled loop'] / best['Python loop']:.2f}; "
+          f"load average {os.getloadavg()[0]:.2f}")
 
 
 if __name__ == "__main__":

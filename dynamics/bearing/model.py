@@ -7,15 +7,19 @@ and integrates the energy balance from the diagnostics of the converged state.
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numba
 import numpy as np
 
 from bearingsim.dynamics.contact.pocket import P_BALL_RADIUS, P_POCKET_RADIUS
-from bearingsim.dynamics.multibody.joints import prescribe_velocity_block_arrow
-from bearingsim.dynamics.multibody.linear_solvers import BlockArrowMatrix
+from bearingsim.dynamics.multibody.compiled import CompiledProblem, hht_chunk
+from bearingsim.dynamics.multibody.joints import prescribe_velocity_blocks
+from bearingsim.dynamics.multibody.linear_solvers import BlockArrowMatrix, assemble_iteration_blocks
 
 from . import channels, layout
 from .assembly import evaluate_bearing, mass_diagonal
+from .params import IP_CAGE, IP_Z
 from .bundles import CageArrays, ModelArrays
 from .channels import (
     DB, DB_POCKET, DB_POCKET_APPROACH, DB_POCKET_IN_CONTACT, DB_POCKET_ORBITAL, DG_P_DISS, DG_P_DRIVE,
@@ -55,6 +59,56 @@ def track_impacts(t, diag, Z, state, events, impact_speeds):
             n += 1
             state[k, 0] = 0.0
     return n
+
+
+class AcceptedStepLog(NamedTuple):
+    """What `accepted_step` keeps between steps: per-pocket impact state (Z, 6) and the rows
+    `track_impacts` finished in one step (Z, 6); the impact log `events` (rows IMPACT_FIELDS)
+    with its fill count[0]; the energies [J] (drive, external, dissipated) and the powers of
+    the previous accepted step (t, P_drive, P_ext, P_diss, 1 once set); threshold[0] [N]."""
+
+    impact_state: np.ndarray
+    step_events: np.ndarray
+    events: np.ndarray
+    count: np.ndarray
+    energy: np.ndarray
+    last: np.ndarray
+    threshold: np.ndarray
+
+
+@numba.njit(cache=True)
+def accepted_step(t, q, v, a, model, diag, log):
+    """Impact log and energy balance from the accepted step's diagnostics (docs/model.md §7,
+    §10); returns True when the impact log is nearly full (empty it: `BearingModel.drain`)."""
+    return log_step(t, diag, model.ip[IP_Z], model.ip[IP_CAGE] != 0, model.cage.impact_speeds, log)
+
+
+@numba.njit(cache=True)
+def log_step(t, diag, Z, has_cage, impact_speeds, log):
+    """`accepted_step` on the few arrays it reads (a cheaper call from Python)."""
+    if has_cage:
+        n = track_impacts(t, diag, Z, log.impact_state, log.step_events, impact_speeds)
+        for i in range(n):
+            if log.step_events[i, 3] >= log.threshold[0]:
+                log.events[log.count[0], :] = log.step_events[i]
+                log.count[0] += 1
+    powers = (diag[DG_P_DRIVE], diag[DG_P_EXT], diag[DG_P_DISS])
+    if log.last[4] > 0.0:
+        dt = t - log.last[0]
+        for i in range(3):
+            log.energy[i] += 0.5 * dt * (powers[i] + log.last[1 + i])
+    log.last[0] = t
+    for i in range(3):
+        log.last[1 + i] = powers[i]
+    log.last[4] = 1.0
+    return log.count[0] > log.events.shape[0] - Z
+
+
+@numba.njit(cache=True)
+def bearing_chunk(model, log, settings, coords, work, out, max_steps):
+    """`multibody.compiled.hht_chunk` with the bearing's force kernel and accepted-step hook
+    (a module-level wrapper, so that numba caches it)."""
+    return hht_chunk(evaluate_bearing, accepted_step, model, log, settings, coords, work, out, max_steps)
 
 
 class _Kernel:
@@ -118,11 +172,11 @@ class BearingModel:
         self._blocks = (self.K.blocks(), self.C.blocks())
         self._kernel_call = _Kernel(self.n_dof)
         self.impact_threshold = impact_force_threshold
-        self._impact_state = np.zeros((Z, 6))
-        self._events = np.zeros((Z, len(IMPACT_FIELDS)))
+        width = len(IMPACT_FIELDS)
+        self.log = AcceptedStepLog(np.zeros((Z, 6)), np.zeros((Z, width)), np.zeros((64 * Z, width)),
+                                   np.zeros(1, dtype=np.int64), np.zeros(3), np.zeros(5),
+                                   np.array([float(impact_force_threshold)]))
         self.impacts: list[np.ndarray] = []
-        self.energy = {"drive": 0.0, "external": 0.0, "dissipated": 0.0}
-        self._last = None  # (t, P_drive, P_ext, P_diss) of the previous accepted step
 
     # --- protocol --------------------------------------------------------------------
     def _kernel(self, t, q, v, a, ma, g, want_tangent):
@@ -134,18 +188,11 @@ class BearingModel:
 
     def jacobian(self, t, q, v, a, c_m, c_v, c_q):
         self._kernel(t, q, v, a, self._ma, self._g, True)
-        S, K, C = self.S, self.K, self.C
-        S.D[...] = c_v * C.D + c_q * K.D
-        S.E[...] = c_v * C.E + c_q * K.E
-        S.F[...] = c_v * C.F + c_q * K.F
-        S.B[...] = c_v * C.B + c_q * K.B
-        Z = self.params.ball_count
-        mass = layout.ball_states(self.mass, Z)
-        for k in range(Z):
-            S.D[k] += np.diag(c_m * mass[k])
-        S.B += np.diag(c_m * self.mass[layout.inner_offset(Z):])
-        prescribe_velocity_block_arrow(S, layout.spin_row(Z), c_m, c_v, 1.0)
-        return S
+        K, C = self._blocks
+        S = self.S.blocks()
+        assemble_iteration_blocks(K, C, self.mass, c_m, c_v, c_q, S)
+        prescribe_velocity_blocks(S, layout.spin_row(self.params.ball_count), c_m, c_v, 1.0)
+        return self.S
 
     def error_scales(self, t0, q0, v0) -> np.ndarray:
         """Physical scale L_i of each weighted coordinate for the step controller (M.99b) [m]:
@@ -173,19 +220,27 @@ class BearingModel:
 
     def on_accepted_step(self, t, q, v, a) -> None:
         """Impact log and energy balance from the converged state's diagnostics."""
-        d = self.diag
-        if self.params.has_cage:
-            n = track_impacts(t, d, self.params.ball_count, self._impact_state, self._events,
-                              self.impact_speeds)
-            for row in self._events[:n]:
-                if row[3] >= self.impact_threshold:
-                    self.impacts.append(row.copy())
-        powers = (t, d[DG_P_DRIVE], d[DG_P_EXT], d[DG_P_DISS])
-        if self._last is not None:
-            dt = t - self._last[0]
-            for key, i in (("drive", 1), ("external", 2), ("dissipated", 3)):
-                self.energy[key] += 0.5 * dt * (powers[i] + self._last[i])
-        self._last = powers
+        P = self.params
+        log_step(t, self.diag, P.ball_count, P.has_cage, self.impact_speeds, self.log)
+        self.drain()
+
+    def drain(self) -> None:
+        """Move the impacts `accepted_step` logged into `impacts`."""
+        n = int(self.log.count[0])
+        if n:
+            self.impacts.extend(self.log.events[:n].copy())
+            self.log.count[0] = 0
+
+    @property
+    def energy(self) -> dict:
+        """Energy balance so far [J]: work of the drive and of the external loads, dissipated."""
+        return dict(zip(("drive", "external", "dissipated"), map(float, self.log.energy)))
+
+    def compiled(self) -> CompiledProblem:
+        """The compiled side for `multibody.compiled.integrate_compiled`."""
+        rows = np.array([layout.spin_row(self.params.ball_count)], dtype=np.int64)
+        K, C = self._blocks
+        return CompiledProblem(bearing_chunk, self.arrays, self.log, self.mass, rows, self.diag, K, C, self.drain)
 
     # --- results -----------------------------------------------------------------------
     def channel(self, name: str) -> np.ndarray | float:

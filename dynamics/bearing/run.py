@@ -7,7 +7,7 @@ interpolation, no re-solving), at times within one step (<= max_step) of the gri
 
 from __future__ import annotations
 
-import math
+import dataclasses
 import time
 from dataclasses import dataclass, field
 from typing import Callable, NamedTuple
@@ -15,7 +15,7 @@ from typing import Callable, NamedTuple
 import numpy as np
 
 from bearingsim.dynamics.multibody.crv import crv_from_rotation_vector, crv_to_matrix
-from bearingsim.dynamics.multibody.time_loop import integrate
+from bearingsim.dynamics.multibody.compiled import integrate_compiled
 from bearingsim.dynamics.multibody.linear_solvers import BlockArrowSolver
 from bearingsim.dynamics.multibody.settings import HHTSettings
 
@@ -118,51 +118,6 @@ def _rotations(c: np.ndarray) -> np.ndarray:
     return np.array([crv_to_matrix(ci) for ci in c]).reshape(-1, 3, 3)
 
 
-class _Recorder:
-    """Accepted-step hook: impacts, energy, fixed-interval samples, progress."""
-
-    def __init__(self, model: BearingModel, t0, t1, dt, progress, history_every: int = 50):
-        self.model, self.t0, self.t1, self.dt = model, t0, t1, dt
-        n = int(math.floor((t1 - t0) / dt + 1e-9)) + 2
-        self.t = np.empty(n)
-        self.q = np.empty((n, model.n_dof))
-        self.v = np.empty((n, model.n_dof))
-        self.diag = np.empty((n, model.diag.size))
-        self.kin = np.empty(n)
-        self.count = 0
-        self.next_time = t0
-        self.progress = progress
-        self._wall = time.perf_counter()
-        self._t_prev = t0
-        self.history: list[tuple[float, float]] = []
-        self._steps = 0
-        self._every = history_every
-
-    def record(self, t, q, v) -> None:
-        i = self.count
-        if i >= self.t.size:
-            return
-        self.t[i] = t
-        self.q[i] = q
-        self.v[i] = v
-        self.diag[i] = self.model.diag
-        self.kin[i] = self.model.kinetic_energy(v)
-        self.count += 1
-
-    def __call__(self, t, q, v, a) -> None:
-        self.model.on_accepted_step(t, q, v, a)
-        self._steps += 1
-        if self._steps % self._every == 0:
-            self.history.append((t, t - self._t_prev))
-        self._t_prev = t
-        if t >= self.next_time - 1e-15:
-            self.record(t, q, v)
-            self.next_time = self.t0 + self.count * self.dt
-        if self.progress is not None and time.perf_counter() - self._wall > 0.25:
-            self._wall = time.perf_counter()
-            self.progress(t, self.t1, self.history[-1][1] if self.history else 0.0)
-
-
 def simulate_bearing(params: BearingModelParams, start: dict, settings: HHTSettings,
                      duration: float, sample_interval: float,
                      progress: Callable[[float, float, float], None] | None = None) -> BearingRun:
@@ -171,24 +126,39 @@ def simulate_bearing(params: BearingModelParams, start: dict, settings: HHTSetti
     model = BearingModel(params)
     q0, v0 = initial_coordinates(params, start)
     solver = BlockArrowSolver(params.ball_count, layout.BALL_DOF, model.nb)
-    rec = _Recorder(model, 0.0, duration, sample_interval, progress)
     n = model.n_dof
-    # The first calls compile the force kernels (or load them from numba's cache): timed apart,
-    # so that the integration's wall time is the integration's.
+    # The first calls compile the force kernels and the time loop (or load them from numba's
+    # cache): timed apart, so that the integration's wall time is the integration's.
     warm0 = time.perf_counter()
     solver.factor(model.jacobian(0.0, q0, v0, np.zeros(n), 1.0, 0.0, 0.0))
+    warm_up_compiled_loop(model, q0, v0, settings)
+    model = BearingModel(params)  # a fresh impact log and energy balance
     # the initial diagnostics come from the initial-acceleration evaluation
     model.evaluate(0.0, q0, v0, np.zeros(n), np.zeros(n), np.zeros(n))
     kernel_load_time = time.perf_counter() - warm0
-    rec(0.0, q0, v0, np.zeros(n))
-    sol = integrate(model, 0.0, duration, q0, v0, settings, linear_solver=solver, on_step=rec)
+    model.on_accepted_step(0.0, q0, v0, np.zeros(n))
+    wall = [time.perf_counter()]
+
+    def report(t, h):
+        if progress is not None and time.perf_counter() - wall[0] > 0.25:
+            wall[0] = time.perf_counter()
+            progress(t, duration, h)
+
+    sol, rec = integrate_compiled(model, 0.0, duration, q0, v0, settings, record_dt=sample_interval,
+                                  log_every=50, on_chunk=report)
     s = sol.stats
     stats = {k: getattr(s, k) for k in ("steps", "rejected_steps", "newton_failures", "newton_iterations",
                                        "factorizations", "residual_evaluations", "min_step_accepts",
                                        "wall_time")}
     stats["kernel_load_time"] = kernel_load_time
-    c = rec.count
-    return BearingRun(t=rec.t[:c], q=rec.q[:c], v=rec.v[:c], diag=rec.diag[:c],
-                      impacts=model.impact_log(), energy=dict(model.energy), kinetic=rec.kin[:c],
-                      stats=stats, ball_count=params.ball_count, has_cage=params.has_cage,
-                      step_history=np.array(rec.history).reshape(-1, 2))
+    kinetic = 0.5 * (rec.v * rec.v) @ model.mass
+    return BearingRun(t=rec.t, q=rec.q, v=rec.v, diag=rec.diag, impacts=model.impact_log(),
+                      energy=model.energy, kinetic=kinetic, stats=stats, ball_count=params.ball_count,
+                      has_cage=params.has_cage, step_history=rec.log[:, :2].copy())
+
+
+def warm_up_compiled_loop(model: BearingModel, q0, v0, settings: HHTSettings) -> None:
+    """Compile (or load from numba's cache) the time loop with two steps of the model; the
+    model's impact log and energy balance are left dirty."""
+    h = settings.first_step
+    integrate_compiled(model, 0.0, 2.0 * h, q0, v0, dataclasses.replace(settings, adaptive=False, min_step=h, max_step=h))

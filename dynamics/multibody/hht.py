@@ -68,6 +68,39 @@ def subtract_inplace(x, dx):
         x[i] -= dx[i]
 
 
+NEWTON_CONTINUE, NEWTON_CONVERGED, NEWTON_DIVERGED = 0, 1, 2
+
+
+@numba.njit(cache=True)
+def newton_verdict(k, corr, corr_prev, eta, estimate_test, newton_tol, floor, fresh, full_newton, refactor_rate):
+    """Decision after Newton correction k (0-based) of scaled size corr (the previous one
+    corr_prev, inf at k = 0): returns (NEWTON_*, updated contraction estimate eta, rebuild the
+    matrix before the next iteration). docs/model.md M.102."""
+    rate = corr / corr_prev
+    if k > 0 and rate < 1.0:
+        eta = rate / (1.0 - rate)
+    remaining = corr
+    if estimate_test:
+        # remaining error of a contracting iteration, eta |da_k| (Hairer & Wanner, Solving
+        # ODE II, §IV.8, eq. 8.10); the first iteration borrows the last step's rate
+        # (raised to 0.8, as there), and only for a correction already within tolerance
+        if k > 0:
+            remaining = corr * eta if rate < 1.0 else corr
+        elif corr <= 1.0:
+            remaining = corr * max(eta, 1e-16) ** 0.8
+    if remaining <= newton_tol or corr <= floor:
+        return NEWTON_CONVERGED, eta, False
+    # Divergence: a fresh matrix that does not contract a correction larger than the error
+    # tolerance. Below it, a non-contracting iterate is already as accurate as the step
+    # is allowed to be; it gets its remaining iterations (a correction of the prescribed
+    # spin row can make the second correction larger than the first, then Newton converges
+    # quadratically: case b at t = 0.313 s, h = 1e-8 s, corrections 0.005, 0.012, 7e-8).
+    if rate >= 1.0 and fresh and not full_newton and corr > 1.0:
+        return NEWTON_DIVERGED, eta, False
+    # An old matrix that converges slowly (or diverges) is rebuilt at the next iterate.
+    return NEWTON_CONTINUE, eta, full_newton or (not fresh and rate > refactor_rate)
+
+
 class HHTState:
     """State at one time: q (config), v, a, g = g(t, q, v) and the increment dq that led here."""
 
@@ -170,30 +203,13 @@ class HHTStepper:
             subtract_inplace(y1.a, da)
             st.newton_iterations += 1
             corr = self._norm(da, self._zeros, beta * h * h, y.q, y1.q)
-            rate = corr / corr_prev
-            if k > 0 and rate < 1.0:
-                self._eta = rate / (1.0 - rate)
-            remaining = corr
-            if estimate_test:
-                # remaining error of a contracting iteration, eta |da_k| (Hairer & Wanner, Solving
-                # ODE II, §IV.8, eq. 8.10); the first iteration borrows the last step's rate
-                # (raised to 0.8, as there), and only for a correction already within tolerance
-                if k > 0:
-                    remaining = corr * self._eta if rate < 1.0 else corr
-                elif corr <= 1.0:
-                    remaining = corr * max(self._eta, 1e-16) ** 0.8
-            if remaining <= s.newton_tol or corr <= floor:
+            verdict, self._eta, rebuild = newton_verdict(k, corr, corr_prev, self._eta, estimate_test, s.newton_tol,
+                                                         floor, fresh, full_newton, s.refactor_rate)
+            if verdict == NEWTON_CONVERGED:
                 newmark_kinematics(y.q, y.v, y.a, y1.a, h, beta, gamma, self.rotation_slots,
                                    y1.dq, y1.q, y1.v)
                 return Result.SUCCESSFUL
-            # Divergence: a fresh matrix that does not contract a correction larger than the error
-            # tolerance. Below it, a non-contracting iterate is already as accurate as the step
-            # is allowed to be; it gets its remaining iterations (a correction of the prescribed
-            # spin row can make the second correction larger than the first, then Newton converges
-            # quadratically: case b at t = 0.313 s, h = 1e-8 s, corrections 0.005, 0.012, 7e-8).
-            if rate >= 1.0 and fresh and not full_newton and corr > 1.0:
+            if verdict == NEWTON_DIVERGED:
                 return Result.NEWTON_DIVERGED
-            # An old matrix that converges slowly (or diverges) is rebuilt at the next iterate.
-            rebuild = full_newton or (not fresh and rate > s.refactor_rate)
             corr_prev = corr
         return Result.NEWTON_MAX_ITER

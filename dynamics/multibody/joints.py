@@ -46,10 +46,10 @@ def prescribe_velocity_dense(S, i, c_m, c_v, p):
     S[i, i] = c_v * p if c_v > 0.0 else c_m
 
 
-def prescribe_velocity_block_arrow(S: BlockArrowMatrix, i: int, c_m: float, c_v: float,
-                                   p: float) -> None:
-    """Same as `prescribe_velocity_dense` for global index i of a block-arrow matrix."""
-    Z, m, _ = S.E.shape
+@numba.njit(cache=True)
+def prescribe_velocity_blocks(S, i, c_m, c_v, p):
+    """Same as `prescribe_velocity_dense` for global index i of block-arrow `Blocks` S."""
+    Z, m = S.E.shape[0], S.E.shape[1]
     diag = c_v * p if c_v > 0.0 else c_m
     if i >= Z * m:
         j = i - Z * m
@@ -61,3 +61,9 @@ def prescribe_velocity_block_arrow(S: BlockArrowMatrix, i: int, c_m: float, c_v:
         S.D[k, j, :] = 0.0
         S.E[k, j, :] = 0.0
         S.D[k, j, j] = diag
+
+
+def prescribe_velocity_block_arrow(S: BlockArrowMatrix, i: int, c_m: float, c_v: float,
+                                   p: float) -> None:
+    """`prescribe_velocity_blocks` on a `BlockArrowMatrix`."""
+    prescribe_velocity_blocks(S.blocks(), i, c_m, c_v, p)

@@ -251,3 +251,24 @@ class BlockArrowSolver:
     def solve(self, rhs: np.ndarray, out: np.ndarray) -> None:
         block_arrow_solve(self._lu_D, self._piv_D, self._DinvE, self._F, self._S,
                           self._piv_S, rhs, out)
+
+
+@numba.njit(cache=True)
+def assemble_iteration_blocks(K, C, mass, c_m, c_v, c_q, S):
+    """S = c_m diag(mass) + c_v C + c_q K on block-arrow `Blocks` (mass: the diagonal of M,
+    in the global order of the unknowns)."""
+    Z, m, nb = K.E.shape
+    for k in range(Z):
+        for i in range(m):
+            for j in range(m):
+                S.D[k, i, j] = c_v * C.D[k, i, j] + c_q * K.D[k, i, j]
+            S.D[k, i, i] += c_m * mass[k * m + i]
+            for j in range(nb):
+                S.E[k, i, j] = c_v * C.E[k, i, j] + c_q * K.E[k, i, j]
+        for i in range(nb):
+            for j in range(m):
+                S.F[k, i, j] = c_v * C.F[k, i, j] + c_q * K.F[k, i, j]
+    for i in range(nb):
+        for j in range(nb):
+            S.B[i, j] = c_v * C.B[i, j] + c_q * K.B[i, j]
+        S.B[i, i] += c_m * mass[Z * m + i]

@@ -13,8 +13,21 @@ O(|dTheta|) approximation of the Jacobian (dTheta ~ 3e-4 rad per step for the ca
 
 from __future__ import annotations
 
+import numba
+
 from .results import SolverStats
 from .settings import HHTSettings, JacobianReuse
+
+
+@numba.njit(cache=True)
+def needs_refactor(stale, h_factored, h, keep_across_steps, refactor_step_ratio):
+    """Whether a step of size h starts with a fresh matrix: none is factored (or it is stale),
+    the policy rebuilds every step (`keep_across_steps` false), or the step changed by more
+    than `refactor_step_ratio` since the factorisation."""
+    if stale or h_factored == 0.0 or not keep_across_steps:
+        return True
+    ratio = h / h_factored
+    return not (1.0 / refactor_step_ratio <= ratio <= refactor_step_ratio)
 
 
 class IterationMatrix:
@@ -32,10 +45,8 @@ class IterationMatrix:
 
     def needs_factor_at_step_start(self, h: float) -> bool:
         s = self.settings
-        if self.stale or self.h_factored == 0.0 or s.reuse_jacobian is not JacobianReuse.ADAPTIVE:
-            return True
-        ratio = h / self.h_factored
-        return not (1.0 / s.refactor_step_ratio <= ratio <= s.refactor_step_ratio)
+        return needs_refactor(self.stale, self.h_factored, h, s.reuse_jacobian is JacobianReuse.ADAPTIVE,
+                              s.refactor_step_ratio)
 
     def factor(self, t: float, q, v, a, h: float) -> bool:
         """Rebuild S at (t, q, v, a) and factor it; False if it is singular."""

@@ -52,14 +52,18 @@ def scaled_difference_norm(x, y, coef, q_a, q_b, weights, scales, atol, rtol, us
     return s if use_max else math.sqrt(s / count)
 
 
-def step_factor(err: float, settings: HHTSettings) -> float:
-    """h_new / h = clip(safety ||e||^(-1/3), min_factor, max_factor) (local error O(h^3))."""
+@numba.njit(cache=True)
+def proposed_step(h, err, safety, min_factor, max_factor, min_step, max_step):
+    """h clip(safety ||e||^(-1/3), min_factor, max_factor) (local error O(h^3)), bounded to
+    [min_step, max_step] [s]."""
     if err <= 0.0:
-        return settings.max_factor
-    f = settings.safety * err ** (-1.0 / 3.0)
-    return min(settings.max_factor, max(settings.min_factor, f))
+        f = max_factor
+    else:
+        f = min(max_factor, max(min_factor, safety * err ** (-1.0 / 3.0)))
+    return min(max_step, max(min_step, h * f))
 
 
 def next_step(h: float, err: float, settings: HHTSettings) -> float:
-    """Proposed next step, bounded to [min_step, max_step] [s]."""
-    return min(settings.max_step, max(settings.min_step, h * step_factor(err, settings)))
+    """Proposed next step, bounded to [min_step, max_step] [s] (`proposed_step`)."""
+    s = settings
+    return proposed_step(h, err, s.safety, s.min_factor, s.max_factor, s.min_step, s.max_step)

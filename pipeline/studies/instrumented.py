@@ -158,27 +158,48 @@ def run_window(problem, q0, v0, settings, window: float, sample_interval: float,
                wall_budget: float = math.inf) -> tuple[WindowRun, Instrumented]:
     """Integrate `problem` from t = 0 to `window` [s] with HHT-α (`settings`); sample q and
     v every `sample_interval` [s] on [0, window). Never raises for a solver failure: the
-    outcome is in `WindowRun.error` (IntegrationError, WallClockExceeded, a ValueError)."""
-    from bearingsim.dynamics.multibody import FixedIntervalSampler, IntegrationError, integrate
+    outcome is in `WindowRun.error` (IntegrationError, WallClockExceeded, a ValueError).
+
+    A problem with a compiled side runs in the compiled loop (`multibody.compiled`), as in a
+    user's run, unless `exact_tangent` asks for the Python loop's finite-difference tangent."""
+    from bearingsim.dynamics.multibody import FixedIntervalSampler, IntegrationError, SolverStats, integrate
+    from bearingsim.dynamics.multibody.compiled import integrate_compiled
 
     wrapped = Instrumented(problem, exact_tangent=exact_tangent, wall_budget=wall_budget)
     # samples on [0, window): a sample exactly at the window's end can be lost to rounding
     # of the accumulated fixed-step time (the last step ends ~1e-18 s short of it)
     sampler = FixedIntervalSampler(0.0, window - 0.5 * sample_interval, sample_interval, problem.n_dof)
+    compiled = hasattr(problem, "compiled") and not exact_tangent
+
+    def check_budget(t: float, h: float) -> None:
+        if time.perf_counter() > wrapped.deadline:
+            raise WallClockExceeded(t, wall_budget)
+
     t0 = time.perf_counter()
     error = kind = None
     stats: dict = {}
+    counters, logged = SolverStats(), []
     try:
-        sol = integrate(wrapped, 0.0, window, q0, v0, settings, linear_solver=linear_solver,
-                        sampler=sampler)
+        if compiled:
+            sol, _ = integrate_compiled(problem, 0.0, window, q0, v0, settings, sampler=sampler, log_every=1,
+                                        on_chunk=check_budget, stats=counters, log_sink=logged)
+        else:
+            sol = integrate(wrapped, 0.0, window, q0, v0, settings, linear_solver=linear_solver,
+                            sampler=sampler)
         stats = sol.stats.as_dict()
     except (IntegrationError, WallClockExceeded, ValueError, FloatingPointError) as exc:
         error, kind = str(exc), type(exc).__name__
     wall = time.perf_counter() - t0
-    stats.setdefault("residual_evaluations", wrapped.evaluations)
-    stats.setdefault("factorizations", wrapped.builds)
-    stats.setdefault("steps", len(wrapped.history))
-    hist = np.array(wrapped.history, dtype=float).reshape(-1, 4)
+    if compiled:  # cumulative counts per accepted step -> per step, as the Python loop's history
+        stats = stats or counters.as_dict()
+        log = np.concatenate(logged) if logged else np.zeros((0, 4))
+        hist = log.copy()
+        hist[:, 2:] = np.diff(log[:, 2:], axis=0, prepend=0.0)
+    else:
+        stats.setdefault("residual_evaluations", wrapped.evaluations)
+        stats.setdefault("factorizations", wrapped.builds)
+        stats.setdefault("steps", len(wrapped.history))
+        hist = np.array(wrapped.history, dtype=float).reshape(-1, 4)
     return WindowRun(t=sampler.t, q=sampler.q, v=sampler.v, wall=wall, stats=stats,
                      history=hist, error=error, error_kind=kind), wrapped
 

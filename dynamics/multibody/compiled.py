@@ -1,0 +1,461 @@
+"""The HHT-α time loop compiled into numba, for problems whose forces are a numba kernel
+(docs/model.md §9, M.103).
+
+The Python loop (`time_loop.integrate`, `hht.HHTStepper`) reaches the problem and the linear
+solver through Python several times per step. For the reference bearing that dispatch is
+about a third of a step (unboxing the kernel's ~40 borrowed arrays per call, the loop's own
+bookkeeping, the accepted-step hook). A problem that offers its forces as a numba kernel runs
+here instead: the same method, the same decisions (the numba pieces shared with the Python
+loop: `newmark_kinematics`, `hht_residual`, `newton_verdict`, `needs_refactor`,
+`scaled_difference_norm`, `proposed_step`) and so the same steps, in chunks of up to
+`max_steps` accepted steps between which Python reports progress and checks its budget.
+
+What a problem supplies (`CompiledProblem`), with K and C in block-arrow form
+(`linear_solvers.Blocks`) and a diagonal mass:
+
+    kernel(t, q, v, a, data, want_tangent, ma, g, diag, K, C) -> float
+        fills ma = M a, g = g(t, q, v), its diagnostics `diag`, and K_t = -dg/dq,
+        C_t = -dg/dv when want_tangent (as the protocol's evaluate / jacobian);
+    accepted(t, q, v, a, data, diag, hook) -> bool
+        after each accepted step, from the diagnostics of its last evaluation; True asks
+        for the chunk to end so that Python can drain what the hook collected;
+    rows whose residual the kernel replaces by a prescribed velocity (`joints.py`).
+
+numba cannot cache a function that takes another jitted function as an argument (the type
+names the function object), so a problem compiles one module-level wrapper that calls
+`hht_chunk` with its own kernels; the wrapper is cached like any other kernel.
+
+Output per chunk: Hermite samples at fixed times (`sampling.hermite_fill`), step-end
+records (t, q, v, diag) at the first accepted step at or after each multiple of `record_dt`,
+and a step log (t, h, residual evaluations, factorisations) every `log_every` steps.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from typing import Callable, NamedTuple
+
+import numba
+import numpy as np
+
+from .hht import NEWTON_CONVERGED, NEWTON_DIVERGED, hht_residual, newmark_kinematics, newton_verdict, \
+    predict_acceleration, subtract_inplace
+from .joints import prescribe_velocity_blocks
+from .linear_solvers import Blocks, BlockArrowMatrix, assemble_iteration_blocks, block_arrow_factor, \
+    block_arrow_solve
+from .linear_solvers import BlockArrowSolver
+from .newton import needs_refactor
+from .problem import check_problem, checked_error_scales
+from .results import IntegrationError, Result, Solution, SolverStats
+from .sampling import Samples, StepEnds, hermite_fill
+from .settings import HHTSettings, JacobianReuse
+from .step_control import proposed_step, scaled_difference_norm
+
+# float state (`Work.state`)
+S_T, S_H, S_H_PREV, S_ETA, S_H_FACTORED, S_STALE, S_NEXT_RECORD, S_T_LOGGED, S_T_FAIL, S_H_FAIL = range(10)
+# counters (`Work.counters`)
+(N_STEPS, N_REJECTED, N_NEWTON_FAILURES, N_NEWTON_ITERATIONS, N_FACTORIZATIONS, N_RESIDUALS, N_MIN_STEP_ACCEPTS,
+ N_SAMPLES, N_RECORDS, N_LOGGED, N_CUR) = range(11)
+# chunk outcomes; a failed step returns FAILED + its Result's index in FAILURES
+DONE, CHUNK_END, FAILED = 0, 1, 10
+FAILURES = (Result.NEWTON_DIVERGED, Result.NEWTON_MAX_ITER, Result.NAN_RESIDUAL, Result.SINGULAR_MATRIX)
+_OK, _DIVERGED, _MAX_ITER, _NAN, _SINGULAR = -1, 0, 1, 2, 3
+STATS_COUNTERS = {"steps": N_STEPS, "rejected_steps": N_REJECTED, "newton_failures": N_NEWTON_FAILURES,
+                  "newton_iterations": N_NEWTON_ITERATIONS, "factorizations": N_FACTORIZATIONS,
+                  "residual_evaluations": N_RESIDUALS, "min_step_accepts": N_MIN_STEP_ACCEPTS}
+
+
+class LoopSettings(NamedTuple):
+    """`HHTSettings` as plain numbers for the compiled loop (`loop_settings`)."""
+
+    alpha: float
+    beta: float
+    gamma: float
+    rtol: float
+    atol: float
+    newton_tol: float
+    residual_tol: float
+    refactor_rate: float
+    refactor_step_ratio: float
+    safety: float
+    min_factor: float
+    max_factor: float
+    min_step: float
+    max_step: float
+    newton_failure_factor: float
+    t0: float
+    t1: float
+    n_fixed: int
+    adaptive: bool
+    use_max: bool
+    estimate_test: bool
+    linear_predictor: bool
+    full_newton: bool
+    keep_across_steps: bool
+    max_newton_iter: int
+
+
+def loop_settings(s: HHTSettings, t0: float, t1: float) -> LoopSettings:
+    n_fixed = 0 if s.adaptive else max(1, int(round((t1 - t0) / s.first_step)))
+    return LoopSettings(
+        s.alpha, s.beta, s.gamma, s.rtol, s.atol, s.newton_tol, s.residual_tol, s.refactor_rate,
+        s.refactor_step_ratio, s.safety, s.min_factor, s.max_factor, s.min_step, s.max_step,
+        s.newton_failure_factor, float(t0), float(t1), n_fixed, bool(s.adaptive), s.error_norm == "max",
+        s.newton_test == "estimate", s.predictor == "linear", s.reuse_jacobian is JacobianReuse.NEWTON,
+        s.reuse_jacobian is JacobianReuse.ADAPTIVE, int(s.max_newton_iter))
+
+
+class Coordinates(NamedTuple):
+    """What the loop needs of the problem's coordinates: the diagonal mass, the rows replaced
+    by a prescribed velocity, CRV slots, error weights, and scales (`step_control`)."""
+
+    mass: np.ndarray
+    prescribed_rows: np.ndarray
+    rotation_slots: np.ndarray
+    weights: np.ndarray
+    scales: np.ndarray
+
+
+class Factors(NamedTuple):
+    """The factored iteration matrix (`linear_solvers.block_arrow_factor`)."""
+
+    LU_D: np.ndarray
+    piv_D: np.ndarray
+    DinvE: np.ndarray
+    schur: np.ndarray
+    piv_S: np.ndarray
+
+
+class Work(NamedTuple):
+    """State carried between chunks and scratch. Y[c] = (q, v, a, g, dq) of the current state
+    (c = counters[N_CUR]) and of the attempted step (1 - c)."""
+
+    Y: np.ndarray
+    ma: np.ndarray
+    r: np.ndarray
+    da: np.ndarray
+    zeros: np.ndarray
+    da_prev: np.ndarray
+    ma_t: np.ndarray
+    g_t: np.ndarray
+    diag: np.ndarray
+    K: Blocks
+    C: Blocks
+    S: Blocks
+    factors: Factors
+    state: np.ndarray
+    counters: np.ndarray
+
+
+class Output(NamedTuple):
+    """Where a chunk writes: Hermite samples, step-end records and the step log (any may
+    have zero rows)."""
+
+    samples: Samples
+    record_t: np.ndarray
+    record_q: np.ndarray
+    record_v: np.ndarray
+    record_diag: np.ndarray
+    record_dt: float
+    log: np.ndarray
+    log_every: int
+
+
+class CompiledProblem(NamedTuple):
+    """A problem's compiled side: `chunk(data, hook, settings, coords, work, out, max_steps)`
+    is its cached wrapper around `hht_chunk`; data and hook are the bundles its kernel and
+    hook take; diag, K and C the buffers its kernel fills; `drain()` empties what the hook
+    collected (called after every chunk)."""
+
+    chunk: object
+    data: tuple
+    hook: tuple
+    mass: np.ndarray
+    prescribed_rows: np.ndarray
+    diag: np.ndarray
+    K: Blocks
+    C: Blocks
+    drain: Callable[[], None]
+
+
+@numba.njit
+def _bool(flag):
+    """flag typed as bool, not Literal[bool]: the problem's kernel is then called with the
+    signature the Python loop uses, so its cached compilation serves both."""
+    return flag
+
+
+@numba.njit
+def _norm(ls, co, x, y, coef, q_a, q_b):
+    return scaled_difference_norm(x, y, coef, q_a, q_b, co.weights, co.scales, ls.atol, ls.rtol, ls.use_max)
+
+
+@numba.njit(inline="always")
+def _factor(kernel, data, ls, co, w, t1, q, v, a, h):
+    """Rebuild S = M + (1 - alpha)(gamma h C_t + beta h^2 K_t) at (t1, q, v, a) and factor it."""
+    kernel(t1, q, v, a, data, _bool(True), w.ma_t, w.g_t, w.diag, w.K, w.C)
+    c_v = (1.0 - ls.alpha) * ls.gamma * h
+    assemble_iteration_blocks(w.K, w.C, co.mass, 1.0, c_v, (1.0 - ls.alpha) * ls.beta * h * h, w.S)
+    for i in co.prescribed_rows:
+        prescribe_velocity_blocks(w.S, i, 1.0, c_v, 1.0)
+    w.counters[N_FACTORIZATIONS] += 1
+    f = w.factors
+    ok = block_arrow_factor(w.S.D, w.S.E, w.S.F, w.S.B, f.LU_D, f.piv_D, f.DinvE, f.schur, f.piv_S)
+    w.state[S_H_FACTORED] = h if ok else 0.0
+    w.state[S_STALE] = 0.0 if ok else 1.0
+    return ok
+
+
+@numba.njit(inline="always")
+def _newton(kernel, data, ls, co, w, t1, h, y, y1, fresh):
+    """Newton on a_{n+1} (as `HHTStepper._newton`); returns _OK or a failure index."""
+    q, v, a, g = y[0], y[1], y[2], y[3]
+    q1, v1, a1, g1, dq1 = y1[0], y1[1], y1[2], y1[3], y1[4]
+    f = w.factors
+    rebuild = False
+    corr_prev = math.inf
+    floor = 100.0 * _norm(ls, co, q, w.zeros, 2.2e-16, q, q)
+    for k in range(ls.max_newton_iter):
+        newmark_kinematics(q, v, a, a1, h, ls.beta, ls.gamma, co.rotation_slots, dq1, q1, v1)
+        kernel(t1, q1, v1, a1, data, _bool(False), w.ma, g1, w.diag, w.K, w.C)
+        w.counters[N_RESIDUALS] += 1
+        r_max = hht_residual(w.ma, g1, g, ls.alpha, w.r)
+        if r_max == math.inf:
+            return _NAN
+        if k > 0 and r_max <= ls.residual_tol:
+            return _OK
+        if rebuild:
+            if not _factor(kernel, data, ls, co, w, t1, q1, v1, a1, h):
+                return _SINGULAR
+            fresh, rebuild = True, False
+        block_arrow_solve(f.LU_D, f.piv_D, f.DinvE, w.S.F, f.schur, f.piv_S, w.r, w.da)
+        subtract_inplace(a1, w.da)
+        w.counters[N_NEWTON_ITERATIONS] += 1
+        corr = _norm(ls, co, w.da, w.zeros, ls.beta * h * h, q, q1)
+        verdict, eta, rebuild = newton_verdict(k, corr, corr_prev, w.state[S_ETA], ls.estimate_test, ls.newton_tol,
+                                               floor, fresh, ls.full_newton, ls.refactor_rate)
+        w.state[S_ETA] = eta
+        if verdict == NEWTON_CONVERGED:
+            newmark_kinematics(q, v, a, a1, h, ls.beta, ls.gamma, co.rotation_slots, dq1, q1, v1)
+            return _OK
+        if verdict == NEWTON_DIVERGED:
+            return _DIVERGED
+        corr_prev = corr
+    return _MAX_ITER
+
+
+@numba.njit(inline="always")
+def _attempt(kernel, data, ls, co, w, t, h, y, y1):
+    """One attempted step (as `HHTStepper.step`): (error norm, _OK or a failure index)."""
+    t1 = t + h
+    h_prev = w.state[S_H_PREV]
+    predict_acceleration(y[2], w.da_prev, h / h_prev if h_prev > 0.0 else 0.0, ls.linear_predictor, y1[2])
+    fresh = False
+    if needs_refactor(w.state[S_STALE] > 0.0, w.state[S_H_FACTORED], h, ls.keep_across_steps,
+                      ls.refactor_step_ratio):
+        newmark_kinematics(y[0], y[1], y[2], y1[2], h, ls.beta, ls.gamma, co.rotation_slots, y1[4], y1[0], y1[1])
+        if not _factor(kernel, data, ls, co, w, t1, y1[0], y1[1], y1[2], h):
+            return math.inf, _SINGULAR
+        fresh = True
+    result = _newton(kernel, data, ls, co, w, t1, h, y, y1, fresh)
+    if result != _OK:
+        w.state[S_STALE] = 1.0
+        return math.inf, result
+    return _norm(ls, co, y1[2], y[2], (ls.beta - 1.0 / 6.0) * h * h, y[0], y1[0]), _OK
+
+
+@numba.njit
+def _output(w, out, t_n, h, y, y1, co):
+    """Samples and records of an accepted step from t_n to t_n + h (y -> y1)."""
+    c = w.counters
+    smp = out.samples
+    if c[N_SAMPLES] < smp.times.shape[0] and smp.times[c[N_SAMPLES]] <= t_n + h * (1.0 + 1e-12):
+        c[N_SAMPLES] = hermite_fill(t_n, h, StepEnds(y[0], y[1], y[2], y1[1], y1[2], y1[4]), co.rotation_slots,
+                                    smp, c[N_SAMPLES])
+
+
+@numba.njit
+def _record(ls, w, out, t, y):
+    """Step-end record (t, q, v, diag) and step log after an accepted step ending at t."""
+    c = w.counters
+    i = c[N_RECORDS]
+    if i < out.record_t.shape[0] and t >= w.state[S_NEXT_RECORD] - 1e-15:
+        out.record_t[i] = t
+        out.record_q[i, :] = y[0]
+        out.record_v[i, :] = y[1]
+        out.record_diag[i, :] = w.diag
+        c[N_RECORDS] = i + 1
+        w.state[S_NEXT_RECORD] = ls.t0 + (i + 1) * out.record_dt
+    if out.log.shape[0] > 0 and c[N_STEPS] % out.log_every == 0:
+        j = c[N_LOGGED]
+        if j < out.log.shape[0]:
+            out.log[j, 0] = t
+            out.log[j, 1] = t - w.state[S_T_LOGGED]
+            out.log[j, 2] = c[N_RESIDUALS]
+            out.log[j, 3] = c[N_FACTORIZATIONS]
+            c[N_LOGGED] = j + 1
+    w.state[S_T_LOGGED] = t
+
+
+@numba.njit(inline="always")
+def hht_chunk(kernel, accepted, data, hook, ls, co, w, out, max_steps):
+    """Up to `max_steps` accepted HHT-α steps (the control flow of `time_loop.integrate`).
+
+    Returns DONE at t1, CHUNK_END after max_steps or when the hook asks for a drain, or
+    FAILED + index into FAILURES (state[S_T_FAIL], state[S_H_FAIL] say where) when Newton
+    fails at the minimum (or the fixed) step."""
+    st, c = w.state, w.counters
+    t, h = st[S_T], st[S_H]
+    taken = 0
+    while t < ls.t1 and (ls.adaptive or c[N_STEPS] < ls.n_fixed):
+        if taken >= max_steps:
+            break
+        if ls.adaptive:
+            if t + 1.05 * h >= ls.t1:  # land on t1 without leaving a sliver of a step
+                h = ls.t1 - t
+        else:
+            h = (ls.t1 - ls.t0) / ls.n_fixed
+        cur = c[N_CUR]
+        y, y1 = w.Y[cur], w.Y[1 - cur]
+        err, result = _attempt(kernel, data, ls, co, w, t, h, y, y1)
+        if result != _OK:
+            c[N_REJECTED] += 1
+            c[N_NEWTON_FAILURES] += 1
+            if not ls.adaptive or h <= ls.min_step * (1.0 + 1e-9):
+                st[S_T_FAIL], st[S_H_FAIL] = t, h
+                st[S_T], st[S_H] = t, h
+                return FAILED + result
+            h = max(h * ls.newton_failure_factor, ls.min_step)
+            continue
+        if ls.adaptive and err > 1.0:
+            if h > ls.min_step * (1.0 + 1e-9):
+                c[N_REJECTED] += 1
+                h = proposed_step(h, err, ls.safety, ls.min_factor, ls.max_factor, ls.min_step, ls.max_step)
+                continue
+            c[N_MIN_STEP_ACCEPTS] += 1
+        _output(w, out, t, h, y, y1, co)
+        t = ls.t0 + (c[N_STEPS] + 1) * h if not ls.adaptive else t + h
+        for i in range(w.da_prev.shape[0]):
+            w.da_prev[i] = y1[2, i] - y[2, i]
+        st[S_H_PREV] = h
+        c[N_CUR] = 1 - cur
+        c[N_STEPS] += 1
+        taken += 1
+        drain = accepted(t, y1[0], y1[1], y1[2], data, w.diag, hook)
+        _record(ls, w, out, t, y1)
+        if ls.adaptive:
+            h = proposed_step(h, err, ls.safety, ls.min_factor, ls.max_factor, ls.min_step, ls.max_step)
+        if drain:
+            break
+    st[S_T], st[S_H] = t, h
+    return CHUNK_END if t < ls.t1 and (ls.adaptive or c[N_STEPS] < ls.n_fixed) else DONE
+
+
+def new_work(n: int, diag: np.ndarray, K: Blocks, C: Blocks) -> Work:
+    """Zeroed state and scratch for a problem of n unknowns whose kernel fills diag, K and C."""
+    Z, m, nb = K.E.shape
+    S = BlockArrowMatrix.zeros(Z, m, nb).blocks()
+    factors = Factors(np.zeros((Z, m, m)), np.zeros((Z, m), dtype=np.int64), np.zeros((Z, m, nb)),
+                      np.zeros((nb, nb)), np.zeros(nb, dtype=np.int64))
+    return Work(np.zeros((2, 5, n)), *(np.zeros(n) for _ in range(7)), diag, K, C, S, factors,
+                np.zeros(10), np.zeros(11, dtype=np.int64))
+
+
+def _samples(sampler, n: int) -> Samples:
+    if sampler is not None:
+        return sampler._samples
+    e1 = np.zeros(0, dtype=np.int64)
+    return Samples(np.zeros(0), e1, e1, e1, np.zeros((0, 0)), np.zeros((0, 0)), np.zeros((0, 0)),
+                   np.zeros(n), np.zeros(n))
+
+
+class Records(NamedTuple):
+    """Step-end records (t, q, v, diag at the first accepted step at or after each multiple
+    of record_dt, the first at t0) and the step log (t, h, residual evaluations and
+    factorisations so far), trimmed to what was written."""
+
+    t: np.ndarray
+    q: np.ndarray
+    v: np.ndarray
+    diag: np.ndarray
+    log: np.ndarray
+
+
+def integrate_compiled(problem, t0: float, t1: float, q0, v0, settings: HHTSettings | None = None, *,
+                       sampler=None, record_dt: float = 0.0, log_every: int = 0,
+                       on_chunk: Callable[[float, float], None] | None = None,
+                       chunk_steps: int = 1000, stats: SolverStats | None = None,
+                       log_sink: list | None = None) -> tuple[Solution, Records]:
+    """`time_loop.integrate` for a problem with a compiled side (`problem.compiled()` ->
+    `CompiledProblem`): the same steps, run in numba chunks of `chunk_steps` accepted steps.
+
+    sampler: a `FixedIntervalSampler` (Hermite samples). record_dt > 0 [s]: keep step-end
+    records (`Records`). log_every > 0: log every log_every-th step. on_chunk(t, h) is called
+    after every chunk (progress, wall-clock budgets; it may raise to stop the run). Raises
+    IntegrationError as `integrate` does. `stats` (filled in place) and `log_sink` (a list
+    that receives the step log chunk by chunk) keep what a stopped run did.
+    """
+    from .time_loop import initial_acceleration
+
+    settings = settings or HHTSettings()
+    check_problem(problem)
+    cp = problem.compiled()
+    n = problem.n_dof
+    stats = stats if stats is not None else SolverStats()
+    wall0 = time.perf_counter()
+    solver = BlockArrowSolver(*cp.K.E.shape)
+    scales = checked_error_scales(problem, t0, q0, v0) if hasattr(problem, "error_scales") else np.zeros(0)
+    a0, g0 = initial_acceleration(problem, solver, t0, np.asarray(q0, dtype=float), np.asarray(v0, dtype=float))
+    w = new_work(n, cp.diag, cp.K, cp.C)
+    w.Y[0, 0], w.Y[0, 1], w.Y[0, 2], w.Y[0, 3] = q0, v0, a0, g0
+    w.state[S_T], w.state[S_H], w.state[S_ETA], w.state[S_STALE] = t0, settings.first_step, 1.0, 1.0
+    w.state[S_T_LOGGED] = t0
+    w.counters[N_FACTORIZATIONS] = w.counters[N_RESIDUALS] = 1  # the initial acceleration's
+    n_rec = int(math.floor((t1 - t0) / record_dt + 1e-9)) + 2 if record_dt > 0.0 else 0
+    n_log = chunk_steps // log_every + 2 if log_every > 0 else 0  # per chunk, drained after each
+    logged = log_sink if log_sink is not None else []
+    out = Output(_samples(sampler, n), np.zeros(n_rec), np.zeros((n_rec, n)), np.zeros((n_rec, n)),
+                 np.zeros((n_rec, cp.diag.size)), record_dt if record_dt > 0.0 else 1.0,
+                 np.zeros((n_log, 4)), max(log_every, 1))
+    if n_rec:
+        out.record_t[0], out.record_q[0], out.record_v[0], out.record_diag[0] = t0, q0, v0, cp.diag
+        w.counters[N_RECORDS] = 1
+        w.state[S_NEXT_RECORD] = t0 + record_dt
+    if sampler is not None:
+        sampler.start(t0, w.Y[0, 0], w.Y[0, 1], w.Y[0, 2])
+        w.counters[N_SAMPLES] = sampler.count
+    co = Coordinates(cp.mass, cp.prescribed_rows, np.ascontiguousarray(problem.rotation_slots, dtype=np.int64),
+                     np.ascontiguousarray(problem.error_weights, dtype=float), np.ascontiguousarray(scales))
+    ls = loop_settings(settings, t0, t1)
+    while True:
+        status = cp.chunk(cp.data, cp.hook, ls, co, w, out, chunk_steps)
+        cp.drain()
+        logged.append(out.log[:int(w.counters[N_LOGGED])].copy())
+        w.counters[N_LOGGED] = 0
+        _finish(stats, w, wall0)
+        if sampler is not None:
+            sampler.count = int(w.counters[N_SAMPLES])
+        if status >= FAILED:
+            _finish(stats, w, wall0)
+            result = FAILURES[status - FAILED]
+            where = "at the minimum step" if settings.adaptive else "at the fixed step"
+            raise IntegrationError(w.state[S_T_FAIL], w.state[S_H_FAIL], f"{result.value} {where}", result.hint)
+        if on_chunk is not None:
+            on_chunk(w.state[S_T], w.state[S_H])
+        if status == DONE:
+            break
+    _finish(stats, w, wall0)
+    c = int(w.counters[N_CUR])
+    h = w.state[S_H]
+    sol = Solution(t=float(w.state[S_T]), q=w.Y[c, 0].copy(), v=w.Y[c, 1].copy(), a=w.Y[c, 2].copy(),
+                   h_next=h if math.isfinite(h) else settings.first_step, stats=stats)
+    k = int(w.counters[N_RECORDS])
+    return sol, Records(out.record_t[:k], out.record_q[:k], out.record_v[:k], out.record_diag[:k],
+                        np.concatenate(logged) if logged else np.zeros((0, 4)))
+
+
+def _finish(stats: SolverStats, w: Work, wall0: float) -> None:
+    for name, i in STATS_COUNTERS.items():
+        setattr(stats, name, int(w.counters[i]))
+    stats.wall_time = time.perf_counter() - wall0

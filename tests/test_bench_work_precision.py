@@ -143,3 +143,19 @@ def test_the_scipy_baseline_sparsity_pattern_covers_the_jacobian():
         column = rhs(0.0, y0 + dy) - f0
         outside = np.nonzero((np.abs(column) > 0.0) & ~pattern[:, j])[0]
         assert outside.size == 0, (j, outside[:5])
+
+
+def test_speedup_at_equal_error_interpolates_in_log_log():
+    """Two HHT points (1e-3, 1 s) and (1e-4, 10 s) are the line wall = 1e-3/err s in log-log: at
+    err = 10^-3.5 HHT needs 10^0.5 s, so a solve_ivp run of 10^1.5 s there is 10x slower; a run
+    outside the curve's error range is not extrapolated."""
+    from bearingsim.pipeline.studies.work_precision import speedup_at_equal_error
+
+    def row(curve, setting, wall, err):
+        return {"curve": curve, "setting": setting, "wall": wall, "cage_centre": err, "error_text": None}
+
+    rows = [row("HHT a=0.1 adaptive", "a", 1.0, 1e-3), row("HHT a=0.1 adaptive", "b", 10.0, 1e-4),
+            row("solve_ivp BDF", "in", 10 ** 1.5, 10 ** -3.5), row("solve_ivp BDF", "out", 5.0, 1e-2)]
+    s = speedup_at_equal_error(rows)
+    assert s["solve_ivp BDF, in"] == pytest.approx(10.0, rel=1e-12)
+    assert s["solve_ivp BDF, out"] is None

@@ -204,6 +204,29 @@ def run_study(params, start, base_settings, quick: bool, progress=print,
             "rows": rows, "observed_order_fixed_h": order, "load_average": os.getloadavg()[0]}
 
 
+DEFAULT_CURVE = "HHT a=0.1 adaptive"
+
+
+def speedup_at_equal_error(rows: list[dict], quantity: str = "cage_centre", curve: str = DEFAULT_CURVE) -> dict:
+    """For every solve_ivp row: its wall time over the wall time HHT-α (`curve`) needs for the same
+    error on `quantity`, interpolated linearly in log(error) -> log(wall) between the curve's
+    points; None when the row's error lies outside the curve's range (no extrapolation)."""
+    pts = sorted((r[quantity], r["wall"]) for r in rows
+                 if r["curve"] == curve and not r["error_text"] and math.isfinite(r[quantity]) and r[quantity] > 0)
+    if len(pts) < 2:
+        return {}
+    log_e = np.log([p[0] for p in pts])
+    log_w = np.log([p[1] for p in pts])
+    out = {}
+    for r in rows:
+        if not r["curve"].startswith("solve_ivp") or r["error_text"] or not r[quantity] > 0:
+            continue
+        e = math.log(r[quantity])
+        out[f"{r['curve']}, {r['setting']}"] = (
+            r["wall"] / math.exp(float(np.interp(e, log_e, log_w))) if log_e[0] <= e <= log_e[-1] else None)
+    return out
+
+
 def markdown_table(study: dict) -> str:
     """The study as a markdown table (what `bearingsim bench` prints)."""
     head = ("| method | setting | wall [s] | steps | Newton it. / nfev | LU | cage centre [um] | "
@@ -222,6 +245,12 @@ def markdown_table(study: dict) -> str:
                  f"HHT alpha {ref['alpha']} at fixed h = {c['reference_step']:g} s ({ref['wall']:.1f} s wall, "
                  f"{ref['impacts']} pocket impacts). Observed order of HHT fixed-h (inner-race error): "
                  f"{study['observed_order_fixed_h']:.2f} (2 expected). Load average {study['load_average']:.1f}.")
+    speedups = speedup_at_equal_error(study["rows"])
+    if speedups:
+        lines.append("")
+        lines.append(f"Wall time of solve_ivp over that of {DEFAULT_CURVE} at the same cage-centre error "
+                     "(interpolated along its curve): " + "; ".join(
+                         f"{k} {'outside the curve' if x is None else f'{x:.1f}x'}" for k, x in speedups.items()) + ".")
     return "\n".join(lines)
 
 

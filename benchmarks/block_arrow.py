@@ -5,7 +5,6 @@ Run: python -m benchmarks.block_arrow
 
 from __future__ import annotations
 
-import time
 
 import numpy as np
 import scipy.linalg as sla

@@ -42,8 +42,11 @@ def _python(params, q0, v0, settings, window, sampler=None):
 
 
 def test_compiled_loop_takes_the_python_loops_steps(bearing):
-    """6 ms from the quasi-static start: the first pocket impacts come at ~5 ms. Counters,
-    final state, Hermite samples, impact log and energy balance must be identical."""
+    """6 ms from the quasi-static start: the first pocket impacts come at ~5 ms. Counters must be
+    identical; the final state, Hermite samples, impact log and energy balance agree to round-off
+    (LLVM may optimise the force kernel linked into the compiled loop differently from the one
+    Python calls, which changes the last bits: 2e-11 relative seen; identical when both load the
+    kernel from numba's cache)."""
     params, q0, v0 = bearing
     window, dt = 6e-3, 1e-4
     s_py, s_c = (FixedIntervalSampler(0.0, window, dt, params.n_dof) for _ in range(2))
@@ -55,11 +58,12 @@ def test_compiled_loop_takes_the_python_loops_steps(bearing):
     assert stats_c == stats_py
     assert sol_py.stats.rejected_steps > 0 and sol_py.stats.factorizations > 3
     assert len(m_py.impacts) > 0, "the window must contain pocket impacts (the hook's branch)"
-    np.testing.assert_array_equal(sol_c.q, sol_py.q)
-    np.testing.assert_array_equal(sol_c.v, sol_py.v)
-    np.testing.assert_array_equal(s_c.q, s_py.q)
-    np.testing.assert_array_equal(m_c.impact_log(), m_py.impact_log())
-    assert m_c.energy == m_py.energy
+    np.testing.assert_allclose(sol_c.q, sol_py.q, rtol=1e-9, atol=1e-15)
+    np.testing.assert_allclose(sol_c.v, sol_py.v, rtol=1e-9, atol=1e-9)
+    np.testing.assert_allclose(s_c.q, s_py.q, rtol=1e-9, atol=1e-15)
+    np.testing.assert_allclose(m_c.impact_log(), m_py.impact_log(), rtol=1e-8, atol=1e-12)
+    for key, value in m_py.energy.items():
+        assert m_c.energy[key] == pytest.approx(value, rel=1e-9, abs=1e-12)
     # step-end records: the first accepted step at or after each multiple of dt, within a step
     assert rec.t[0] == 0.0 and rec.t.size == int(round(window / dt)) + 1
     k = np.arange(rec.t.size)

@@ -197,7 +197,7 @@ def _kinematic_coupling(k, off, res, Jt, SA, SB, w_b, w_r, D, K):
     N = dn/dx_b: the race's rotation carries the contact point, and the turning normal
     moves it on the spinning ball. The race's translation acts with the opposite sign.
     K += G^T J_t (ds/dx) in the block pattern (the turning of e_x, e_y is neglected)."""
-    ex, ey, n = res[RC_EX:RC_EX + 3], res[RC_EY:RC_EY + 3], res[RC_N:RC_N + 3]
+    ex, ey = res[RC_EX:RC_EX + 3], res[RC_EY:RC_EY + 3]
     N = res[RC_DN:RC_DN + 9].copy().reshape(3, 3)
     dw = w_b - w_r
     ds = -skew(w_r) - 0.5 * D * (skew(dw) @ N)

@@ -266,7 +266,7 @@ def _attempt(kernel, data, ls, co, w, t, h, y, y1):
 
 
 @numba.njit
-def _output(w, out, t_n, h, y, y1, co):
+def _hermite_samples(w, out, t_n, h, y, y1, co):
     """Samples and records of an accepted step from t_n to t_n + h (y -> y1)."""
     c = w.counters
     smp = out.samples
@@ -334,7 +334,7 @@ def hht_chunk(kernel, accepted, data, hook, ls, co, w, out, max_steps):
                 h = proposed_step(h, err, ls.safety, ls.min_factor, ls.max_factor, ls.min_step, ls.max_step)
                 continue
             c[N_MIN_STEP_ACCEPTS] += 1
-        _output(w, out, t, h, y, y1, co)
+        _hermite_samples(w, out, t, h, y, y1, co)
         t = ls.t0 + (c[N_STEPS] + 1) * h if not ls.adaptive else t + h
         for i in range(w.da_prev.shape[0]):
             w.da_prev[i] = y1[2, i] - y[2, i]
@@ -364,7 +364,7 @@ def new_work(n: int, diag: np.ndarray, K: Blocks, C: Blocks) -> Work:
 
 def _samples(sampler, n: int) -> Samples:
     if sampler is not None:
-        return sampler._samples
+        return sampler.buffers
     e1 = np.zeros(0, dtype=np.int64)
     return Samples(np.zeros(0), e1, e1, e1, np.zeros((0, 0)), np.zeros((0, 0)), np.zeros((0, 0)),
                    np.zeros(n), np.zeros(n))

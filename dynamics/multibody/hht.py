@@ -156,7 +156,7 @@ class HHTStepper:
         again. The error norm is `step_control.scaled_difference_norm` of the error estimate e (M.99).
         """
         s, y1 = self.settings, self.y1
-        alpha, beta, gamma = s.alpha, s.beta, s.gamma
+        beta, gamma = s.beta, s.gamma
         t1 = t + h
         predict_acceleration(y.a, self._da_prev, h / self._h_prev if self._h_prev > 0.0 else 0.0,
                              s.predictor == "linear", y1.a)

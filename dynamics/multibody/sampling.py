@@ -107,6 +107,11 @@ class FixedIntervalSampler:
         self._samples = Samples(self.t, self.q_indices, self.v_indices, self.a_indices, self.q, self.v,
                                 self.a, np.zeros(n_dof), np.zeros(n_dof))
 
+    @property
+    def buffers(self) -> Samples:
+        """The output arrays and work vectors as one bundle, for `hermite_fill` in a compiled loop."""
+        return self._samples
+
     def start(self, t0: float, q0, v0, a0) -> None:
         """Record the initial state when the first sample time is t0."""
         if self.count == 0 and self.t.size and abs(self.t[0] - t0) <= 1e-15 * max(1.0, abs(t0)):

@@ -13,7 +13,7 @@ import numba
 import numpy as np
 
 from bearingsim.dynamics.contact.pocket import P_BALL_RADIUS, P_POCKET_RADIUS
-from bearingsim.dynamics.multibody.compiled import CompiledProblem, hht_chunk
+from bearingsim.dynamics.multibody.compiled import CompiledProblem, hht_chunk, kernel_address
 from bearingsim.dynamics.multibody.joints import prescribe_velocity_blocks
 from bearingsim.dynamics.multibody.linear_solvers import BlockArrowMatrix, assemble_iteration_blocks
 
@@ -105,10 +105,10 @@ def log_step(t, diag, Z, has_cage, impact_speeds, log):
 
 
 @numba.njit(cache=True)
-def bearing_chunk(model, log, settings, coords, work, out, max_steps):
-    """`multibody.compiled.hht_chunk` with the bearing's force kernel and accepted-step hook
-    (a module-level wrapper, so that numba caches it)."""
-    return hht_chunk(evaluate_bearing, accepted_step, model, log, settings, coords, work, out, max_steps)
+def bearing_chunk(kernel, model, log, settings, coords, work, out, max_steps):
+    """`multibody.compiled.hht_chunk` with the bearing's accepted-step hook and its force kernel
+    at address `kernel` (a module-level wrapper, so that numba caches it)."""
+    return hht_chunk(kernel, accepted_step, model, log, settings, coords, work, out, max_steps)
 
 
 class _Kernel:
@@ -240,7 +240,10 @@ class BearingModel:
         """The compiled side for `multibody.compiled.integrate_compiled`."""
         rows = np.array([layout.spin_row(self.params.ball_count)], dtype=np.int64)
         K, C = self._blocks
-        return CompiledProblem(bearing_chunk, self.arrays, self.log, self.mass, rows, self.diag, K, C, self.drain)
+        n = np.zeros(self.n_dof)  # the kernel's argument types, as the loop passes them
+        kernel = kernel_address(evaluate_bearing, (0.0, n, n, n, self.arrays, False, n, n, self.diag, K, C))
+        return CompiledProblem(bearing_chunk, kernel, self.arrays, self.log, self.mass, rows, self.diag, K, C,
+                               self.drain)
 
     # --- results -----------------------------------------------------------------------
     def channel(self, name: str) -> np.ndarray | float:

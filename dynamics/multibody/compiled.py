@@ -38,6 +38,8 @@ from typing import Callable, NamedTuple
 
 import numba
 import numpy as np
+from numba.core import types as nbtypes
+from numba.extending import intrinsic
 
 from .hht import NEWTON_CONVERGED, NEWTON_DIVERGED, hht_residual, newmark_kinematics, newton_verdict, \
     predict_acceleration, subtract_inplace
@@ -163,12 +165,14 @@ class Output(NamedTuple):
 
 
 class CompiledProblem(NamedTuple):
-    """A problem's compiled side: `chunk(data, hook, settings, coords, work, out, max_steps)`
-    is its cached wrapper around `hht_chunk`; data and hook are the bundles its kernel and
-    hook take; diag, K and C the buffers its kernel fills; `drain()` empties what the hook
-    collected (called after every chunk)."""
+    """A problem's compiled side: `chunk(kernel, data, hook, settings, coords, work, out,
+    max_steps)` is its cached wrapper around `hht_chunk`; `kernel` the address of its compiled
+    force kernel (`kernel_address`); data and hook are the bundles its kernel and hook take;
+    diag, K and C the buffers its kernel fills; `drain()` empties what the hook collected
+    (called after every chunk)."""
 
     chunk: object
+    kernel: int
     data: tuple
     hook: tuple
     mass: np.ndarray
@@ -177,6 +181,38 @@ class CompiledProblem(NamedTuple):
     K: Blocks
     C: Blocks
     drain: Callable[[], None]
+
+
+@intrinsic
+def call_kernel(typingctx, address, args):
+    """Call the compiled force kernel at `address` (an int, `kernel_address`) with the tuple
+    `args`; returns its float64. A call through a pointer rather than through the dispatcher:
+    the kernel is not linked into the loop and optimised again with it, which is what made
+    compiling the loop cost as much as compiling the kernel, and a pointer passed as an
+    argument leaves the loop cacheable. The argument types must be those of the overload
+    the address belongs to (`kernel_address` takes them from the same arrays)."""
+    if not isinstance(address, nbtypes.Integer) or not isinstance(args, nbtypes.BaseTuple):
+        return None
+    argtys = tuple(args.types)
+
+    def codegen(context, builder, signature, llargs):
+        addr, packed = llargs
+        values = [builder.extract_value(packed, i) for i in range(len(argtys))]
+        fnty = context.call_conv.get_function_type(nbtypes.float64, argtys)
+        fnptr = builder.inttoptr(addr, fnty.as_pointer())
+        _, result = context.call_conv.call_function(builder, fnptr, nbtypes.float64, argtys, values)
+        return result
+
+    return nbtypes.float64(address, args), codegen
+
+
+def kernel_address(dispatcher, args) -> int:
+    """Address of `dispatcher`'s compiled overload for the types of `args` (compiled if needed),
+    for `call_kernel`."""
+    sig = tuple(numba.typeof(x) for x in args)
+    dispatcher.compile(sig)
+    cres = dispatcher.overloads[sig]
+    return int(cres.library.get_pointer_to_function(cres.fndesc.llvm_func_name))
 
 
 @numba.njit
@@ -194,7 +230,7 @@ def _norm(ls, co, x, y, coef, q_a, q_b):
 @numba.njit(inline="always")
 def _factor(kernel, data, ls, co, w, t1, q, v, a, h):
     """Rebuild S = M + (1 - alpha)(gamma h C_t + beta h^2 K_t) at (t1, q, v, a) and factor it."""
-    kernel(t1, q, v, a, data, _bool(True), w.ma_t, w.g_t, w.diag, w.K, w.C)
+    call_kernel(kernel, (t1, q, v, a, data, _bool(True), w.ma_t, w.g_t, w.diag, w.K, w.C))
     c_v = (1.0 - ls.alpha) * ls.gamma * h
     assemble_iteration_blocks(w.K, w.C, co.mass, 1.0, c_v, (1.0 - ls.alpha) * ls.beta * h * h, w.S)
     for i in co.prescribed_rows:
@@ -218,7 +254,7 @@ def _newton(kernel, data, ls, co, w, t1, h, y, y1, fresh):
     floor = 100.0 * _norm(ls, co, q, w.zeros, 2.2e-16, q, q)
     for k in range(ls.max_newton_iter):
         newmark_kinematics(q, v, a, a1, h, ls.beta, ls.gamma, co.rotation_slots, dq1, q1, v1)
-        kernel(t1, q1, v1, a1, data, _bool(False), w.ma, g1, w.diag, w.K, w.C)
+        call_kernel(kernel, (t1, q1, v1, a1, data, _bool(False), w.ma, g1, w.diag, w.K, w.C))
         w.counters[N_RESIDUALS] += 1
         r_max = hht_residual(w.ma, g1, g, ls.alpha, w.r)
         if r_max == math.inf:
@@ -429,7 +465,7 @@ def integrate_compiled(problem, t0: float, t1: float, q0, v0, settings: HHTSetti
                      np.ascontiguousarray(problem.error_weights, dtype=float), np.ascontiguousarray(scales))
     ls = loop_settings(settings, t0, t1)
     while True:
-        status = cp.chunk(cp.data, cp.hook, ls, co, w, out, chunk_steps)
+        status = cp.chunk(cp.kernel, cp.data, cp.hook, ls, co, w, out, chunk_steps)
         cp.drain()
         logged.append(out.log[:int(w.counters[N_LOGGED])].copy())
         w.counters[N_LOGGED] = 0

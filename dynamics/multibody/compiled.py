@@ -25,9 +25,9 @@ What a problem supplies (`CompiledProblem`), with K and C in block-arrow form
 The kernel is called through its address because a dispatcher call links the kernel into the
 loop, where LLVM optimises it a second time (61 s of compilation for the bearing, 14 s this
 way). The hook is called through its dispatcher; numba cannot cache a function that keeps a
-jitted function as a run-time value, so the pieces taking it are inlined and a problem
-compiles one module-level wrapper that calls `hht_chunk` with its hook; the wrapper is cached
-like any other kernel.
+jitted function as a run-time value, so `hht_chunk`, which takes it, is inlined into one
+module-level wrapper per problem that passes its hook; the wrapper is cached like any other
+kernel.
 
 Output per chunk: Hermite samples at fixed times (`sampling.hermite_fill`), step-end
 records (t, q, v, diag) at the first accepted step at or after each multiple of `record_dt`,
@@ -221,8 +221,8 @@ def kernel_address(dispatcher, args) -> int:
 
 @numba.njit
 def _bool(flag):
-    """flag typed as bool, not Literal[bool]: the problem's kernel is then called with the
-    signature the Python loop uses, so its cached compilation serves both."""
+    """flag typed as bool, not Literal[bool]: `call_kernel` then passes the argument types of
+    the overload `kernel_address` took the address of (the one the Python loop calls)."""
     return flag
 
 
@@ -231,7 +231,7 @@ def _norm(ls, co, x, y, coef, q_a, q_b):
     return scaled_difference_norm(x, y, coef, q_a, q_b, co.weights, co.scales, ls.atol, ls.rtol, ls.use_max)
 
 
-@numba.njit(inline="always")
+@numba.njit
 def _factor(kernel, data, ls, co, w, t1, q, v, a, h):
     """Rebuild S = M + (1 - alpha)(gamma h C_t + beta h^2 K_t) at (t1, q, v, a) and factor it."""
     call_kernel(kernel, (t1, q, v, a, data, _bool(True), w.ma_t, w.g_t, w.diag, w.K, w.C))
@@ -247,7 +247,7 @@ def _factor(kernel, data, ls, co, w, t1, q, v, a, h):
     return ok
 
 
-@numba.njit(inline="always")
+@numba.njit
 def _newton(kernel, data, ls, co, w, t1, h, y, y1, fresh):
     """Newton on a_{n+1} (as `HHTStepper._newton`); returns _OK or a failure index."""
     q, v, a, g = y[0], y[1], y[2], y[3]
@@ -285,7 +285,7 @@ def _newton(kernel, data, ls, co, w, t1, h, y, y1, fresh):
     return _MAX_ITER
 
 
-@numba.njit(inline="always")
+@numba.njit
 def _attempt(kernel, data, ls, co, w, t, h, y, y1):
     """One attempted step (as `HHTStepper.step`): (error norm, _OK or a failure index)."""
     t1 = t + h
@@ -307,7 +307,7 @@ def _attempt(kernel, data, ls, co, w, t, h, y, y1):
 
 @numba.njit
 def _hermite_samples(w, out, t_n, h, y, y1, co):
-    """Samples and records of an accepted step from t_n to t_n + h (y -> y1)."""
+    """Hermite samples in (t_n, t_n + h] of an accepted step (y -> y1)."""
     c = w.counters
     smp = out.samples
     if c[N_SAMPLES] < smp.times.shape[0] and smp.times[c[N_SAMPLES]] <= t_n + h * (1.0 + 1e-12):

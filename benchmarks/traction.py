@@ -2,7 +2,8 @@
 
 Run: python -m benchmarks.traction [--quick]
 Prints, per node-count setting of `FastTraction.build`: time per contact and per batch of
-44 contacts (the reference bearing's ball-race contacts per residual evaluation) inside a
+44 contacts (the reference bearing's ball-race contacts per residual evaluation) with the
+Jacobian, and per contact without it through the float32 passes (the time loop's call), inside a
 numba loop (no Python call overhead; minimum of 7 repeats, so background load on the shared
 box inflates it less), and the worst error against the converged quadrature over a random
 sample of the reference scene's operating range (metrics of tests/test_traction_fast.py).
@@ -21,7 +22,7 @@ import numpy as np
 from bearingsim.dynamics.lubrication import film
 from bearingsim.dynamics.traction import quadrature as traction
 from bearingsim.dynamics.lubrication.lubricant import load_builtin_lubricant
-from bearingsim.dynamics.traction.fast import FastTraction, traction_fast_batch
+from bearingsim.dynamics.traction.fast import FastTraction, traction_fast, traction_fast_batch
 
 D, DM, E_EFF, OMEGA = 0.01905, 0.158003, 208e9 / 0.91, 320.0
 BATCH = 44  # 22 balls x (inner, outer race)
@@ -66,17 +67,30 @@ def _loop(repeats, contacts, rule, F, J, flags):
         traction_fast_batch(a, b, p_h, h, du0, dv0, w_s, rule, F, J, flags)
 
 
-def time_batch(ft: FastTraction, P: np.ndarray, repeats: int = 400, runs: int = 7) -> float:
-    """Minimum over `runs` of the mean time [s] of one traction_fast_batch call over the rows of P."""
+@numba.njit
+def _loop_residual(repeats, contacts, rule, F, J, flags):
+    """The time loop's common call: force and spin moment only (no Jacobian)."""
+    a, b, p_h, h, du0, dv0, w_s = contacts
+    out = np.empty(12)
+    for _ in range(repeats):
+        for i in range(a.shape[0]):
+            flags[i] = traction_fast(a[i], b[i], p_h[i], h[i], du0[i], dv0[i], w_s[i], rule, out, False)
+            F[i, 0] = out[0]
+
+
+def time_batch(ft: FastTraction, P: np.ndarray, repeats: int = 400, runs: int = 7, loop=_loop,
+               float32_residual: bool = False) -> float:
+    """Minimum over `runs` of the mean time [s] of one pass of `loop` (with the Jacobian:
+    traction_fast_batch; `_loop_residual`: without) over the rows of P."""
     cols = [np.ascontiguousarray(c) for c in P.T]
     n = P.shape[0]
     out = (np.empty((n, 3)), np.empty((n, 3, 3)), np.empty(n, dtype=np.int64))
-    args = (tuple(cols), ft.traction_rule(), *out)
-    _loop(1, *args)
+    args = (tuple(cols), ft.traction_rule(float32_residual), *out)
+    loop(1, *args)
     best = math.inf
     for _ in range(runs):
         t0 = time.perf_counter()
-        _loop(repeats, *args)
+        loop(repeats, *args)
         best = min(best, (time.perf_counter() - t0) / repeats)
     return best
 
@@ -101,19 +115,23 @@ def main() -> None:
     n_ref = 40 if quick else 240
     print(f"Eyring traction per contact call (nato-o156 at 100 degC, {n_ref} random operating points)")
     ref = [traction.traction_quadrature(*p[:4], tau0, model, params, *p[4:], 128, 1024) for p in P[:n_ref]]
-    print(f"{'fast path setting':<36}{'us/contact':>11}{'us/44':>8}{'max dF/F':>10}{'max dM':>9}{'max dJ':>9}")
+    print(f"{'fast path setting':<36}{'us/contact':>11}{'us/44':>8}{'residual':>9}{'max dF/F':>10}{'max dM':>9}"
+          f"{'max dJ':>9}")
     for name, kwargs in SETTINGS.items():
         ft = FastTraction.build(lub, **kwargs)
         t44 = time_batch(ft, P[:BATCH])
         t_all = time_batch(ft, P, repeats=40)
+        t_res = time_batch(ft, P, repeats=40, loop=_loop_residual, float32_residual=True)
         eF, eM, eJ = worst_errors(ft, P[:n_ref], ref)
-        print(f"{name:<36}{t_all / len(P) * 1e6:>11.3f}{t44 * 1e6:>8.1f}{eF:>10.1e}{eM:>9.1e}{eJ:>9.1e}")
+        print(f"{name:<36}{t_all / len(P) * 1e6:>11.3f}{t44 * 1e6:>8.1f}{t_res / len(P) * 1e6:>9.3f}{eF:>10.1e}"
+              f"{eM:>9.1e}{eJ:>9.1e}")
     for grid in [(48, 256), (128, 1024)]:
         t0 = time.perf_counter()
         for p in P[:10]:
             traction.traction_quadrature(*p[:4], tau0, model, params, *p[4:], *grid)
         print(f"{'quadrature ' + str(grid):<36}{(time.perf_counter() - t0) / 10 * 1e6:>11.1f}")
-    print("errors against the (128, 1024) quadrature (itself <= 0.4 % from converged); dM relative to")
+    print("us/contact and us/44 with the Jacobian, residual: us/contact without it through the float32")
+    print("passes (the time loop's common call); errors against the (128, 1024) quadrature (itself <= 0.4 % from converged); dM relative to")
     print("max(|M|, |F| b). Times are minima of 7 runs on a shared 2-core box: background load inflates them.")
 
 

@@ -24,7 +24,9 @@ from bearingsim.dynamics.lubrication.lubricant import load_builtin_lubricant
 from bearingsim.dynamics.traction.fast import (
     FLAG_NO_CONTACT, FLAG_OK, FLAG_PRESSURE_CLAMPED, FLAG_SLIP_CLAMPED, FLAG_UNVALIDATED, FastTraction, _accumulate,
     _Nodes, _NodeValues,
-    _accumulate_force, _eyring_argument, _slip_and_table_index, _viscosity_lookup, log_ge1, traction_fast,
+    _accumulate_force, _eyring_argument, _eyring_argument32, _slip_and_table_index, _slip_and_table_index32,
+    _viscosity_lookup, log_ge1,
+    log_ge1_32, traction_fast,
 )
 from tests.lubrication_points import (
     curvature_radii, E_EFF, hertz_ellipse, random_operating_points, rolling_speed,
@@ -97,6 +99,14 @@ def _assert_agrees(lub, fast, points, tol_f=TOL_F, tol_m=TOL_M, tol_j=TOL_J):
         assert got[2] == FLAG_OK, point
         worst = np.maximum(worst, _errors(got, ref, point[1]) if any(ref[:3]) else
                            (0.0, 0.0, np.abs(got[1] - ref[3]).max() / np.abs(ref[3]).max()))
+        # the time loop's common call: force and moment only, through the float32 passes
+        force_only = np.empty(12)
+        rule32 = fast.traction_rule(float32_residual=True)
+        assert traction_fast(*(float(v) for v in point), rule32, force_only, False) == FLAG_OK
+        if any(ref[:3]):
+            worst = np.maximum(worst, _errors((force_only[:3], got[1]), ref, point[1]))
+        else:
+            assert not force_only[:3].any()
     print(f"fast vs quadrature over {len(points)} points: F {worst[0]:.2e}, M {worst[1]:.2e}, J {worst[2]:.2e}")
     assert worst[0] < tol_f and worst[1] < tol_m and worst[2] < tol_j
 
@@ -180,6 +190,20 @@ def test_log_kernel_matches_math_log_and_its_py_func():
     assert np.allclose(out, slow, rtol=1e-14, atol=1e-15)  # FMA contraction: last-bit differences
 
 
+def test_float32_log_kernel_matches_math_log():
+    rng = np.random.default_rng(5)
+    z = np.concatenate([1.0 + rng.uniform(0, 1e-3, 50), np.exp(rng.uniform(0, 43, 500)),  # z <= 2 x 1e18 + 1
+                        [1.0, 2.0, math.sqrt(2.0), 4e18]]).astype(np.float32)
+    n = z.size
+    out, slow = np.empty(n), np.empty(n)
+    scratch = (np.empty(n, dtype=np.float32), np.empty(n, dtype=np.int32))
+    log_ge1_32(z, n, *scratch, out)
+    log_ge1_32.py_func(z, n, *scratch, slow)
+    exact = np.log(z.astype(np.float64))  # of the float32 argument: the kernel's own error only
+    assert np.all(np.abs(out - exact) <= 3e-7 * np.maximum(exact, 1.0))
+    assert np.allclose(out, slow, rtol=1e-6, atol=1e-7)
+
+
 def test_taylor_sin_cos_on_the_cone_range():
     phi = np.linspace(-math.pi / 2, math.pi / 2, 101)
     for p in phi:
@@ -209,14 +233,34 @@ def test_passes_equal_their_py_funcs(o156, fast):
             pick(_accumulate_force)(nodes, values, n, a, b, du0, dv0, w_s, force_only)
             assert np.allclose(force_only[:3], out[:3], rtol=1e-12, atol=1e-15 * np.abs(out[:3]).max())
             assert not force_only[3:].any()
+            # the float32 residual passes (py_funcs: math.sqrt of a float32 is a float64 there)
+            work32, iwork32 = fast.workspace32()
+            r32, fi32, k32, ash32 = (np.empty_like(r) for _ in range(4))
+            pick(_slip_and_table_index32)(X, Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / fast.p_step, fi32, r32)
+            fi64 = np.empty_like(fi)  # (fi itself now holds log_ge1's exponents)
+            pick(_slip_and_table_index)(X, Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / fast.p_step, fi64, np.empty_like(r))
+            assert np.allclose(r32[:n], r[:n], rtol=2e-7) and np.allclose(fi32[:n], fi64[:n], rtol=2e-7, atol=1e-6)
+            pick(_viscosity_lookup)(fi32, n, fast.eta_table, 1.0 / (fast.tau0 * h), k32)
+            pick(_eyring_argument32)(k32, r32, n, x32 := np.empty_like(x), work32[0])
+            pick(log_ge1_32)(work32[0], n, work32[1], iwork32, ash32)
+            assert np.all(np.abs(ash32[:n] - ash[:n]) <= 1e-6 * np.maximum(ash[:n], 1.0))
+            force32 = np.empty(12)
+            pick(_accumulate_force)(nodes, _NodeValues(k32, r32, x32, z, ash32), n, a, b, du0, dv0, w_s, force32)
+            # force scale: the whole area at the largest stress (tau0 = 1 here); moment: times b
+            gross = np.pi * a * b * ash[:n].max() * np.array([1.0, 1.0, b])
+            assert np.all(np.abs(force32[:3] - out[:3]) <= 1e-6 * gross)
             results.append(out * fast.tau0)
         # fastmath reassociates the sums in the compiled kernels: agreement to rounding only
         assert np.allclose(results[0], results[1], rtol=1e-9, atol=1e-12 * np.abs(results[1]).max())
-        full, residual_only = np.empty(12), np.full(12, np.nan)
+        full, residual_only, residual32 = np.empty(12), np.full(12, np.nan), np.full(12, np.nan)
         traction_fast(a, b, p_h, h, du0, dv0, w_s, fast.traction_rule(), full)
         assert np.allclose(full, results[1], rtol=1e-9, atol=1e-12 * np.abs(results[1]).max())
         traction_fast(a, b, p_h, h, du0, dv0, w_s, fast.traction_rule(), residual_only, False)
         assert np.allclose(residual_only[:3], full[:3], rtol=1e-12) and not residual_only[3:].any()
+        traction_fast(a, b, p_h, h, du0, dv0, w_s, fast.traction_rule(float32_residual=True), residual32, False)
+        gross = fast.tau0 * np.pi * a * b * ash[:n].max() * np.array([1.0, 1.0, b])
+        assert np.all(np.abs(residual32[:3] - full[:3]) <= 1e-6 * gross) and not residual32[3:].any()
+        assert np.any(residual32[:3] != full[:3])  # the float32 passes did run
 
 
 def test_batch_equals_single_calls(o156, fast):

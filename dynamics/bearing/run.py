@@ -122,6 +122,8 @@ def simulate_bearing(params: BearingModelParams, start: dict, settings: HHTSetti
                      progress: Callable[[float, float, float], None] | None = None) -> BearingRun:
     """Integrate the bearing for `duration` [s] from the quasi-static `start`.
     progress(t, t_end, h) is called about four times a second of wall time."""
+    # the loop's tangent is the model's own, so its residuals may take the float32 traction passes
+    params = params.with_float32_residual()
     model = BearingModel(params)
     q0, v0 = initial_coordinates(params, start)
     n = model.n_dof

@@ -3,12 +3,22 @@
 Same physics and sign convention as `dynamics.traction.quadrature` (force and spin moment ON THE BALL,
 Jacobian d(F_x, F_y, M_z)/d(du0, dv0, w_s)); the nodes come from `dynamics.traction.nodes`
 (rules centred on the spin pole, 200-320 nodes). What makes it fast is how the nodes are
-evaluated: in short passes over contiguous scratch arrays that LLVM turns into AVX-512 code
-(numba `fastmath`, `error_model="numpy"` so that `/` carries no zero-division branch), with
+evaluated: in short passes over contiguous scratch arrays that LLVM vectorises (numba
+`fastmath`, `error_model="numpy"` so that `/` carries no zero-division branch), with
 asinh(x) = log(x + sqrt(1 + x^2)) and a branch-free log of our own (`log_ge1`) because
 numba's `math.log` is a scalar libm call that blocks vectorisation (no SVML in this
-llvmlite). The one scalar pass is the viscosity table lookup (AMD gathers are not emitted).
-Measured on the 2-core dev box: ~2.5-3 ns per node, see `python -m benchmarks.traction`.
+llvmlite). The one scalar pass is the viscosity table lookup.
+
+Square roots and divisions share one unit that neither wider vectors nor fast-math speed up;
+they set the cost. Where their rounding is harmless they run in float32, which that unit
+serves about three times faster. A rule built with `float32_residual` (what the time loop
+uses) evaluates residual-only calls (`jacobian=False`, the loop's common call) that way: the
+node's pressure and sliding speed, z = x + sqrt(1 + x^2) and its log (`_slip_and_table_index32`,
+`_eyring_argument32`, `log_ge1_32`; ln z to 3e-7), which moves the force by less than 1e-6 of
+tau0 times the contact area from the float64 path, far inside the quadrature's 2 %. The
+Jacobian stays float64 (its x/sqrt(1 + x^2) - asinh x cancels to -x^3/3 for small x), and so
+does every call of a default rule: a force with rounding steps of 1e-7 is no input for
+finite differences (scipy's solve_ivp, finite-difference tangents and their tests).
 
 Viscosity comes from a table of eta on a uniform pressure grid (linear interpolation;
 relative error ~1e-4 with 4096 points to 5 GPa), built once per lubricant and temperature
@@ -22,10 +32,11 @@ Accuracy against the (128, 1024) quadrature of `dynamics.traction.quadrature`, d
 of 240 random operating points of the reference scene (tests/test_traction_fast.py, -m slow):
 |dF|/|F| <= 0.74 %, |dM_z|/max(|M_z|, |F| b) <= 0.76 %, max|dJ|/max|J| <= 1.4 %; edge cases
 (slip 1e-5 and 0.3, pure spin, pure roll, 20 N, pole at 0.97 / 1.03 ellipse radii) <= 0.7 %.
-Cost ~0.58 us per contact over that sample with the Jacobian; without it (a residual-only
-evaluation) ~27 us for the 44 contacts of the reference bearing 20 ms into a run
-(2026-11-21, benchmarks/traction.py and bench/contacts.py); 8 radial nodes: ~0.53 us
-at <= 1.1 %.
+Cost on the 2-core dev box of 2026-11-23 (`python -m benchmarks.traction`, one core), over that
+sample: 1.48 us per contact with the Jacobian; without it 1.25 us in float64 and 0.93 us through
+the float32 passes. The 44 contacts of the reference bearing 20 ms into a run: 51 us through the
+float32 passes, 67 us in float64 (`python -m benchmarks.contacts`, both commits back to back).
+The AMD box of 2026-11-21 ran the float64 passes ~2.4x faster.
 """
 
 from __future__ import annotations
@@ -49,13 +60,19 @@ FLAG_SLIP_CLAMPED = 8
 SLIP_MAX = 1.0e4  # m/s: |du0|, |dv0|, |w_s| b beyond this are clamped (their squares must not overflow)
 VALIDATED_ASPECT = (0.05, 0.25)  # a/b (a along entrainment) checked in tests
 VALIDATED_P_H = (2.0e8, 3.0e9)  # Pa, maximum Hertz pressure checked in tests
-EYRING_ARG_MAX = 1e100  # eta|s|/(tau0 h) is clamped here so that x^2 cannot overflow
+# eta|s|/(tau0 h) is clamped here so that x^2 cannot overflow, in float32 either (3.4e38); the
+# stress is then 42 tau0, and no film the model accepts comes near it
+EYRING_ARG_MAX = 1e18
 SMALL_ARG = 1e-2  # below this the series of asinh(x)/x is used (cancellation in c otherwise)
 
 _LN2 = math.log(2.0)
 _MANTISSA = 0x000FFFFFFFFFFFFF
 _EXP_ONE = 0x3FF0000000000000
 _SQRT2_MANTISSA = 0x6A09E667F3BCD  # mantissa bits of sqrt(2)
+# the same for float32 (23 mantissa bits, exponent bias 127)
+_MANTISSA32 = np.int32(0x007FFFFF)
+_EXP_ONE32 = np.int32(0x3F800000)
+_SQRT2_MANTISSA32 = np.int32(0x3504F3)
 _WORK_ROWS = 9
 # fast-math without nnan/ninf: pole_position returns inf for "no pole", which must compare correctly
 _VEC = {"fastmath": {"nsz", "arcp", "contract", "afn", "reassoc"}, "error_model": "numpy", **NO_REFCOUNT}
@@ -71,11 +88,15 @@ class TractionRule(NamedTuple):
     rule: np.ndarray       # packed quadrature rule, `traction_nodes.pack_rule`
     work: np.ndarray       # (9, n_max) float64 scratch
     iwork: np.ndarray      # (n_max,) int64 scratch
+    work32: np.ndarray     # (2, n_max) float32 scratch of the residual-only passes
+    iwork32: np.ndarray    # (n_max,) int32 scratch of the residual-only passes
+    float32_residual: bool  # residual-only calls through the float32 passes (module docstring)
 
 
 def unused_traction_rule() -> TractionRule:
     """A placeholder of the right types for a model without Eyring traction."""
-    return TractionRule(np.zeros((2, 2)), 0.0, 0.0, np.zeros(1), np.zeros((1, 1)), np.zeros(1, dtype=np.int64))
+    return TractionRule(np.zeros((2, 2)), 0.0, 0.0, np.zeros(1), np.zeros((1, 1)), np.zeros(1, dtype=np.int64),
+                        np.zeros((2, 1), dtype=np.float32), np.zeros(1, dtype=np.int32), False)
 
 
 class _Nodes(NamedTuple):
@@ -140,6 +161,19 @@ def _slip_and_table_index(X, Y, n, a, b, p_h, du0, dv0, w_s, inv_p_step, f_index
 
 
 @numba.njit(**_VEC)
+def _slip_and_table_index32(X, Y, n, a, b, p_h, du0, dv0, w_s, inv_p_step, f_index, r):
+    """`_slip_and_table_index` with both square roots in float32 (relative 6e-8): a float32
+    root costs a third of a float64 one on the divider (2026-11-23, 0.39 vs 1.05 ns per root)."""
+    zero = np.float32(0.0)
+    for m in range(n):
+        q = np.float32(1.0 - X[m] * X[m] - Y[m] * Y[m])
+        f_index[m] = p_h * inv_p_step * math.sqrt(max(q, zero))
+        sx = du0 - w_s * b * Y[m]
+        sy = dv0 + w_s * a * X[m]
+        r[m] = math.sqrt(np.float32(sx * sx + sy * sy))
+
+
+@numba.njit(**_VEC)
 def _viscosity_lookup(f_index, n, eta_table, inv_tau0_h, k):
     """k[m] = eta(p)/(tau0 h) [s/m] by linear interpolation (scalar: gathers do not vectorise).
 
@@ -160,6 +194,49 @@ def _eyring_argument(k, r, n, x, z):
         xm = min(k[m] * r[m], EYRING_ARG_MAX)
         x[m] = xm
         z[m] = xm + math.sqrt(1.0 + xm * xm)
+
+
+@numba.njit(**_VEC)
+def _eyring_argument32(k, r, n, x, z32):
+    """`_eyring_argument` for a residual-only evaluation: z in float32.
+
+    x = k |s| stays float64 (the small-argument series reads it); z = x + sqrt(1 + x^2) is
+    rounded to float32 (relative 6e-8, so asinh x = ln z to ~6e-8 absolute): a float32 square
+    root costs a third of a float64 one on the divider (2026-11-23, 0.39 vs 1.05 ns per root). Not for
+    the Jacobian, whose (x/sqrt(1 + x^2) - asinh x) cancels to x^3/3 for small x."""
+    one = np.float32(1.0)
+    for m in range(n):
+        xm = min(k[m] * r[m], EYRING_ARG_MAX)
+        x[m] = xm
+        x32 = np.float32(xm)
+        z32[m] = x32 + math.sqrt(one + x32 * x32)
+
+
+@numba.njit(**_VEC)
+def log_ge1_32(z, n, exponent, mantissa_bits, out):
+    """out[m] = ln z[m] (float64) for float32 z >= 1, m < n; |error| < 3e-7 max(1, ln z).
+
+    `log_ge1` in float32: z = 2^e m, m in [sqrt(1/2), sqrt(2)), ln m = 2 atanh(s) to s^9
+    (next term 2 s^11/11 < 7e-10); e ln 2 is added in float64."""
+    zi = z.view(np.int32)
+    for m in range(n):
+        bits = zi[m]
+        mant = bits & _MANTISSA32
+        up = np.int32(mant > _SQRT2_MANTISSA32)
+        exponent[m] = np.float32((bits >> np.int32(23)) - np.int32(127) + up)
+        mantissa_bits[m] = mant | (_EXP_ONE32 - (up << np.int32(23)))
+    mf = mantissa_bits.view(np.float32)
+    one = np.float32(1.0)
+    for m in range(n):
+        x = mf[m]
+        s = (x - one) / (x + one)
+        s2 = s * s
+        p = np.float32(1.0 / 9.0)
+        p = p * s2 + np.float32(1.0 / 7.0)
+        p = p * s2 + np.float32(1.0 / 5.0)
+        p = p * s2 + np.float32(1.0 / 3.0)
+        p = p * s2 + one
+        out[m] = float(exponent[m]) * _LN2 + float(np.float32(2.0) * s * p)
 
 
 @numba.njit(cache=True, inline="always")
@@ -282,10 +359,16 @@ def traction_fast(a, b, p_h, h, du0, dv0, w_s, tr, out, jacobian=True):
     n = place_nodes(a, b, du0, dv0, w_s, tr.rule, nodes.X, nodes.Y, nodes.W, work[3:8])
     f_index = work[3]
     values = _NodeValues(k=work[5], r=work[4], x=work[6], z=work[7], ash=work[8])
-    _slip_and_table_index(nodes.X, nodes.Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / p_step, f_index, values.r)
-    _viscosity_lookup(f_index, n, eta_table, 1.0 / (tau0 * h), values.k)
-    _eyring_argument(values.k, values.r, n, values.x, values.z)
-    log_ge1(values.z, n, f_index, tr.iwork, values.ash)  # f_index is spent: reuse it for the exponents
+    if tr.float32_residual and not jacobian:
+        _slip_and_table_index32(nodes.X, nodes.Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / p_step, f_index, values.r)
+        _viscosity_lookup(f_index, n, eta_table, 1.0 / (tau0 * h), values.k)
+        _eyring_argument32(values.k, values.r, n, values.x, tr.work32[0])
+        log_ge1_32(tr.work32[0], n, tr.work32[1], tr.iwork32, values.ash)
+    else:
+        _slip_and_table_index(nodes.X, nodes.Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / p_step, f_index, values.r)
+        _viscosity_lookup(f_index, n, eta_table, 1.0 / (tau0 * h), values.k)
+        _eyring_argument(values.k, values.r, n, values.x, values.z)
+        log_ge1(values.z, n, f_index, tr.iwork, values.ash)  # f_index is spent: reuse it for the exponents
     if jacobian:
         _accumulate(nodes, values, n, a, b, du0, dv0, w_s, out)
     else:
@@ -363,9 +446,18 @@ class FastTraction:
         """Fresh scratch (work, iwork) for one thread."""
         return np.empty((_WORK_ROWS, self.max_nodes)), np.empty(self.max_nodes, dtype=np.int64)
 
-    def traction_rule(self) -> TractionRule:
-        """The bundle `traction_fast` takes, with a fresh workspace (one per thread)."""
-        return TractionRule(self.eta_table, self.p_step, self.tau0, self.rule, *self.workspace())
+    def workspace32(self) -> tuple[np.ndarray, np.ndarray]:
+        """Fresh float32 scratch (work32, iwork32) of the residual-only passes, one thread."""
+        return np.empty((2, self.max_nodes), dtype=np.float32), np.empty(self.max_nodes, dtype=np.int32)
+
+    def traction_rule(self, float32_residual: bool = False) -> TractionRule:
+        """The bundle `traction_fast` takes, with a fresh workspace (one per thread).
+
+        float32_residual: residual-only calls through the float32 passes (module docstring):
+        ~25 % cheaper, but the force then carries rounding steps of ~1e-7 that finite
+        differences amplify, so only for callers with an analytic tangent (the time loop)."""
+        return TractionRule(self.eta_table, self.p_step, self.tau0, self.rule, *self.workspace(), *self.workspace32(),
+                            bool(float32_residual))
 
     def evaluate(self, a, b, p_h, h, du0, dv0, w_s) -> tuple[np.ndarray, np.ndarray, int]:
         """(F = [F_x, F_y, M_z], J[3, 3], flag) on the ball; units as traction_fast."""

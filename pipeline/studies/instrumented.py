@@ -206,13 +206,17 @@ def run_window(problem, q0, v0, settings, window: float, sample_interval: float,
 
 def bearing_window(params, start, settings, window: float, sample_interval: float, *,
                    exact_tangent: bool = False, wall_budget: float = math.inf,
-                   q0=None, v0=None) -> tuple[WindowRun, object]:
+                   q0=None, v0=None, float32_residual: bool | None = None) -> tuple[WindowRun, object]:
     """`run_window` for the bearing model from its quasi-static start (or given q0, v0);
-    returns the run and the model (impact log, energy balance, diagnostics)."""
+    returns the run and the model (impact log, energy balance, diagnostics).
+
+    float32_residual: the float32 traction passes of a user's run (`simulate_bearing`); by
+    default on unless `exact_tangent` (finite differences need the smooth float64 residual)."""
     from bearingsim.dynamics.bearing import BearingModel
     from bearingsim.dynamics.bearing.run import initial_coordinates
     from bearingsim.dynamics.multibody.linear_solvers import BlockArrowSolver
 
+    params = params.with_float32_residual(not exact_tangent if float32_residual is None else float32_residual)
     model = BearingModel(params)
     q_start, v_start = initial_coordinates(params, start)
     q0 = q_start if q0 is None else q0

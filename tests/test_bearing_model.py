@@ -162,6 +162,26 @@ def test_tangents_agree_with_finite_differences(case, lubricated, dry):
                 f"{name} column {cols[c]}: error {err:.3e} of scale {scale:.3e} (floor {floor:.3e})")
 
 
+def test_float32_traction_residual_is_the_float64_one_to_its_rounding(lubricated):
+    """The time loop's residual (float32 traction passes, dynamics/traction/fast.py) against the
+    default float64 one at a slipping state: equal to well under a millinewton on out-of-balance
+    forces of ~100 N (the start balances the Hertz loads; what is left is the traction of the
+    imposed slip), not identical (the passes ran), and the tangent untouched (always float64)."""
+    params, _, model64, q, v = lubricated
+    v = v.copy()
+    v[: 6 * params.ball_count: 6] += 0.05  # sliding in every contact: the Eyring passes all run
+    model32 = BearingModel(params.with_float32_residual())
+    g64, g32 = forces(model64, q, v), forces(model32, q, v)
+    assert np.abs(g64).max() > 50.0
+    assert np.abs(g32 - g64).max() < 1e-4
+    assert np.any(g32 != g64)
+    n = model64.n_dof
+    for c in ((0.0, 0.0, 1.0), (0.0, 1.0, 0.0)):
+        J64 = model64.jacobian(0.0, q, v, np.zeros(n), *c).to_dense()
+        J32 = model32.jacobian(0.0, q, v, np.zeros(n), *c).to_dense()
+        assert np.array_equal(J64, J32)
+
+
 def test_physics_switches_remove_the_film():
     """[physics] ehd_film = false: the film kernel is not called (film diagnostics stay 0);
     with it on, every loaded contact reports a film of order 0.1–1 µm."""

@@ -48,9 +48,8 @@ from numba.extending import intrinsic
 from .hht import NEWTON_CONVERGED, NEWTON_DIVERGED, hht_residual, newmark_kinematics, newton_verdict, \
     predict_acceleration, subtract_inplace
 from .joints import prescribe_velocity_blocks
-from .linear_solvers import Blocks, BlockArrowMatrix, assemble_iteration_blocks, block_arrow_factor, \
-    block_arrow_solve
-from .linear_solvers import BlockArrowSolver
+from .linear_solvers import Blocks, BlockArrowMatrix, BlockArrowSolver, assemble_iteration_blocks, \
+    block_arrow_factor, block_arrow_solve
 from .newton import needs_refactor
 from .problem import check_problem, checked_error_scales
 from .results import IntegrationError, Result, Solution, SolverStats
@@ -477,7 +476,6 @@ def integrate_compiled(problem, t0: float, t1: float, q0, v0, settings: HHTSetti
         if sampler is not None:
             sampler.count = int(w.counters[N_SAMPLES])
         if status >= FAILED:
-            _finish(stats, w, wall0)
             result = FAILURES[status - FAILED]
             where = "at the minimum step" if settings.adaptive else "at the fixed step"
             raise IntegrationError(w.state[S_T_FAIL], w.state[S_H_FAIL], f"{result.value} {where}", result.hint)

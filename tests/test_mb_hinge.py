@@ -3,11 +3,12 @@ differences), damping dissipates, tangents match finite differences, and the lit
 strain rates agree with the kernel's form."""
 
 import numpy as np
+import pytest
 from scipy.spatial.transform import Rotation
 
 from bearingsim.dynamics.multibody.crv import skew
-from bearingsim.dynamics.multibody.hinge import (HingeStiffness, hinge_energy, hinge_forces,
-                                      hinge_strains)
+from bearingsim.dynamics.multibody.hinge import (HingeStiffness, add_hinge_force, hinge_energy,
+                                                 hinge_forces, hinge_strains)
 
 RNG = np.random.default_rng(11)
 
@@ -119,3 +120,19 @@ def test_hinge_stiffness_validation_speaks_to_user():
         HingeStiffness(H_u=-np.eye(3), H_psi=[1e5, 1e5])
     with pytest.raises(ValueError, match="H_psi"):
         HingeStiffness(H_u=np.eye(3), H_psi=[1e5, -1.0])
+
+
+def test_residual_only_force_is_the_full_one():
+    """`add_hinge_force` (no tangents, the Newton iteration's call) against `hinge_forces`: the
+    same wrench, and as power the quadratic form v^T C v of its damping tangent."""
+    for _ in range(20):
+        case = random_case()
+        x_B, R_B, x_dot, Omega, x_A, R_A, H_u, H_psi, G_u, G_psi = case
+        g_full, _, C = hinge_forces(*case)
+        g = np.full(9, 7.0)  # a wrench is added at an offset, the rest untouched
+        power = add_hinge_force(x_B, R_B, x_dot, Omega, x_A, R_A, H_u, H_psi, G_u, G_psi, g, 2)
+        np.testing.assert_allclose(g[2:8] - 7.0, g_full, rtol=1e-12, atol=1e-12 * np.abs(g_full).max())
+        assert g[0] == g[1] == g[8] == 7.0
+        v = np.concatenate([x_dot, Omega])
+        assert power == pytest.approx(v @ C @ v, rel=1e-12)
+        assert power >= 0.0

@@ -21,7 +21,7 @@ from bearingsim.dynamics.contact.pocket import (
 )
 from bearingsim.dynamics.journal.hybrid import N_JOURNAL_OUT
 from bearingsim.dynamics.multibody.crv import crv_to_matrix, skew
-from bearingsim.dynamics.multibody.hinge import hinge_energy, hinge_forces
+from bearingsim.dynamics.multibody.hinge import add_hinge_force, hinge_energy, hinge_forces
 from bearingsim.dynamics.multibody.joints import prescribe_velocity_residual
 from bearingsim.dynamics.multibody.rigid_body import gyroscopic_moment, material_moment_of_spatial_moment
 from bearingsim.dynamics.multibody.small import mtv, mv
@@ -280,20 +280,23 @@ def _border(t, v, model, bodies, loads, ma, g, diag, Kb, Cb, want_tangent):
         g_gyr, C_gyr = gyroscopic_moment(np.diag(J_i), Om_i)
         g[o_i + 3:o_i + 6] += g_gyr
     if ip[IP_HINGE]:
-        gh, Kh, Ch = hinge_forces(inner.x, R_i, inner.v, Om_i, hinge.x_A, hinge.R_A, hinge.H_u, hinge.H_psi,
-                                  hinge.G_u, hinge.G_psi)
-        g[o_i:o_i + 6] += gh
+        if want_tangent:
+            gh, Kh, Ch = hinge_forces(inner.x, R_i, inner.v, Om_i, hinge.x_A, hinge.R_A, hinge.H_u, hinge.H_psi,
+                                      hinge.G_u, hinge.G_psi)
+            g[o_i:o_i + 6] += gh
+            diag[DG_P_DISS] += mv(Ch, v[o_i:o_i + 6]) @ v[o_i:o_i + 6]
+            Kb[INNER_BORDER:INNER_BORDER + 6, INNER_BORDER:INNER_BORDER + 6] += Kh
+            Cb[INNER_BORDER:INNER_BORDER + 6, INNER_BORDER:INNER_BORDER + 6] += Ch
+        else:  # the residual-only call of every Newton iteration: no tangent blocks
+            diag[DG_P_DISS] += add_hinge_force(inner.x, R_i, inner.v, Om_i, hinge.x_A, hinge.R_A, hinge.H_u,
+                                               hinge.H_psi, hinge.G_u, hinge.G_psi, g, o_i)
         diag[DG_V_HINGE] = hinge_energy(inner.x, R_i, hinge.x_A, hinge.R_A, hinge.H_u, hinge.H_psi)
-        diag[DG_P_DISS] += mv(Ch, v[o_i:o_i + 6]) @ v[o_i:o_i + 6]
     i3 = INNER_BORDER + 3
     if want_tangent:
         # contact moment M_i is held fixed in space under a material rotation increment
         Kb[i3:i3 + 3, i3:i3 + 3] += K_ext - skew(mtv(R_i, loads.M_inner))
         if ip[IP_GYRO]:
             Cb[i3:i3 + 3, i3:i3 + 3] += C_gyr
-        if ip[IP_HINGE]:
-            Kb[INNER_BORDER:INNER_BORDER + 6, INNER_BORDER:INNER_BORDER + 6] += Kh
-            Cb[INNER_BORDER:INNER_BORDER + 6, INNER_BORDER:INNER_BORDER + 6] += Ch
     if ip[IP_CAGE]:
         o_c = o_i + RACE_DOF
         c3 = CAGE_BORDER + 3

@@ -93,6 +93,7 @@ def _edge_cases(lub):
 
 def _assert_agrees(lub, fast, points, tol_f=TOL_F, tol_m=TOL_M, tol_j=TOL_J):
     worst = np.zeros(3)
+    rule32, force_only = fast.traction_rule(float32_residual=True), np.empty(12)  # the time loop's rule
     for point in points:
         ref = _ref(lub, point)
         got = fast.evaluate(*point)
@@ -100,8 +101,6 @@ def _assert_agrees(lub, fast, points, tol_f=TOL_F, tol_m=TOL_M, tol_j=TOL_J):
         worst = np.maximum(worst, _errors(got, ref, point[1]) if any(ref[:3]) else
                            (0.0, 0.0, np.abs(got[1] - ref[3]).max() / np.abs(ref[3]).max()))
         # the time loop's common call: force and moment only, through the float32 passes
-        force_only = np.empty(12)
-        rule32 = fast.traction_rule(float32_residual=True)
         assert traction_fast(*(float(v) for v in point), rule32, force_only, False) == FLAG_OK
         if any(ref[:3]):
             worst = np.maximum(worst, _errors((force_only[:3], got[1]), ref, point[1]))

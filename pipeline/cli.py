@@ -37,8 +37,14 @@ err_console = make_console(stderr=True)
 
 EXIT_SCENE, EXIT_UNAVAILABLE, EXIT_FAILED, EXIT_INTERRUPTED = 2, 3, 1, 130
 
+def _literal(text: str) -> str:
+    """Help text shown as written: typer renders help as rich markup, which swallows units and
+    defaults in square brackets ("[s]", "[default: ...]")."""
+    return escape(text)
+
+
 SceneArg = Annotated[str, typer.Argument(help="Scene TOML file, or the name of a built-in scene (see `bearingsim scenes`).")]
-OutOpt = Annotated[Optional[Path], typer.Option("--out", help="Run directory [default: runs/<scene name>/].")]
+OutOpt = Annotated[Optional[Path], typer.Option("--out", help=_literal("Run directory [default: runs/<scene name>/]."))]
 ForceOpt = Annotated[bool, typer.Option("--force", help="Recompute even when cached results are up to date.")]
 NoStoreOpt = Annotated[bool, typer.Option(
     "--no-store", help="Do not share the FE identification through the user's stage store "
@@ -258,7 +264,7 @@ def quasistatic(scene: SceneArg, json_: Annotated[bool, typer.Option("--json", h
 def stiffness(scene: SceneArg,
               speeds: Annotated[Optional[str], typer.Option(
                   "--speeds", metavar="RPM,...",
-                  help="Inner-ring speeds [rev/min]: a,b,c or start:stop:count [default: the scene's speed.inner_rpm].")] = None,
+                  help=_literal("Inner-ring speeds [rev/min]: a,b,c or start:stop:count [default: the scene's speed.inner_rpm]."))] = None,
               out: OutOpt = None, set_: SetOpt = None) -> None:
     """Bearing (5x5) and hinge stiffness over inner-ring speeds: CSV + JSON for rotordynamics codes (ROSS)."""
     from .stiffness_export import CSV_FILE, JSON_FILE, STIFFNESS_DIR, export_stiffness, parse_speeds
@@ -370,7 +376,7 @@ def render(run_dir: Annotated[Path, typer.Argument(help="A run directory written
 @app.command()
 def bench(scene: SceneArg,
           quick: Annotated[bool, typer.Option("--quick", help="CI-sized variant (~1-2 min): short window, few tolerances, coarse FE meshes.")] = False,
-          out: Annotated[Optional[Path], typer.Option("--out", help="Where the tables and plots go [default: runs/<scene name>/bench/].")] = None,
+          out: Annotated[Optional[Path], typer.Option("--out", help=_literal("Where the tables and plots go [default: runs/<scene name>/bench/]."))] = None,
           fe: Annotated[bool, typer.Option("--fe/--no-fe", help="Also the FE identification study (scenes with hinge.source = 'fe').")] = True,
           set_: SetOpt = None) -> None:
     """Error against run time: work-precision of the dynamic solver (and of the FE hinge identification)."""
@@ -394,9 +400,9 @@ def bench(scene: SceneArg,
 
 
 @app.command()
-def stability(cases: Annotated[Optional[list[str]], typer.Argument(help="Case names [default: all]; see pipeline/scenes/stability/.")] = None,
-              window: Annotated[float, typer.Option("--window", help="Simulated window per case [s].")] = 0.010,
-              wall_budget: Annotated[float, typer.Option("--wall-budget", help="Wall-clock budget per case [s].")] = 180.0,
+def stability(cases: Annotated[Optional[list[str]], typer.Argument(help=_literal("Case names [default: all]; see pipeline/scenes/stability/."))] = None,
+              window: Annotated[float, typer.Option("--window", help=_literal("Simulated window per case [s]."))] = 0.010,
+              wall_budget: Annotated[float, typer.Option("--wall-budget", help=_literal("Wall-clock budget per case [s]."))] = 180.0,
               out: Annotated[Path, typer.Option("--out", help="Where the table and plot go.")] = Path("runs/stability")) -> None:
     """Stability suite: stiff and extreme cases, each a pass or a clearly reported refusal."""
     from .studies.stability import case_names, markdown_table, run_suite, write_suite
@@ -417,15 +423,15 @@ def stability(cases: Annotated[Optional[list[str]], typer.Argument(help="Case na
 def sweep(scene: SceneArg,
           vary: Annotated[Optional[list[str]], typer.Option(
               "--vary", metavar="KEY=VALUES",
-              help="Vary a scene key (repeatable): start:stop:count or a,b,c, e.g. --vary load.moment=0:600:13. "
-                   "Replaces the scene's [sweep] points.")] = None,
+              help=_literal("Vary a scene key (repeatable): start:stop:count or a,b,c, e.g. --vary "
+                            "load.moment=0:600:13. Replaces the scene's [sweep] points."))] = None,
           mode: Annotated[Optional[str], typer.Option(
               "--mode", help="factorial (every combination, default) or list (i-th values together).")] = None,
           set_: SetOpt = None,
-          name: Annotated[Optional[str], typer.Option("--name", help="Sweep name [default: <scene>-sweep].")] = None,
-          out: Annotated[Optional[Path], typer.Option("--out", help="Sweep directory [default: runs/<sweep name>/].")] = None,
+          name: Annotated[Optional[str], typer.Option("--name", help=_literal("Sweep name [default: <scene>-sweep]."))] = None,
+          out: Annotated[Optional[Path], typer.Option("--out", help=_literal("Sweep directory [default: runs/<sweep name>/]."))] = None,
           store: Annotated[Optional[Path], typer.Option(
-              "--store", help="Shared stage store [default: <sweep dir>/store]; share one between sweeps.")] = None,
+              "--store", help=_literal("Shared stage store [default: <sweep dir>/store]; share one between sweeps."))] = None,
           workers: Annotated[int, typer.Option("--workers", min=1, help="Worker processes of the local cluster.")] = 2,
           scheduler: Annotated[Optional[str], typer.Option(
               "--scheduler", metavar="ADDRESS", help="Use a running Dask scheduler (e.g. tcp://host:8786); "

@@ -159,3 +159,23 @@ def test_speedup_at_equal_error_interpolates_in_log_log():
     s = speedup_at_equal_error(rows)
     assert s["solve_ivp BDF, in"] == pytest.approx(10.0, rel=1e-12)
     assert s["solve_ivp BDF, out"] is None
+
+
+def test_scipy_at_default_error_reads_the_lower_envelope():
+    """The default row (err 1e-3.5, 1 s) against a solve_ivp curve with points (1e-3, 10 s),
+    (1e-4, 100 s) and a dominated point (1e-3.8, 200 s: more time than the 1e-4 point for more
+    error). The envelope is wall = 1e-2/err s, so at 10^-3.5 scipy needs 10^1.5 s: 31.6x. A
+    curve whose points do not bracket the default's error gives None."""
+    from bearingsim.pipeline.studies.work_precision import DEFAULT_CURVE, DEFAULT_SETTING, scipy_at_default_error
+
+    def row(curve, setting, wall, err):
+        return {"curve": curve, "setting": setting, "wall": wall, "cage_centre": err, "error_text": None}
+
+    rows = [row(DEFAULT_CURVE, DEFAULT_SETTING, 1.0, 10 ** -3.5), row(DEFAULT_CURVE, "rtol = 1e-07", 3.0, 1e-4),
+            row("solve_ivp Radau", "rtol = 0.001", 10.0, 1e-3), row("solve_ivp Radau", "rtol = 0.0001", 100.0, 1e-4),
+            row("solve_ivp Radau", "rtol = 1e-05", 200.0, 10 ** -3.8),
+            row("solve_ivp BDF", "rtol = 0.001", 5.0, 1e-2), row("solve_ivp BDF", "rtol = 0.0001", 9.0, 1e-3)]
+    s = scipy_at_default_error(rows)
+    assert s["solve_ivp Radau"] == pytest.approx(10 ** 1.5, rel=1e-12)
+    assert s["solve_ivp BDF"] is None
+    assert scipy_at_default_error(rows[1:]) == {}

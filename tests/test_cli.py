@@ -52,7 +52,7 @@ def test_render_of_a_non_run_directory_is_a_clear_error(tmp_path):
 def test_light_commands_do_not_import_heavy_libraries():
     """docs/contributing.md rule 6: scene checking must not pay for gmsh, pyvista or matplotlib."""
     code = (
-        "import sys; from typer.testing import CliRunner; from pipeline.cli import app;"
+        "import sys; from typer.testing import CliRunner; from bearingsim.pipeline.cli import app;"
         "r = CliRunner().invoke(app, ['check', 'helicopter-b-given-hinge']);"
         "assert r.exit_code == 0, r.output;"
         "heavy = [m for m in ('gmsh', 'pyvista', 'vtk', 'matplotlib', 'skfem') if m in sys.modules];"
@@ -73,3 +73,26 @@ def test_a_second_run_into_a_busy_run_directory_is_refused(tmp_path):
     assert not (tmp_path / "quasistatic").exists()
     result = CliRunner().invoke(app, ["quasistatic", "deep-groove-209", "--json", "--out", str(tmp_path)])
     assert result.exit_code == 0, result.output
+
+
+def test_help_shows_units_and_defaults_in_square_brackets():
+    """typer renders help as rich markup, where "[s]" or "[default: ...]" would be taken for tags
+    and vanish ("Simulated window per case ." instead of "[s]"): every bracketed part of every
+    option's help must reach the rendered --help (whitespace and box lines ignored)."""
+    import re
+    import typing
+
+    from bearingsim.pipeline.cli import app
+
+    def squeeze(text: str) -> str:
+        return re.sub(r"[\s│]+", "", text)
+
+    checked = 0
+    for info in app.registered_commands:
+        shown = squeeze(runner.invoke(app, [info.callback.__name__.replace("_", "-"), "--help"]).output)
+        for ann in typing.get_type_hints(info.callback, include_extras=True).values():
+            for meta in getattr(ann, "__metadata__", ()):
+                for part in re.findall(r"\[[^\]]*\]", getattr(meta, "help", None) or ""):
+                    assert squeeze(part) in shown, (info.callback.__name__, part)
+                    checked += 1
+    assert checked >= 10

@@ -1,6 +1,6 @@
 """Stability suite: stiff and extreme cases of the bearing model.
 
-    python -m pipeline.studies.stability [CASE ...] [--window 0.01] [--out DIR]
+    python -m bearingsim.pipeline.studies.stability [CASE ...] [--window 0.01] [--out DIR]
     bearingsim stability [CASE ...]
 
 One scene per case in `pipeline/scenes/stability/` (a subfolder, so `bearingsim scenes`

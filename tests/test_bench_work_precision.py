@@ -165,7 +165,8 @@ def test_scipy_at_default_error_reads_the_lower_envelope():
     """The default row (err 1e-3.5, 1 s) against a solve_ivp curve with points (1e-3, 10 s),
     (1e-4, 100 s) and a dominated point (1e-3.8, 200 s: more time than the 1e-4 point for more
     error). The envelope is wall = 1e-2/err s, so at 10^-3.5 scipy needs 10^1.5 s: 31.6x. A
-    curve whose points do not bracket the default's error gives None."""
+    curve never as accurate as the default gives None; one whose points are all more accurate gives
+    the loosest one's time as an upper bound."""
     from bearingsim.pipeline.studies.work_precision import DEFAULT_CURVE, DEFAULT_SETTING, scipy_at_default_error
 
     def row(curve, setting, wall, err):
@@ -175,7 +176,11 @@ def test_scipy_at_default_error_reads_the_lower_envelope():
             row("solve_ivp Radau", "rtol = 0.001", 10.0, 1e-3), row("solve_ivp Radau", "rtol = 0.0001", 100.0, 1e-4),
             row("solve_ivp Radau", "rtol = 1e-05", 200.0, 10 ** -3.8),
             row("solve_ivp BDF", "rtol = 0.001", 5.0, 1e-2), row("solve_ivp BDF", "rtol = 0.0001", 9.0, 1e-3)]
+    rows += [row("solve_ivp Radau, jac_sparsity", "rtol = 0.0001", 12.0, 1e-4),
+             row("solve_ivp Radau, jac_sparsity", "rtol = 0.001", 13.0, 2e-4)]
     s = scipy_at_default_error(rows)
-    assert s["solve_ivp Radau"] == pytest.approx(10 ** 1.5, rel=1e-12)
-    assert s["solve_ivp BDF"] is None
+    assert s["solve_ivp Radau"] == {"speedup": pytest.approx(10 ** 1.5, rel=1e-12), "bound": False}
+    assert s["solve_ivp BDF"] is None  # never below 1e-3
+    # (2e-4, 13 s) is dominated by (1e-4, 12 s): the envelope stops at 1e-4, an upper bound of 12 s
+    assert s["solve_ivp Radau, jac_sparsity"] == {"speedup": pytest.approx(12.0, rel=1e-12), "bound": True}
     assert scipy_at_default_error(rows[1:]) == {}

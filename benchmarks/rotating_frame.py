@@ -43,8 +43,8 @@ from bearingsim.dynamics.multibody.linear_solvers import (
 )
 from bearingsim.pipeline.studies import wp_metrics as wm
 from bearingsim.pipeline.studies.instrumented import bearing_window, fd_tangent, run_window
+from bearingsim.pipeline.studies.work_precision import ADAPTIVE_DEFAULT as ADAPTIVE
 
-ADAPTIVE = {"atol": 1e-15, "max_step": 1e-4, "first_step": 1e-6, "min_step": 1e-9}
 REFERENCE_STEP = 1e-7  # s, as the work-precision study
 SAMPLE = 5e-6  # s
 
@@ -164,9 +164,9 @@ def compare(params, start, base, omega, q0, v0, window, rtols, fixed_steps=()) -
     rows = []
     for kind, x in cases:
         if kind == "rtol":
-            settings = dataclasses.replace(base, **ADAPTIVE, rtol=x)
+            settings = dataclasses.replace(base, **{**ADAPTIVE, "rtol": x})
         else:
-            settings = dataclasses.replace(base, **{**ADAPTIVE, "rtol": 1e-6, "adaptive": False, "first_step": x,
+            settings = dataclasses.replace(base, **{**ADAPTIVE, "adaptive": False, "first_step": x,
                                                     "max_step": x, "min_step": min(x, 1e-8)})
         for frame in ("fixed axes", "turning", "turning, isotropic"):
             model = BearingModel(p32)
@@ -212,7 +212,7 @@ def main(argv: list[str] | None = None) -> None:
     q0, v0 = initial_coordinates(params, start)
     print("start-up window, 15 ms from the quasi-static start", flush=True)
     startup = compare(params, start, base, omega, q0, v0, 0.015, (1e-6, 3e-7, 1e-7), (1e-6, 2e-6))
-    pre, _ = bearing_window(params, start, dataclasses.replace(base, **ADAPTIVE, rtol=1e-6), 0.2005, 1e-3)
+    pre, _ = bearing_window(params, start, dataclasses.replace(base, **ADAPTIVE), 0.2005, 1e-3)
     i = int(np.argmin(np.abs(pre.t - 0.2)))
     print(f"settled motion, 10 ms from t = {pre.t[i]:.4f} s (the scene default's state there)", flush=True)
     settled = compare(params, start, base, omega, pre.q[i].copy(), pre.v[i].copy(), 0.01, (1e-6, 3e-7))

@@ -37,6 +37,7 @@ err_console = make_console(stderr=True)
 
 EXIT_SCENE, EXIT_UNAVAILABLE, EXIT_FAILED, EXIT_INTERRUPTED = 2, 3, 1, 130
 
+
 def _literal(text: str) -> str:
     """Help text shown as written: typer renders help as rich markup, which swallows units and
     defaults in square brackets ("[s]", "[default: ...]")."""

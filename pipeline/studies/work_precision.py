@@ -49,6 +49,10 @@ class Method:
     ivp: dict | None = None      # {"method", "rtol", "atol"} for solve_ivp
 
 
+# the scene default's error control: each coordinate on its physical scale (M.99b), max norm
+ADAPTIVE_DEFAULT = {"rtol": 1e-6, "atol": 1e-15, "max_step": 1e-4, "first_step": 1e-6, "min_step": 1e-9}
+
+
 def method_grid(quick: bool) -> list[Method]:
     """The methods and tolerances of the study (`quick`: CI-sized subset)."""
     steps = (4e-6, 2e-6, 1e-6) if quick else (4e-6, 2e-6, 1e-6, 5e-7)
@@ -56,8 +60,7 @@ def method_grid(quick: bool) -> list[Method]:
     # and a speed-up is only read inside HHT-alpha's curve (no extrapolation)
     rtols = (3e-6, 1e-6) if quick else (1e-5, 3e-6, 1e-6, 3e-7, 1e-7, 3e-8, 1e-8)
     short = (1e-5, 1e-6)
-    # the scene default's error control: each coordinate on its physical scale (M.99b), max norm
-    adaptive = {"rtol": 1e-6, "atol": 1e-15, "max_step": 1e-4, "first_step": 1e-6, "min_step": 1e-9}
+    adaptive = ADAPTIVE_DEFAULT
     # fixed steps with the Newton rules of the previous default (start from a_n, correction test,
     # refactor at a step ratio of 1.5; h = 2e-6 s was that default). rtol only sets Newton's
     # tolerance here: 1e-2 of the physical scales stops it at 1e-4 of them (0.6 nm on a ball
@@ -236,7 +239,7 @@ def speedup_at_equal_error(rows: list[dict], quantity: str = "cage_centre", curv
     return out
 
 
-DEFAULT_SETTING = "rtol = 1e-06"  # the scene default's row of DEFAULT_CURVE
+DEFAULT_SETTING = f"rtol = {ADAPTIVE_DEFAULT['rtol']:g}"  # the scene default's row of DEFAULT_CURVE
 
 
 def scipy_at_default_error(rows: list[dict], quantity: str = "cage_centre", curve: str = DEFAULT_CURVE,

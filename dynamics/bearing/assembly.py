@@ -115,12 +115,12 @@ def _ball_forces(q, v, model, bodies, scratch, rows, pocket_rows, g, diag, loads
         d = N_DG + DB * k
         for j in range(2):
             res = rows[2 * k + j]
-            if j == 1:
-                hit = race_contact(ball, bodies.outer, True, fp, ip, races.outer, model.traction, scratch,
-                                   res, want_tangent)
-            else:
-                hit = race_contact(ball, bodies.inner, False, fp, ip, races.inner, model.traction, scratch,
-                                   res, want_tangent)
+            # one call site with a run-time is_outer: two call sites with the constants True and
+            # False made numba compile race_contact and its film and geometry twice (see
+            # `_ball_tangents`)
+            is_outer = j == 1
+            hit = race_contact(ball, bodies.outer if is_outer else bodies.inner, is_outer, fp, ip,
+                               races.outer if is_outer else races.inner, model.traction, scratch, res, want_tangent)
             diag[d + DB_AI + j] = res[RC_ALPHA]
             if not hit:
                 continue
@@ -147,7 +147,14 @@ def _ball_forces(q, v, model, bodies, scratch, rows, pocket_rows, g, diag, loads
             diag[DG_P_DISS] += pres[P_OUT_FRICTION_POWER] + pres[P_OUT_DFN_DRATE] * pres[P_OUT_APPROACH] ** 2
 
 
-@numba.njit(cache=True)
+# The tangent kernels and `_border` are inlined into `evaluate_bearing` in numba's IR
+# (inline="always": one caller each, the same compiler flags). Compiled as functions of their
+# own, each was a library with its callees linked in, optimised and emitted again by LLVM in
+# every caller up the chain. With the literal specialisations below gone as well,
+# evaluate_bearing compiles in 47-49 s instead of 68-70 s (`python -m benchmarks.cold_start`,
+# 2026-11-24, README). `_ball_forces`, the residual's hot loop, keeps
+# its own flags (NO_REFCOUNT) and is not inlined.
+@numba.njit(cache=True, inline="always")
 def _ball_tangents(v, model, bodies, rows, pocket_rows, q, K, C):
     """Newton blocks of every ball's contacts, from the rows `_ball_forces` left."""
     inner, outer = bodies.inner, bodies.outer
@@ -156,15 +163,18 @@ def _ball_tangents(v, model, bodies, rows, pocket_rows, q, K, C):
     for k in range(model.ip[IP_Z]):
         b = BALL_DOF * k
         w_b = v[b + 3:b + 6]
-        if rows[2 * k, RC_ACTIVE] > 0.0:
-            _race_term(k, INNER_BORDER, rows[2 * k], inner, Om_i, w_b, D, K, C)
-        if rows[2 * k + 1, RC_ACTIVE] > 0.0:
-            _race_term(k, -1, rows[2 * k + 1], outer, Om_i, w_b, D, K, C)
+        for j in range(2):
+            # the border offset is a run-time value: numba compiles a function once per literal
+            # argument, and the constants INNER_BORDER and -1 at two call sites compiled
+            # _race_term and the four coupling kernels under it twice (cold start, README)
+            off = INNER_BORDER if j == 0 else -1
+            if rows[2 * k + j, RC_ACTIVE] > 0.0:
+                _race_term(k, off, rows[2 * k + j], inner if j == 0 else outer, Om_i, w_b, D, K, C)
         if model.ip[IP_CAGE] and pocket_rows[k, P_OUT_IN_CONTACT] > 0.0:
             pocket_tangent(k, q[b:b + 3], bodies.cage, model.cage.pocket, pocket_rows[k], K, C)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _race_term(k, off, res, race, Om_r, w_b, D, K, C):
     """Tangents of one ball–race contact (off < 0: fixed race). race: `bundles.Body`;
     Om_r: its material angular velocity (used only when it moves)."""
@@ -190,7 +200,7 @@ def _race_term(k, off, res, race, Om_r, w_b, D, K, C):
         _race_spin_coupling(k, off, res, Jt, SA, SB, race.R, Om_r, K)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _kinematic_coupling(k, off, res, Jt, SA, SB, w_b, w_r, D, K):
     """Slip depends on positions (dry and lubricated alike): with p = x_b - (D/2) n,
         d(slip)/dx_b = -w_r~ - (D/2) (w_b - w_r)~ N,   d(w_s)/dx_b = (w_b - w_r)^T N,
@@ -214,7 +224,7 @@ def _kinematic_coupling(k, off, res, Jt, SA, SB, w_b, w_r, D, K):
     K.B[off:off + 6, off:off + 3] += SB.T @ JM
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _race_spin_coupling(k, off, res, Jt, SA, SB, R_r, Om_r, K):
     """Tilting a spinning race turns its angular velocity, w_r = R Omega: a material rotation
     dTheta gives dw_r = -R Omega~ dTheta, so the slip at the contact changes by
@@ -232,7 +242,7 @@ def _race_spin_coupling(k, off, res, Jt, SA, SB, R_r, Om_r, K):
     K.B[off:off + 6, off + 3:off + 6] -= SB.T @ JM
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _load_coupling(k, off, res, GB, R_r, K):
     """Traction scales with the normal load: d(wrench)/d(delta) = slope x wrench, with
     d delta/dx_b = -n and d delta/dW_race = n^T G_B (the race point map)."""
@@ -258,7 +268,7 @@ def _load_coupling(k, off, res, GB, R_r, K):
             K.F[k, off + i, j] += slope * wr[i] * n[j]
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _border(t, v, model, bodies, loads, ma, g, diag, Kb, Cb, want_tangent):
     """Inner race (loads M.53, hinge M.54, gyroscopic, spin M.52) and cage (journal §8,
     gyroscopic); Kb, Cb: the border blocks of the tangents. Returns the drive moment."""

@@ -46,7 +46,7 @@ def pocket_forces(ball, cage, psi, v0, pp, pres, g, b, F_cage, M_cage):
         M_cage[i] += pres[P_OUT_MOMENT_CAGE + i]
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def pocket_tangent(k, x_b, cage, pp, pres, K, C):
     """Tangent blocks of ball k's pocket contact (result row `pres` of `pocket_forces`) into
     K and C (`linear_solvers.Blocks`); x_b: the ball centre, cage: `bundles.Body`. Kept
@@ -64,12 +64,13 @@ def pocket_tangent(k, x_b, cage, pp, pres, K, C):
     GA0 = np.zeros((3, 6))
     for i in range(3):
         GA0[i, i] = 1.0
-    add_pair(k, CAGE_BORDER, pres[P_OUT_DFN_DDELTA] * nn, GA0, GB, K)
+    off = np.int64(CAGE_BORDER)  # typed int64, not Literal[int]: the overload _race_term uses (cold start)
+    add_pair(k, off, pres[P_OUT_DFN_DDELTA] * nn, GA0, GB, K)
     # normal damping and regularised friction act on the relative velocity at p
     mu, v_reg = pp[P_MU], pp[P_V_REG]
     c_f = mu * pres[P_OUT_FN] / max(pres[P_OUT_SLIDING_SPEED], v_reg)
     Jv = pres[P_OUT_DFN_DRATE] * nn + c_f * (I3 - nn)
-    add_pair(k, CAGE_BORDER, Jv, GA, GB, C)
+    add_pair(k, off, Jv, GA, GB, C)
 
 
 @numba.njit(cache=True)

@@ -230,7 +230,12 @@ def _norm(ls, co, x, y, coef, q_a, q_b):
     return scaled_difference_norm(x, y, coef, q_a, q_b, co.weights, co.scales, ls.atol, ls.rtol, ls.use_max)
 
 
-@numba.njit
+# The loop's helpers below are inlined into `hht_chunk` in numba's IR (inline="always"). As
+# functions of their own, numba compiled each into a library with its callees linked in, and
+# LLVM optimised and emitted that code again at every level of the chain bearing_chunk ->
+# _attempt -> _newton -> _factor: bearing_chunk compiled in 19.4 s, 13.1 s inlined
+# (`python -m benchmarks.cold_start`, 2026-11-24, README). The steps taken are the same.
+@numba.njit(inline="always")
 def _factor(kernel, data, ls, co, w, t1, q, v, a, h):
     """Rebuild S = M + (1 - alpha)(gamma h C_t + beta h^2 K_t) at (t1, q, v, a) and factor it."""
     call_kernel(kernel, (t1, q, v, a, data, _bool(True), w.ma_t, w.g_t, w.diag, w.K, w.C))
@@ -246,7 +251,7 @@ def _factor(kernel, data, ls, co, w, t1, q, v, a, h):
     return ok
 
 
-@numba.njit
+@numba.njit(inline="always")
 def _newton(kernel, data, ls, co, w, t1, h, y, y1, fresh):
     """Newton on a_{n+1} (as `HHTStepper._newton`); returns _OK or a failure index."""
     q, v, a, g = y[0], y[1], y[2], y[3]
@@ -284,7 +289,7 @@ def _newton(kernel, data, ls, co, w, t1, h, y, y1, fresh):
     return _MAX_ITER
 
 
-@numba.njit
+@numba.njit(inline="always")
 def _attempt(kernel, data, ls, co, w, t, h, y, y1):
     """One attempted step (as `HHTStepper.step`): (error norm, _OK or a failure index)."""
     t1 = t + h
@@ -304,7 +309,7 @@ def _attempt(kernel, data, ls, co, w, t, h, y, y1):
     return _norm(ls, co, y1[2], y[2], (ls.beta - 1.0 / 6.0) * h * h, y[0], y1[0]), _OK
 
 
-@numba.njit
+@numba.njit(inline="always")
 def _hermite_samples(w, out, t_n, h, y, y1, co):
     """Hermite samples in (t_n, t_n + h] of an accepted step (y -> y1)."""
     c = w.counters
@@ -314,7 +319,7 @@ def _hermite_samples(w, out, t_n, h, y, y1, co):
                                     smp, c[N_SAMPLES])
 
 
-@numba.njit
+@numba.njit(inline="always")
 def _record(ls, w, out, t, y):
     """Step-end record (t, q, v, diag) and step log after an accepted step ending at t."""
     c = w.counters

@@ -152,8 +152,8 @@ def _ball_forces(q, v, model, bodies, scratch, rows, pocket_rows, g, diag, loads
 # own, each was a library with its callees linked in, optimised and emitted again by LLVM in
 # every caller up the chain. With the literal specialisations below gone as well,
 # evaluate_bearing compiles in 47-49 s instead of 68-70 s (`python -m benchmarks.cold_start`,
-# 2026-11-24, README). `_ball_forces`, the residual's hot loop, keeps
-# its own flags (NO_REFCOUNT) and is not inlined.
+# 2026-11-24, README). `_ball_forces`, the residual's hot loop, keeps its own flags
+# (NO_REFCOUNT) and is not inlined.
 @numba.njit(cache=True, inline="always")
 def _ball_tangents(v, model, bodies, rows, pocket_rows, q, K, C):
     """Newton blocks of every ball's contacts, from the rows `_ball_forces` left."""

@@ -52,10 +52,8 @@ def main() -> None:
     radau.solve_collocation_system = _counted_solve  # count the iterations of every collocation solve
     scene = load_scene("helicopter-b-given-hinge")
     params, start = build_model(scene)
-    previous = {"adaptive": False, "first_step": 2e-6, "max_step": 2e-6, "min_step": 1e-8, "predictor": "constant",
-                "newton_test": "correction", "refactor_step_ratio": 1.5, "rtol": 1e-2, "newton_tol": 1e-2}
     ivp = {"method": "Radau", "rtol": 1e-3, "atol": 1e-8, "sparse": True}
-    methods = [wp.Method("HHT a=0.1 fixed h (previous default: the bar)", "h = 2e-06 s", previous),
+    methods = [wp.fixed_step_method(wp.PREVIOUS_DEFAULT_STEP, "HHT a=0.1 fixed h (previous default: the bar)"),
                wp.Method("HHT a=0.1 adaptive", "rtol = 1e-06", {**wp.ADAPTIVE_DEFAULT, "rtol": 1e-6}),
                *(wp.Method("HHT a=0.1 adaptive", f"rtol = {r:g}", {**wp.ADAPTIVE_DEFAULT, "rtol": r})
                  for r in (1.3e-6, 1.5e-6, 2e-6)),

@@ -58,6 +58,22 @@ class Method:
 ADAPTIVE_DEFAULT = {"adaptive": True, "rtol": HHTSettings().rtol}
 
 
+# fixed steps with the Newton rules of the previous default (start from a_n, correction test,
+# refactor at a step ratio of 1.5; h = 2e-6 s was that default, and its errors are the accuracy bar).
+# rtol only sets Newton's tolerance here: 1e-2 of the physical scales stops it at 1e-4 of them
+# (0.6 nm on a ball radially), about where the previous |q|-relative test stopped; at the adaptive
+# default's 1e-6 Newton chases round-off at the cage's landing (~8.5 ms) and a fixed step cannot retreat
+PREVIOUS_NEWTON = {"predictor": "constant", "newton_test": "correction", "refactor_step_ratio": 1.5,
+                   "rtol": 1e-2, "newton_tol": 1e-2}
+PREVIOUS_DEFAULT_STEP = 2e-6  # [s]
+
+
+def fixed_step_method(h: float, curve: str = "HHT a=0.1 fixed h") -> Method:
+    """Fixed steps of h [s] with the previous default's Newton rules (PREVIOUS_NEWTON)."""
+    return Method(curve, f"h = {h:g} s",
+                  {"adaptive": False, "first_step": h, "max_step": h, "min_step": min(h, 1e-8), **PREVIOUS_NEWTON})
+
+
 def method_grid(quick: bool) -> list[Method]:
     """The methods and tolerances of the study (`quick`: CI-sized subset)."""
     steps = (4e-6, 2e-6, 1e-6) if quick else (4e-6, 2e-6, 1e-6, 5e-7)
@@ -66,16 +82,7 @@ def method_grid(quick: bool) -> list[Method]:
     rtols = (3e-6, 1e-6) if quick else (1e-5, 3e-6, 1e-6, 3e-7, 1e-7, 3e-8, 1e-8)
     short = (1e-5, 1e-6)
     adaptive = ADAPTIVE_DEFAULT
-    # fixed steps with the Newton rules of the previous default (start from a_n, correction test,
-    # refactor at a step ratio of 1.5; h = 2e-6 s was that default). rtol only sets Newton's
-    # tolerance here: 1e-2 of the physical scales stops it at 1e-4 of them (0.6 nm on a ball
-    # radially), about where the previous |q|-relative test stopped; at the adaptive default's
-    # 1e-6 Newton chases round-off at the cage's landing (~8.5 ms) and a fixed step cannot retreat
-    previous_newton = {"predictor": "constant", "newton_test": "correction", "refactor_step_ratio": 1.5,
-                       "rtol": 1e-2, "newton_tol": 1e-2}
-    grid = [Method("HHT a=0.1 fixed h", f"h = {h:g} s",
-                   {"adaptive": False, "first_step": h, "max_step": h, "min_step": min(h, 1e-8), **previous_newton})
-            for h in steps]
+    grid = [fixed_step_method(h) for h in steps]
     grid += [Method("HHT a=0.1 adaptive", f"rtol = {r:g}", {**adaptive, "rtol": r}) for r in rtols]
     if not quick:
         for alpha in (0.0, 0.3):

@@ -267,7 +267,12 @@ def test_batch_equals_single_calls(o156, fast):
     F, J, flags = fast.evaluate_batch(*points.T)
     for i, p in enumerate(points):
         f, j, flag = fast.evaluate(*p)
-        assert np.array_equal(F[i], f) and np.array_equal(J[i], j) and flags[i] == flag
+        # the batch loop inlines traction_fast and compiles it anew; with fastmath ('reassoc',
+        # 'contract') LLVM may fuse or reorder differently per CPU, so bitwise equality holds on
+        # some machines and not others (a CI host differed in the last bit of J): rounding only
+        assert flags[i] == flag
+        assert np.allclose(F[i], f, rtol=1e-12, atol=1e-13 * np.abs(f).max())
+        assert np.allclose(J[i], j, rtol=1e-12, atol=1e-13 * np.abs(j).max())
 
 
 def test_flags_and_never_nan(fast):

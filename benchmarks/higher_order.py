@@ -20,9 +20,8 @@ its residuals per step times its step count reach HHT-α's residuals at the bar.
 
 from __future__ import annotations
 
-import os
-
 import collections
+import os
 import warnings
 
 import numpy as np
@@ -36,12 +35,17 @@ _solve_bdf = bdf.solve_bdf_system
 NLSCOEF = 0.1  # CVODE's default nonlinear convergence coefficient (CVodeSetNonlinConvCoef)
 
 
-def _counted_solve(*args, **kwargs):
-    converged, n_iter, Z, rate = _solve_collocation(*args, **kwargs)
-    COUNT["solves"] += 1
-    COUNT["iterations"] += n_iter
-    COUNT["diverged"] += not converged
-    return converged, n_iter, Z, rate
+def _counted(solve):
+    """A scipy Newton solve (returning (converged, n_iter, ...)) that adds to COUNT."""
+
+    def counted(*args, **kwargs):
+        out = solve(*args, **kwargs)
+        COUNT["solves"] += 1
+        COUNT["iterations"] += out[1]
+        COUNT["diverged"] += not out[0]
+        return out
+
+    return counted
 
 
 def _carried_rate_solve(fun, t_new, y_predict, c, psi, LU, solve_lu, scale, tol):
@@ -52,9 +56,9 @@ def _carried_rate_solve(fun, t_new, y_predict, c, psi, LU, solve_lu, scale, tol)
     from the contraction theta measured in the step, and at the first iteration the last solve's eta
     carried over as max(eta_old, eps)^0.8 (Hairer & Wanner, Solving ODE II, §IV.8): one iteration
     can then suffice, as it does for HHT-α."""
-    state = CarriedRateBDF.state
-    eta = max(state["eta"], np.finfo(float).eps) ** 0.8
-    tol_newton = NLSCOEF / state["error_const"]
+    solver = CarriedRateBDF.stepping
+    eta = max(solver.newton_eta, np.finfo(float).eps) ** 0.8
+    tol_newton = NLSCOEF / solver.error_const[solver.order]
     d, y, dy_norm_old = 0, y_predict.copy(), None
     for k in range(bdf.NEWTON_MAXITER):
         f = fun(t_new, y)
@@ -70,19 +74,15 @@ def _carried_rate_solve(fun, t_new, y_predict, c, psi, LU, solve_lu, scale, tol)
         y += dy
         d += dy
         if dy_norm == 0 or eta * dy_norm < tol_newton:
-            state["eta"] = eta
+            solver.newton_eta = eta
             return True, k + 1, y, d
         dy_norm_old = dy_norm
     return False, bdf.NEWTON_MAXITER, y, d
 
 
-def _counted_bdf_solve(*args, **kwargs):
-    solve = _carried_rate_solve if CarriedRateBDF.state["active"] else _solve_bdf
-    converged, n_iter, y, d = solve(*args, **kwargs)
-    COUNT["solves"] += 1
-    COUNT["iterations"] += n_iter
-    COUNT["diverged"] += not converged
-    return converged, n_iter, y, d
+def _bdf_solve(*args, **kwargs):
+    """scipy's Newton for a BDF step, or `_carried_rate_solve` while a `CarriedRateBDF` steps."""
+    return (_carried_rate_solve if CarriedRateBDF.stepping else _solve_bdf)(*args, **kwargs)
 
 
 class CountedBDF(integrate.BDF):
@@ -97,14 +97,18 @@ class CountedBDF(integrate.BDF):
 class CarriedRateBDF(CountedBDF):
     """scipy's BDF with `_carried_rate_solve` as its Newton stopping rule."""
 
-    state = {"active": False, "eta": 1.0, "error_const": 1.0}
+    stepping = None  # the instance inside its _step_impl: scipy calls its module's Newton function
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self.newton_eta = 1.0  # the last converged solve's eta (its first step has none)
 
     def _step_impl(self):
-        self.state.update(active=True, error_const=self.error_const[self.order])
+        CarriedRateBDF.stepping = self
         try:
             return super()._step_impl()
         finally:
-            self.state["active"] = False
+            CarriedRateBDF.stepping = None
 
 
 class FreshJacobianRadau(integrate.Radau):
@@ -126,8 +130,8 @@ def main() -> None:
     # differences vanish (coordinates no force depends on, such as a ball's rotation angles) until it
     # overflows; those columns stay zero, so the overflow warnings say nothing about the comparison
     warnings.filterwarnings("ignore", category=RuntimeWarning, module="scipy.integrate._ivp.common")
-    radau.solve_collocation_system = _counted_solve  # count the iterations of every collocation solve
-    bdf.solve_bdf_system = _counted_bdf_solve
+    radau.solve_collocation_system = _counted(_solve_collocation)  # count every Newton solve's iterations
+    bdf.solve_bdf_system = _counted(_bdf_solve)
     scene = load_scene("helicopter-b-given-hinge")
     params, start = build_model(scene)
     ivp = {"method": "Radau", "rtol": 1e-3, "atol": 1e-8, "sparse": True}

@@ -14,7 +14,6 @@ default, fixed 2e-6 s steps).
 
 from __future__ import annotations
 
-import dataclasses
 import os
 import sys
 
@@ -25,10 +24,10 @@ def main(argv=None) -> None:
     configure_numba_cache()
 
     from bearingsim.dynamics.bearing import layout, model as bearing_model
+    from bearingsim.dynamics.bearing.run import initial_coordinates
     from bearingsim.pipeline.scene import load_scene
     from bearingsim.pipeline.stages.simulate import build_model
     from bearingsim.pipeline.studies import work_precision as wp, wp_metrics as wm
-    from bearingsim.pipeline.studies.instrumented import bearing_window
 
     args = sys.argv[1:] if argv is None else argv
     specs = [(float(f), float(r)) for f, r in (a.split(":") for a in args or ["3:1e-6", "10:1e-6", "30:1e-6", "10:5e-7"])]
@@ -46,16 +45,9 @@ def main(argv=None) -> None:
     scene = load_scene("helicopter-b-given-hinge")
     params, start = build_model(scene)
     cfg = wp.StudyConfig(0.015, 5e-6, 1e-7, 1e4)
-    h = cfg.reference_step
-    ref_settings = dataclasses.replace(scene.solver, adaptive=False, first_step=h, max_step=h,
-                                       min_step=min(h, scene.solver.min_step))
-    ref_run, _ = bearing_window(params, start, ref_settings, cfg.window, cfg.sample_interval, float32_residual=False)
-    ref = wm.reference_data(params, ref_run.t, ref_run.q, ref_run.v)
-    probe = bearing_model.BearingModel(params.with_float32_residual())
-    from bearingsim.dynamics.bearing.run import initial_coordinates
-
+    _, ref = wp.reference_run(params, start, scene.solver, cfg)
     q0, v0 = initial_coordinates(params, start)
-    L = physical_scales(probe, 0.0, q0, v0)
+    L = physical_scales(bearing_model.BearingModel(params.with_float32_residual()), 0.0, q0, v0)
     i = layout.inner_offset(params.ball_count)
     print(f"{scene.name}: error scales [um] inner race (x, y, z) {', '.join(f'{1e6 * x:.2f}' for x in L[i:i + 3])}; "
           f"ball 0 (x, y, z) {', '.join(f'{1e6 * x:.2f}' for x in L[:3])}")

@@ -193,25 +193,32 @@ def _run_solve_ivp(opts: dict, params, start, cfg: StudyConfig) -> dict:
             "steps": steps, "newton_iterations": solver.nfev, "factorizations": solver.nlu, "rejected": None}
 
 
-def run_study(params, start, base_settings, quick: bool, progress=print,
-              methods: list[Method] | None = None, cfg: StudyConfig | None = None) -> dict:
-    """Reference run, then every method; returns {"config", "reference", "rows", "load"}."""
+def reference_run(params, start, base_settings, cfg: StudyConfig):
+    """The study's reference: HHT-α at fixed steps of `cfg.reference_step` over the window.
+    Returns (the run, `wp_metrics.reference_data` of it); raises if the run failed."""
     from .instrumented import bearing_window
 
-    cfg = cfg or StudyConfig.for_mode(quick)
-    methods = method_grid(quick) if methods is None else methods
     h = cfg.reference_step
     ref_settings = dataclasses.replace(base_settings, adaptive=False, first_step=h, max_step=h,
                                        min_step=min(h, base_settings.min_step))
     bearing_window(params, start, ref_settings, 4 * h, 2 * h)  # numba compile / cache load
-    progress(f"reference: HHT alpha {ref_settings.alpha}, fixed h = {h:g} s over {cfg.window * 1e3:g} ms")
     # the reference keeps the float64 residual (scipy's model); the HHT-alpha rows run the float32
     # traction passes of a user's run, so their errors include what those passes cost
     ref_run, _ = bearing_window(params, start, ref_settings, cfg.window, cfg.sample_interval,
                                 float32_residual=False)
     if not ref_run.completed:
         raise RuntimeError(f"the reference run failed, so no error can be measured: {ref_run.error}")
-    ref = wm.reference_data(params, ref_run.t, ref_run.q, ref_run.v)
+    return ref_run, wm.reference_data(params, ref_run.t, ref_run.q, ref_run.v)
+
+
+def run_study(params, start, base_settings, quick: bool, progress=print,
+              methods: list[Method] | None = None, cfg: StudyConfig | None = None) -> dict:
+    """Reference run, then every method; returns {"config", "reference", "rows", "load"}."""
+    cfg = cfg or StudyConfig.for_mode(quick)
+    methods = method_grid(quick) if methods is None else methods
+    progress(f"reference: HHT alpha {base_settings.alpha}, fixed h = {cfg.reference_step:g} s "
+             f"over {cfg.window * 1e3:g} ms")
+    ref_run, ref = reference_run(params, start, base_settings, cfg)
     rows = []
     for m in methods:
         progress(f"{m.curve}: {m.setting}")
@@ -226,7 +233,7 @@ def run_study(params, start, base_settings, quick: bool, progress=print,
     # the cleanest measure of the order
     order = wm.observed_order([float(r["setting"].split()[2]) for r in fixed], [r["inner_race"] for r in fixed])
     return {"config": dataclasses.asdict(cfg), "reference": {"wall": ref_run.wall, "impacts": int(ref["impacts"].shape[0]),
-            "steps": ref_run.stats.get("steps"), "alpha": ref_settings.alpha},
+            "steps": ref_run.stats.get("steps"), "alpha": base_settings.alpha},
             "rows": rows, "observed_order_fixed_h": order, "load_average": os.getloadavg()[0]}
 
 

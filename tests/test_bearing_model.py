@@ -213,7 +213,8 @@ def test_kernels_without_reference_counting_neither_leak_nor_drop_references(lub
     P = params
     watched = [q, v, a, ma, g, P.fp, P.ip, *P.races, P.traction.eta_table, P.traction.rule, P.traction.work,
                P.traction.iwork, P.pocket, P.journal, P.pocket_psi, *P.hinge, model.mass, model.impact_speeds,
-               model.diag, model.K.D, model.K.B, model.C.E]
+               model.diag, model.K.D, model.K.B, model.C.E, model.arrays.cage.cos_psi, model.arrays.work.rows,
+               model.arrays.work.pocket_rows, model.arrays.work.R_inner, model.arrays.work.outer.w]
     before = [sys.getrefcount(x) for x in watched]
     for _ in range(50):
         model.evaluate(0.0, q, v, a, ma, g)

@@ -17,16 +17,16 @@ import numpy as np
 
 from bearingsim.dynamics._kernel_options import NO_REFCOUNT
 from bearingsim.dynamics.contact.pocket import (
-    N_POCKET_OUT, P_OUT_APPROACH, P_OUT_DFN_DRATE, P_OUT_FRICTION_POWER, P_OUT_IN_CONTACT,
+    P_OUT_APPROACH, P_OUT_DFN_DRATE, P_OUT_FRICTION_POWER, P_OUT_IN_CONTACT,
 )
 from bearingsim.dynamics.journal.hybrid import N_JOURNAL_OUT
-from bearingsim.dynamics.multibody.crv import crv_to_matrix, skew
+from bearingsim.dynamics.multibody.crv import crv_to_matrix_into, skew
 from bearingsim.dynamics.multibody.hinge import add_hinge_force, hinge_energy, hinge_forces
 from bearingsim.dynamics.multibody.joints import prescribe_velocity_residual
 from bearingsim.dynamics.multibody.rigid_body import gyroscopic_moment, material_moment_of_spatial_moment
-from bearingsim.dynamics.multibody.small import mtv, mv
+from bearingsim.dynamics.multibody.small import mtv, mv, mv_into
 
-from .bundles import Ball, Bodies, Body, BorderLoads, ContactScratch
+from .bundles import Ball, Bodies, Body
 from .cage_forces import journal_diag, journal_forces, pocket_diag, pocket_forces, pocket_tangent
 from .channels import (
     DB, DB_AI, DB_HI, DB_PMI, DB_QI, DB_SRRI, DG_DRIVE, DG_FLAGS, DG_P_DISS, DG_P_DRIVE, DG_P_EXT,
@@ -38,7 +38,7 @@ from .params import (
     FP_MY_STEP, FP_OMEGA_I, FP_OMEGA_O, FP_T_LOAD_STEP, IP_CAGE, IP_GYRO, IP_HINGE, IP_JOURNAL, IP_Z,
 )
 from .race_forces import (
-    N_CONTACT_SCRATCH, N_RC, RC_ACTIVE, RC_ALPHA, RC_CN, RC_DN, RC_EX, RC_EY, RC_FB, RC_FILM, RC_FLAG,
+    RC_ACTIVE, RC_ALPHA, RC_CN, RC_DN, RC_EX, RC_EY, RC_FB, RC_FILM, RC_FLAG,
     RC_FR, RC_JT, RC_KP, RC_LOAD_SLOPE, RC_MB, RC_MR, RC_N, RC_PB, RC_PDISS, RC_PMAX, RC_PR, RC_Q,
     RC_SRR, RC_VHZ, RC_WTB, RC_WTR, race_contact,
 )
@@ -80,21 +80,33 @@ def evaluate_bearing(t, q, v, a, model, want_tangent, ma, g, diag, K, C):
             M.E[:] = 0.0
             M.F[:] = 0.0
             M.B[:] = 0.0
+    # the model's scratch (`bundles.ResidualWork`), not fresh arrays: ~16 allocations per call
+    # with their reference counts were ~5 % of a run's time (perf, 2026-11-24)
+    work = model.work
     o_i = BALL_DOF * Z
-    R_i = crv_to_matrix(q[o_i + 3:o_i + 6])
-    inner = Body(q[o_i:o_i + 3], R_i, v[o_i:o_i + 3], mv(R_i, v[o_i + 3:o_i + 6]))
-    outer = Body(np.zeros(3), np.eye(3), np.zeros(3), np.array([0.0, 0.0, fp[FP_OMEGA_O]]))
+    R_i = work.R_inner
+    crv_to_matrix_into(q[o_i + 3:o_i + 6], R_i)
+    mv_into(R_i, v[o_i + 3:o_i + 6], work.w_inner)
+    inner = Body(q[o_i:o_i + 3], R_i, v[o_i:o_i + 3], work.w_inner)
+    outer = work.outer
+    outer.w[2] = fp[FP_OMEGA_O]
     cage = inner  # a placeholder of the same type: read only when the bearing has a cage
     if ip[IP_CAGE]:
         o_c = o_i + RACE_DOF
-        R_c = crv_to_matrix(q[o_c + 3:o_c + 6])
-        cage = Body(q[o_c:o_c + 3], R_c, v[o_c:o_c + 3], mv(R_c, v[o_c + 3:o_c + 6]))
+        R_c = work.R_cage
+        crv_to_matrix_into(q[o_c + 3:o_c + 6], R_c)
+        mv_into(R_c, v[o_c + 3:o_c + 6], work.w_cage)
+        cage = Body(q[o_c:o_c + 3], R_c, v[o_c:o_c + 3], work.w_cage)
     bodies = Bodies(inner, outer, cage)
-    loads = BorderLoads(np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3))
-    rows = np.empty((2 * Z, N_RC))  # one row per ball-race contact: inner 2k, outer 2k + 1
-    pocket_rows = np.empty((Z, N_POCKET_OUT))
-    _ball_forces(q, v, model, bodies, ContactScratch(np.empty(N_CONTACT_SCRATCH), np.empty(12)),
-                 rows, pocket_rows, g, diag, loads, want_tangent)
+    loads = work.loads
+    for i in range(3):
+        loads.F_inner[i] = 0.0
+        loads.M_inner[i] = 0.0
+        loads.F_cage[i] = 0.0
+        loads.M_cage[i] = 0.0
+    rows = work.rows  # one row per ball-race contact: inner 2k, outer 2k + 1
+    pocket_rows = work.pocket_rows
+    _ball_forces(q, v, model, bodies, work.scratch, rows, pocket_rows, g, diag, loads, want_tangent)
     if want_tangent:
         _ball_tangents(v, model, bodies, rows, pocket_rows, q, K, C)
     return _border(t, v, model, bodies, loads, ma, g, diag, K.B, C.B, want_tangent)
@@ -140,7 +152,7 @@ def _ball_forces(q, v, model, bodies, scratch, rows, pocket_rows, g, diag, loads
                 diag[DG_FLAGS] += 1.0
         if ip[IP_CAGE]:
             pres = pocket_rows[k]
-            pocket_forces(ball, bodies.cage, cage.psi[k], cage.impact_speeds[k], cage.pocket, pres, g, b,
+            pocket_forces(ball, bodies.cage, cage.cos_psi[k], cage.sin_psi[k], cage.impact_speeds[k], cage.pocket, pres, g, b,
                           loads.F_cage, loads.M_cage)
             pocket_diag(pres, diag, d)
             # friction power + hysteresis-damping power (damping force = dF_n/d(delta_dot) delta_dot)

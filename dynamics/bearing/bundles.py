@@ -66,26 +66,16 @@ class HingeArrays(NamedTuple):
 
 class CageArrays(NamedTuple):
     """Ball–pocket parameters (contact/pocket.py P_*), cage–land parameters (journal/hybrid.py
-    J_*), pocket azimuths psi [rad] and the impact speeds v_0 [m/s] the hysteresis law
-    remembers per pocket (state of the model, updated after every accepted step)."""
+    J_*), pocket azimuths psi [rad], the impact speeds v_0 [m/s] the hysteresis law
+    remembers per pocket (state of the model, updated after every accepted step), and
+    cos psi, sin psi (`cage_arrays` computes them once)."""
 
     pocket: np.ndarray
     journal: np.ndarray
     psi: np.ndarray
     impact_speeds: np.ndarray
-
-
-class ModelArrays(NamedTuple):
-    """Everything the residual kernel reads besides the state: the float and integer
-    parameter vectors (params.FP_*, IP_*), the diagonal mass, and the bundles above."""
-
-    fp: np.ndarray
-    ip: np.ndarray
-    mass: np.ndarray
-    races: RaceTables
-    traction: TractionRule
-    cage: CageArrays
-    hinge: HingeArrays
+    cos_psi: np.ndarray
+    sin_psi: np.ndarray
 
 
 class BorderLoads(NamedTuple):
@@ -104,3 +94,37 @@ class ContactScratch(NamedTuple):
 
     contact: np.ndarray
     traction: np.ndarray
+
+
+class ResidualWork(NamedTuple):
+    """The residual kernel's scratch, allocated once per model instead of in every call:
+    contact rows (2Z, N_RC) and pocket rows (Z, N_POCKET_OUT), one contact's scratch, the
+    border load sums, the outer race (fixed: x = 0, R = I, v = 0, w = (0, 0, omega_o)), and
+    the rotation (3x3) and spatial angular velocity (3) of the inner race and the cage. Like
+    the traction rule's workspace it belongs to one model: one evaluation at a time."""
+
+    rows: np.ndarray
+    pocket_rows: np.ndarray
+    scratch: ContactScratch
+    loads: BorderLoads
+    outer: Body
+    R_inner: np.ndarray
+    w_inner: np.ndarray
+    R_cage: np.ndarray
+    w_cage: np.ndarray
+
+
+class ModelArrays(NamedTuple):
+    """Everything the residual kernel reads besides the state: the float and integer
+    parameter vectors (params.FP_*, IP_*), the diagonal mass, the bundles above and the
+    residual's scratch (`ResidualWork`)."""
+
+    fp: np.ndarray
+    ip: np.ndarray
+    mass: np.ndarray
+    races: RaceTables
+    traction: TractionRule
+    cage: CageArrays
+    hinge: HingeArrays
+    work: ResidualWork
+

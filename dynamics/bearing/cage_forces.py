@@ -29,14 +29,14 @@ from .tangents import add_pair, point_map
 
 
 @numba.njit(**NO_REFCOUNT)
-def pocket_forces(ball, cage, psi, v0, pp, pres, g, b, F_cage, M_cage):
+def pocket_forces(ball, cage, cos_psi, sin_psi, v0, pp, pres, g, b, F_cage, M_cage):
     """Ball in its pocket (docs/model.md §7): ball and cage are `bundles.Ball` and
-    `bundles.Body`, psi [rad] the pocket azimuth, v0 [m/s] its remembered impact speed, pp
+    `bundles.Body`, (cos_psi, sin_psi) of the pocket azimuth psi, v0 [m/s] its remembered impact speed, pp
     the pocket parameters. The contact row goes into pres and, in contact
     (pres[P_OUT_IN_CONTACT] > 0; then `pocket_tangent` gives its Newton blocks), the ball's
     wrench is added to g[b:b+6] and the cage's (spatial, about its centre) to F_cage, M_cage."""
     pres[:] = 0.0
-    _pocket_contact_into(pres, ball.x, ball.v, ball.w, cage.x, cage.R, cage.v, cage.w, psi, v0, pp)
+    _pocket_contact_into(pres, ball.x, ball.v, ball.w, cage.x, cage.R, cage.v, cage.w, cos_psi, sin_psi, v0, pp)
     if pres[P_OUT_IN_CONTACT] <= 0.0:
         return
     for i in range(3):

@@ -7,20 +7,23 @@ and integrates the energy balance from the diagnostics of the converged state.
 
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 import numba
 import numpy as np
 
-from bearingsim.dynamics.contact.pocket import P_BALL_RADIUS, P_POCKET_RADIUS
+from bearingsim.dynamics._kernel_options import NO_REFCOUNT
+from bearingsim.dynamics.contact.pocket import N_POCKET_OUT, P_BALL_RADIUS, P_POCKET_RADIUS
 from bearingsim.dynamics.multibody.compiled import CompiledProblem, hht_chunk, kernel_address
 from bearingsim.dynamics.multibody.joints import prescribe_velocity_blocks
 from bearingsim.dynamics.multibody.linear_solvers import BlockArrowMatrix, assemble_iteration_blocks
 
 from . import channels, layout
 from .assembly import evaluate_bearing, mass_diagonal
-from .params import IP_CAGE, IP_Z
-from .bundles import CageArrays, ModelArrays
+from .params import FP_OMEGA_O, IP_CAGE, IP_Z
+from .bundles import Body, BorderLoads, CageArrays, ContactScratch, ModelArrays, ResidualWork
+from .race_forces import N_CONTACT_SCRATCH, N_RC
 from .channels import (
     DB, DB_POCKET, DB_POCKET_APPROACH, DB_POCKET_IN_CONTACT, DB_POCKET_ORBITAL, DG_P_DISS, DG_P_DRIVE,
     DG_P_EXT, N_DG, diag_size,
@@ -90,7 +93,8 @@ def log_step(t, diag, Z, has_cage, impact_speeds, log):
         n = track_impacts(t, diag, Z, log.impact_state, log.step_events, impact_speeds)
         for i in range(n):
             if log.step_events[i, 3] >= log.threshold[0]:
-                log.events[log.count[0], :] = log.step_events[i]
+                for j in range(log.events.shape[1]):  # element-wise: a row copy may allocate (no NRT here)
+                    log.events[log.count[0], j] = log.step_events[i, j]
                 log.count[0] += 1
     powers = (diag[DG_P_DRIVE], diag[DG_P_EXT], diag[DG_P_DISS])
     if log.last[4] > 0.0:
@@ -104,11 +108,28 @@ def log_step(t, diag, Z, has_cage, impact_speeds, log):
     return log.count[0] > log.events.shape[0] - Z
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def bearing_chunk(kernel, model, log, settings, coords, work, out, max_steps):
     """`multibody.compiled.hht_chunk` with the bearing's accepted-step hook and its force kernel
     at address `kernel` (a module-level wrapper, so that numba caches it)."""
     return hht_chunk(kernel, accepted_step, model, log, settings, coords, work, out, max_steps)
+
+
+def cage_arrays(pocket, journal, psi, impact_speeds) -> CageArrays:
+    """`bundles.CageArrays` with the cosines and sines of the pocket azimuths (math.cos and
+    math.sin: the same libm the kernels would call, so the same bits)."""
+    return CageArrays(pocket, journal, psi, impact_speeds, np.array([math.cos(p) for p in psi]),
+                      np.array([math.sin(p) for p in psi]))
+
+
+def residual_work(Z: int, omega_outer: float) -> ResidualWork:
+    """Fresh scratch of the residual kernel for a bearing of Z balls (`bundles.ResidualWork`)."""
+    return ResidualWork(
+        rows=np.zeros((2 * Z, N_RC)), pocket_rows=np.zeros((Z, N_POCKET_OUT)),
+        scratch=ContactScratch(np.zeros(N_CONTACT_SCRATCH), np.zeros(12)),
+        loads=BorderLoads(np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3)),
+        outer=Body(np.zeros(3), np.eye(3), np.zeros(3), np.array([0.0, 0.0, omega_outer])),
+        R_inner=np.zeros((3, 3)), w_inner=np.zeros(3), R_cage=np.zeros((3, 3)), w_cage=np.zeros(3))
 
 
 class _Kernel:
@@ -168,7 +189,8 @@ class BearingModel:
         self.impact_speeds = np.zeros(Z)
         self.arrays = ModelArrays(
             fp=P.fp, ip=P.ip, mass=self.mass, races=P.races, traction=P.traction,
-            cage=CageArrays(P.pocket, P.journal, P.pocket_psi, self.impact_speeds), hinge=P.hinge)
+            cage=cage_arrays(P.pocket, P.journal, P.pocket_psi, self.impact_speeds), hinge=P.hinge,
+            work=residual_work(Z, P.fp[FP_OMEGA_O]))
         self._blocks = (self.K.blocks(), self.C.blocks())
         self._kernel_call = _Kernel(self.n_dof)
         self.impact_threshold = impact_force_threshold

@@ -120,15 +120,17 @@ def pocket_contact(x_ball, v_ball, w_ball, x_cage, rot_cage, v_cage, w_cage, psi
     Returns out (N_POCKET_OUT,), layout P_OUT_*.
     """
     out = np.zeros(N_POCKET_OUT)
-    _pocket_contact_into(out, x_ball, v_ball, w_ball, x_cage, rot_cage, v_cage, w_cage, psi, impact_speed, params)
+    _pocket_contact_into(out, x_ball, v_ball, w_ball, x_cage, rot_cage, v_cage, w_cage, math.cos(psi), math.sin(psi),
+                         impact_speed, params)
     return out
 
 
 @numba.njit(**NO_REFCOUNT)
-def _pocket_contact_into(out, x_ball, v_ball, w_ball, x_cage, rot_cage, v_cage, w_cage, psi, impact_speed, params):
-    """`pocket_contact` writing into a zeroed row `out`; scalar arithmetic, no temporaries."""
+def _pocket_contact_into(out, x_ball, v_ball, w_ball, x_cage, rot_cage, v_cage, w_cage, c, s, impact_speed, params):
+    """`pocket_contact` writing into a zeroed row `out`; scalar arithmetic, no temporaries.
+    c, s: cosine and sine of the pocket azimuth psi (fixed per pocket: the residual reads
+    them from `CageArrays` instead of calling sin and cos for every pocket in every call)."""
     r_b, r_p = params[P_BALL_RADIUS], params[P_POCKET_RADIUS]
-    c, s = math.cos(psi), math.sin(psi)
     lx, ly, lz = params[P_PITCH_RADIUS] * c, params[P_PITCH_RADIUS] * s, params[P_POCKET_Z]
     ax, ay, az = _column_mix(rot_cage, c, s, 0.0)  # pocket axis, global
     ox, oy, oz = _column_mix(rot_cage, lx, ly, lz)  # pocket centre - cage centre, global
@@ -192,7 +194,7 @@ def pocket_contacts(x_balls, v_balls, w_balls, x_cage, rot_cage, v_cage, w_cage,
     out = np.zeros((z, N_POCKET_OUT))
     for k in range(z):
         _pocket_contact_into(out[k], x_balls[k], v_balls[k], w_balls[k], x_cage, rot_cage, v_cage,
-                             w_cage, psi[k], impact_speeds[k], params)
+                             w_cage, math.cos(psi[k]), math.sin(psi[k]), impact_speeds[k], params)
     return out
 
 

@@ -116,7 +116,11 @@ def film_central_nvm_terms(F, Rx, E_eff, eta0, alpha_p, u_s, ln_RI0, ln_EI0, h00
     ln_M = math.log(F / (E_eff * Rx * Rx)) - 0.75 * ln_speed
     ln_RI = ln_RI0 - 2.0 * ln_M
     ln_EI = ln_EI0 - 2.0 / 15.0 * ln_M
-    s = 1.5 * (1.0 + math.exp(-1.2 * math.exp(ln_EI - ln_RI)))
+    # the blend's exp underflows to 0 for H_EI/H_RI > 621 (well into the elastic regime, where
+    # the loaded contacts of the reference bearing sit), and an underflowing exp takes libm's
+    # error path (errno): skip the call there, the result is the same 0
+    blend = -1.2 * math.exp(ln_EI - ln_RI)
+    s = 1.5 * (1.0 + (math.exp(blend) if blend > _EXP_UNDERFLOW else 0.0))
     # (H_EI^-4 + H_00^-4)^(-3/8)
     elastic = math.exp(-0.375 * math.log(math.exp(-4.0 * ln_EI) + h00_m4))
     iso = math.exp(2.0 * s / 3.0 * math.log(math.exp(1.5 * ln_RI) + elastic))
@@ -131,6 +135,7 @@ def film_central_nvm_terms(F, Rx, E_eff, eta0, alpha_p, u_s, ln_RI0, ln_EI0, h00
 
 
 _LN_145, _LN_3_18, _LN_1_29, _LN_1_48 = math.log(145.0), math.log(3.18), math.log(1.29), math.log(1.48)
+_EXP_UNDERFLOW = -746.0  # exp(x) rounds to 0.0 for every x below about -745.13
 
 
 @numba.njit(cache=True)

@@ -50,15 +50,21 @@ def crv_c0(c):
 @numba.njit(cache=True)
 def crv_to_matrix(c):
     """Rotation matrix R(c) = I + 2 (c0 c~ + c~ c~) / (4 - c0)^2 (M.4b)."""
-    c0 = crv_c0(c)
-    ct = skew(c)
-    f = 2.0 / (4.0 - c0) ** 2
     R = np.empty((3, 3))
+    crv_to_matrix_into(c, R)
+    return R
+
+
+@numba.njit(cache=True)
+def crv_to_matrix_into(c, R):
+    """`crv_to_matrix` written into R (3x3): no allocation, for kernels without reference counting."""
+    c0 = crv_c0(c)
+    ct = ((0.0, -c[2], c[1]), (c[2], 0.0, -c[0]), (-c[1], c[0], 0.0))  # c~, as `skew`
+    f = 2.0 / (4.0 - c0) ** 2
     for i in range(3):
         for j in range(3):  # (c~ c~)_ij = c_i c_j - |c|^2 delta_ij, no BLAS call for 3x3
-            R[i, j] = f * (c0 * ct[i, j] + c[i] * c[j])
+            R[i, j] = f * (c0 * ct[i][j] + c[i] * c[j])
         R[i, i] += 1.0 - f * (c[0] * c[0] + c[1] * c[1] + c[2] * c[2])
-    return R
 
 
 @numba.njit(cache=True)
@@ -160,16 +166,41 @@ def crv_rescale(c, c_dot):
     return f * c, f * (c_dot - 2.0 * cd / cc * c)
 
 
+@numba.njit(cache=True, inline="always")
+def _quaternion_of(c0, c1, c2):
+    """`crv_to_quaternion` on scalars (same arithmetic), for the allocation-free update."""
+    s0 = 2.0 - (c0 * c0 + c1 * c1 + c2 * c2) / 8.0
+    d = 4.0 - s0
+    return s0 / d, c0 / d, c1 / d, c2 / d
+
+
 @numba.njit(cache=True)
 def update_configuration(q_n, dq, rotation_slots, q_out):
     """Configuration update q_{n+1} = q_n (+) dq, in place into q_out.
 
     Additive for every coordinate except the CRV triples starting at `rotation_slots`, where
     dq holds the material rotation increment [rad] and R(c_{n+1}) = R(c_n) R(crv(dq)).
+    The arithmetic of `crv_from_rotation_vector` and `crv_compose`, on scalars: this runs in
+    every Newton iteration, inside the time loop that works without numba's reference counting
+    (dynamics/_kernel_options.py), where a small array per call cost more than the sums.
     """
     for i in range(q_n.shape[0]):
         q_out[i] = q_n[i] + dq[i]
     for k in range(rotation_slots.shape[0]):
         j = rotation_slots[k]
-        dc = crv_from_rotation_vector(dq[j:j + 3])
-        q_out[j:j + 3] = crv_compose(q_n[j:j + 3], dc)
+        t0, t1, t2 = dq[j], dq[j + 1], dq[j + 2]
+        phi = math.sqrt(t0 ** 2 + t1 ** 2 + t2 ** 2)
+        f = 1.0 + phi * phi / 48.0 if phi < _SMALL_ANGLE else 4.0 * math.tan(phi / 4.0) / phi
+        a0, a1, a2, a3 = _quaternion_of(q_n[j], q_n[j + 1], q_n[j + 2])
+        b0, b1, b2, b3 = _quaternion_of(f * t0, f * t1, f * t2)
+        e0 = a0 * b0 - a1 * b1 - a2 * b2 - a3 * b3
+        e1 = a0 * b1 + b0 * a1 + a2 * b3 - a3 * b2
+        e2 = a0 * b2 + b0 * a2 + a3 * b1 - a1 * b3
+        e3 = a0 * b3 + b0 * a3 + a1 * b2 - a2 * b1
+        n = math.sqrt(e0 ** 2 + e1 ** 2 + e2 ** 2 + e3 ** 2)  # renormalised, as crv_compose
+        e0, e1, e2, e3 = e0 / n, e1 / n, e2 / n, e3 / n
+        sign = 1.0 if e0 >= 0.0 else -1.0
+        g = 4.0 / (1.0 + sign * e0)
+        q_out[j] = g * sign * e1
+        q_out[j + 1] = g * sign * e2
+        q_out[j + 2] = g * sign * e3

@@ -29,6 +29,8 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
+from bearingsim.dynamics._kernel_options import NO_REFCOUNT
+
 
 @numba.njit(cache=True)
 def lu_factor_inplace(A, piv):
@@ -62,7 +64,7 @@ def lu_factor_inplace(A, piv):
     return True
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def lu_solve_inplace(LU, piv, b):
     """Solve (LU) x = b in place in the vector b."""
     n = LU.shape[0]
@@ -119,13 +121,14 @@ def block_arrow_factor(D, E, F, B, LU_D, piv_D, DinvE, S, piv_S):
     return lu_factor_inplace(S, piv_S)
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def block_arrow_solve(LU_D, piv_D, DinvE, F, S, piv_S, rhs, x):
     """Solve with a factored block-arrow matrix; rhs and x are global vectors (Z m + nb)."""
     Z, m = LU_D.shape[0], LU_D.shape[1]
     nb = S.shape[0]
     n_small = Z * m
-    x[:] = rhs
+    for i in range(x.shape[0]):  # not x[:] = rhs: that may copy through a temporary (an allocation)
+        x[i] = rhs[i]
     xb = x[n_small:]
     # explicit loops: numba's `@` on these 6x12 blocks allocates a temporary and calls BLAS
     # per block, which cost more than the arithmetic (15 -> 4 us per solve for Z = 22)

@@ -28,14 +28,20 @@ def mm(A, B):
 @numba.njit(cache=True)
 def mv(A, x):
     """A x for a small matrix A (n x k) and vector x (k)."""
+    y = np.zeros(A.shape[0])
+    mv_into(A, x, y)
+    return y
+
+
+@numba.njit(cache=True)
+def mv_into(A, x, y):
+    """y = A x written into y (no allocation)."""
     n, k = A.shape
-    y = np.zeros(n)
     for i in range(n):
         s = 0.0
         for l in range(k):
             s += A[i, l] * x[l]
         y[i] = s
-    return y
 
 
 @numba.njit(cache=True)

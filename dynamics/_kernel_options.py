@@ -5,7 +5,9 @@ updates it with an atomic add inside a non-inlined call (NRT_incref / NRT_decref
 pruning pass leaves most of these in place across calls. In the force kernel of the
 reference bearing they took ~28 % of all samples (perf profile of
 `python -m benchmarks.contacts`, 2026-11-21; the kernel went from 75 to 50 us with
-this option). Kernels that allocate nothing and return no array need none of it.
+this option). Kernels that allocate nothing and return no array need none of it. The
+compiled time loop (`bearing.model.bearing_chunk`) and the block-arrow solve use it too: the
+loop's views of its state arrays had the same cost, 12.5 % of a run's samples (2026-11-24).
 
 With `_nrt=False` numba refuses to compile an allocation, an array return, or a call to
 a function that returns an array, so these kernels can only borrow the caller's arrays

@@ -99,8 +99,9 @@ class ContactScratch(NamedTuple):
 class ResidualWork(NamedTuple):
     """The residual kernel's scratch, allocated once per model instead of in every call:
     contact rows (2Z, N_RC) and pocket rows (Z, N_POCKET_OUT), one contact's scratch, the
-    border load sums, the outer race (fixed: x = 0, R = I, v = 0, w = (0, 0, omega_o)), and
-    the rotation (3x3) and spatial angular velocity (3) of the inner race and the cage. Like
+    border load sums, the outer race (fixed: x = 0, R = I, v = 0, w = (0, 0, omega_o)), the
+    rotation (3x3) and spatial angular velocity (3) of the inner race and the cage, the
+    external loads and the cage–land result row. Like
     the traction rule's workspace it belongs to one model: one evaluation at a time."""
 
     rows: np.ndarray
@@ -112,6 +113,9 @@ class ResidualWork(NamedTuple):
     w_inner: np.ndarray
     R_cage: np.ndarray
     w_cage: np.ndarray
+    ext_f: np.ndarray  # external force on the inner race (3) [N]
+    ext_m: np.ndarray  # external moment (3) [N m]
+    journal_row: np.ndarray  # the cage–land result row (journal/hybrid.py, N_JOURNAL_OUT)
 
 
 class ModelArrays(NamedTuple):

@@ -15,6 +15,7 @@ import numpy as np
 
 from bearingsim.dynamics._kernel_options import NO_REFCOUNT
 from bearingsim.dynamics.contact.pocket import N_POCKET_OUT, P_BALL_RADIUS, P_POCKET_RADIUS
+from bearingsim.dynamics.journal.hybrid import N_JOURNAL_OUT
 from bearingsim.dynamics.multibody.compiled import CompiledProblem, hht_chunk, kernel_address
 from bearingsim.dynamics.multibody.joints import prescribe_velocity_blocks
 from bearingsim.dynamics.multibody.linear_solvers import BlockArrowMatrix, assemble_iteration_blocks
@@ -129,7 +130,8 @@ def residual_work(Z: int, omega_outer: float) -> ResidualWork:
         scratch=ContactScratch(np.zeros(N_CONTACT_SCRATCH), np.zeros(12)),
         loads=BorderLoads(np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3)),
         outer=Body(np.zeros(3), np.eye(3), np.zeros(3), np.array([0.0, 0.0, omega_outer])),
-        R_inner=np.zeros((3, 3)), w_inner=np.zeros(3), R_cage=np.zeros((3, 3)), w_cage=np.zeros(3))
+        R_inner=np.zeros((3, 3)), w_inner=np.zeros(3), R_cage=np.zeros((3, 3)), w_cage=np.zeros(3),
+        ext_f=np.zeros(3), ext_m=np.zeros(3), journal_row=np.zeros(N_JOURNAL_OUT))
 
 
 class _Kernel:

@@ -36,7 +36,6 @@ and a step log (t, h, residual evaluations, factorisations) every `log_every` st
 
 from __future__ import annotations
 
-import gc
 import math
 import time
 from typing import Callable, NamedTuple
@@ -475,17 +474,6 @@ def integrate_compiled(problem, t0: float, t1: float, q0, v0, settings: HHTSetti
     co = Coordinates(cp.mass, cp.prescribed_rows, np.ascontiguousarray(problem.rotation_slots, dtype=np.int64),
                      np.ascontiguousarray(problem.error_weights, dtype=float), np.ascontiguousarray(scales))
     ls = loop_settings(settings, t0, t1)
-    gc_was_enabled = gc.isenabled()
-    gc.disable()  # a full collection walks every object numba and the pipeline keep: ~2 % of a run (perf)
-    try:
-        return _chunks(cp, ls, co, w, out, chunk_steps, settings, stats, wall0, sampler, on_chunk, logged)
-    finally:
-        if gc_was_enabled:
-            gc.enable()
-
-
-def _chunks(cp, ls, co, w, out, chunk_steps, settings, stats, wall0, sampler, on_chunk, logged):
-    """The chunk loop of `integrate_compiled` and what it returns."""
     while True:
         status = cp.chunk(cp.kernel, cp.data, cp.hook, ls, co, w, out, chunk_steps)
         cp.drain()

@@ -102,3 +102,23 @@ def test_multiplicative_update_over_many_turns(turns):
     R_ref = Rotation.from_rotvec(axis * 2 * np.pi * turns).as_matrix()
     np.testing.assert_allclose(crv.crv_to_matrix(q), R_ref, atol=1e-11)
     assert flips == int(np.floor(turns + 0.5))
+
+
+def test_update_configuration_is_compose_of_the_increment_bit_for_bit():
+    # update_configuration repeats crv_compose(q, crv_from_rotation_vector(dq)) on scalars (the
+    # time loop runs without reference counting); the two must stay the same arithmetic, so
+    # the comparison is exact. Increments from 1e-9 rad (the small-angle series) to 2 rad,
+    # CRVs up to the rescaling limit |c| = 4.
+    rng = np.random.default_rng(7)
+    slots = np.array([3, 9], dtype=np.int64)
+    for scale_q, scale_dq in [(1e-3, 1e-9), (0.5, 1e-5), (2.0, 1e-2), (3.9 / np.sqrt(3), 1.0)]:
+        for _ in range(100):
+            q = rng.uniform(-1, 1, 12) * scale_q
+            dq = rng.normal(size=12) * scale_dq
+            out = np.empty(12)
+            crv.update_configuration(q, dq, slots, out)
+            ref = q + dq
+            for j in slots:
+                ref[j:j + 3] = crv.crv_compose(q[j:j + 3], crv.crv_from_rotation_vector(dq[j:j + 3]))
+            assert np.array_equal(out, ref)
+

@@ -340,3 +340,20 @@ def test_error_scales_follow_contact_stiffness_and_clearances(dry):
     ball0 = scales[:3]  # ball 0 sits on +x: x radial (contacts), y along the orbit (free in its pocket)
     assert ball0[1] == pytest.approx(pocket_clearance)
     assert ball0[0] < 1e-4 * params.pitch_diameter and ball0[0] < ball0[2] < ball0[1]
+
+
+def test_border_gyroscopic_moment_is_the_rigid_body_ones_bit_for_bit():
+    # assembly._add_gyroscopic writes rigid_body.gyroscopic_moment's arithmetic on scalars so
+    # that the residual kernel allocates nothing; the two must give the same bits.
+    from bearingsim.dynamics.bearing.assembly import _add_gyroscopic
+    from bearingsim.dynamics.multibody.rigid_body import gyroscopic_moment
+
+    rng = np.random.default_rng(11)
+    for _ in range(200):
+        Jx, Jz = rng.uniform(1e-4, 1e-1, 2)
+        Om = rng.normal(size=3) * rng.choice([1e-3, 1.0, 1e3])
+        g = rng.normal(size=8)
+        expected = g.copy()
+        expected[2:5] += gyroscopic_moment(np.diag(np.array([Jx, Jx, Jz])), Om)[0]
+        _add_gyroscopic(Jx, Jx, Jz, Om, g, 2)
+        assert np.array_equal(g, expected)

@@ -62,21 +62,11 @@ def main(argv=None) -> None:
     ap.add_argument("--window", type=float, default=0.3, help="simulated seconds to profile")
     args = ap.parse_args(argv)
 
-    from bearingsim.pipeline.numba_cache import configure_numba_cache
-
-    configure_numba_cache()
-
+    from benchmarks.step_cost import loop_ready
     from bearingsim.dynamics.bearing import BearingModel
-    from bearingsim.dynamics.bearing.run import initial_coordinates
     from bearingsim.dynamics.multibody.compiled import integrate_compiled
-    from bearingsim.pipeline.scene import load_scene
-    from bearingsim.pipeline.stages.simulate import build_model
 
-    scene = load_scene(args.scene)
-    params, start = build_model(scene, None)
-    params = params.with_float32_residual()  # as simulate_bearing runs it
-    q0, v0 = initial_coordinates(params, start)
-    integrate_compiled(BearingModel(params), 0.0, 2e-5, q0, v0, scene.solver)  # compile / load
+    scene, params, q0, v0 = loop_ready(args.scene)
     t0 = time.perf_counter()
     sol, _ = integrate_compiled(BearingModel(params), 0.0, args.window, q0, v0, scene.solver)
     wall = time.perf_counter() - t0

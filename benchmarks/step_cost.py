@@ -53,6 +53,28 @@ class Timed:
         return self._timed("hook", self.model.on_accepted_step, *args)
 
 
+def loop_ready(scene_name: str, overrides=()):
+    """(scene, model parameters, q0, v0) of a scene's quasi-static start, its kernels compiled
+    or loaded by a 20 us run of the compiled loop, with the float32 traction passes that
+    `simulate_bearing` uses: what a timed window of the loop starts from."""
+    from bearingsim.pipeline.numba_cache import configure_numba_cache
+
+    configure_numba_cache()
+
+    from bearingsim.dynamics.bearing import BearingModel
+    from bearingsim.dynamics.bearing.run import initial_coordinates
+    from bearingsim.dynamics.multibody.compiled import integrate_compiled
+    from bearingsim.pipeline.scene import load_scene
+    from bearingsim.pipeline.stages.simulate import build_model
+
+    scene = load_scene(scene_name, list(overrides))
+    params, start = build_model(scene, None)
+    params = params.with_float32_residual()  # as simulate_bearing runs it
+    q0, v0 = initial_coordinates(params, start)
+    integrate_compiled(BearingModel(params), 0.0, 2e-5, q0, v0, scene.solver)  # compile / load
+    return scene, params, q0, v0
+
+
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("scene", nargs="?", default="helicopter-b-given-hinge")
@@ -60,23 +82,12 @@ def main(argv=None) -> None:
     ap.add_argument("--set", action="append", default=[], dest="overrides")
     args = ap.parse_args(argv)
 
-    from bearingsim.pipeline.numba_cache import configure_numba_cache
-
-    configure_numba_cache()
-
     from bearingsim.dynamics.bearing import BearingModel
-    from bearingsim.dynamics.bearing.run import initial_coordinates
     from bearingsim.dynamics.multibody import integrate
     from bearingsim.dynamics.multibody.compiled import integrate_compiled
     from bearingsim.dynamics.multibody.linear_solvers import BlockArrowSolver
-    from bearingsim.pipeline.scene import load_scene
-    from bearingsim.pipeline.stages.simulate import build_model
 
-    scene = load_scene(args.scene, args.overrides)
-    params, start = build_model(scene, None)
-    params = params.with_float32_residual()  # as simulate_bearing runs it
-    q0, v0 = initial_coordinates(params, start)
-    integrate_compiled(BearingModel(params), 0.0, 2e-5, q0, v0, scene.solver)  # compile / load
+    scene, params, q0, v0 = loop_ready(args.scene, args.overrides)
     for window in (2e-5, args.window):  # the first run compiles / loads every kernel
         model = BearingModel(params)
         timed = Timed(model, BlockArrowSolver(params.ball_count, 6, model.nb))

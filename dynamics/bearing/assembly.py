@@ -22,8 +22,8 @@ from bearingsim.dynamics.contact.pocket import (
 from bearingsim.dynamics.multibody.crv import crv_to_matrix_into, skew
 from bearingsim.dynamics.multibody.hinge import add_hinge_force, hinge_energy, hinge_forces
 from bearingsim.dynamics.multibody.joints import prescribe_velocity_residual
-from bearingsim.dynamics.multibody.rigid_body import gyroscopic_moment, material_moment_of_spatial_moment
-from bearingsim.dynamics.multibody.small import mtv, mv, mv_into
+from bearingsim.dynamics.multibody.rigid_body import gyroscopic_moment
+from bearingsim.dynamics.multibody.small import mtv_into, mv, mv_into
 
 from .bundles import Ball, Bodies, Body
 from .cage_forces import journal_diag, journal_forces, pocket_diag, pocket_forces, pocket_tangent
@@ -88,7 +88,7 @@ def evaluate_bearing(t, q, v, a, model, want_tangent, ma, g, diag, K, C):
     mv_into(R_i, v[o_i + 3:o_i + 6], work.w_inner)
     inner = Body(q[o_i:o_i + 3], R_i, v[o_i:o_i + 3], work.w_inner)
     outer = work.outer
-    outer.w[2] = fp[FP_OMEGA_O]
+    outer.w[2] = fp[FP_OMEGA_O]  # the parameters are the one source of the outer race's speed
     cage = inner  # a placeholder of the same type: read only when the bearing has a cage
     if ip[IP_CAGE]:
         o_c = o_i + RACE_DOF
@@ -151,7 +151,8 @@ def _ball_forces(q, v, model, bodies, scratch, rows, pocket_rows, g, diag, loads
                 diag[DG_FLAGS] += 1.0
         if ip[IP_CAGE]:
             pres = pocket_rows[k]
-            pocket_forces(ball, bodies.cage, cage.cos_psi[k], cage.sin_psi[k], cage.impact_speeds[k], cage.pocket, pres, g, b,
+            pocket_forces(ball, bodies.cage, cage.cos_psi[k], cage.sin_psi[k], cage.impact_speeds[k], cage.pocket,
+                          pres, g, b,
                           loads.F_cage, loads.M_cage)
             pocket_diag(pres, diag, d)
             # friction power + hysteresis-damping power (damping force = dF_n/d(delta_dot) delta_dot)
@@ -284,9 +285,10 @@ def _border(t, v, model, bodies, loads, ma, g, diag, Kb, Cb, want_tangent):
     """Inner race (loads M.53, hinge M.54, gyroscopic, spin M.52) and cage (journal §8,
     gyroscopic); Kb, Cb: the border blocks of the tangents. Returns the drive moment.
 
-    The residual terms are written without temporaries (the arithmetic of `mtv` and
-    `rigid_body.gyroscopic_moment`, so the same bits): ~30 small arrays per call were ~4 % of
-    a run. The tangent blocks, needed at a refactorisation only, keep the array helpers."""
+    The residual terms are written without temporaries (`mtv_into` into the model's scratch, and
+    `rigid_body.gyroscopic_moment`'s arithmetic on scalars, so the same bits): ~30 small arrays
+    per call were ~4 % of a run. The tangent blocks, needed at a refactorisation only, keep the
+    array helpers, and reuse the material moments the residual computed."""
     fp, ip, hinge, work = model.fp, model.ip, model.hinge, model.work
     inner, cage = bodies.inner, bodies.cage
     o_i = BALL_DOF * ip[IP_Z]
@@ -298,13 +300,12 @@ def _border(t, v, model, bodies, loads, ma, g, diag, Kb, Cb, want_tangent):
     Om_i = v[o_i + 3:o_i + 6]
     for i in range(3):
         g[o_i + i] += loads.F_inner[i] + ext_f[i]
-    for i in range(3):  # material moments R_i^T M_inner + R_i^T m_ext (M.53: the load held fixed in space)
-        m_contact = 0.0
-        m_load = 0.0
-        for l in range(3):
-            m_contact += R_i[l, i] * loads.M_inner[l]
-            m_load += R_i[l, i] * ext_m[l]
-        g[o_i + 3 + i] += m_contact + m_load
+    # material moments R_i^T M_inner + R_i^T m_ext (M.53: the load held fixed in space)
+    m_contact, m_load = work.moment_contact, work.moment_load
+    mtv_into(R_i, loads.M_inner, m_contact)
+    mtv_into(R_i, ext_m, m_load)
+    for i in range(3):
+        g[o_i + 3 + i] += m_contact[i] + m_load[i]
     diag[DG_P_EXT] = ext_f @ inner.v + ext_m @ inner.w
     if ip[IP_GYRO]:
         _add_gyroscopic(fp[FP_JIX], fp[FP_JIX], fp[FP_JIZ], Om_i, g, o_i + 3)
@@ -322,9 +323,9 @@ def _border(t, v, model, bodies, loads, ma, g, diag, Kb, Cb, want_tangent):
         diag[DG_V_HINGE] = hinge_energy(inner.x, R_i, hinge.x_A, hinge.R_A, hinge.H_u, hinge.H_psi)
     i3 = INNER_BORDER + 3
     if want_tangent:
-        # contact moment M_i is held fixed in space under a material rotation increment
-        K_ext = material_moment_of_spatial_moment(R_i, ext_m)[1]
-        Kb[i3:i3 + 3, i3:i3 + 3] += K_ext - skew(mtv(R_i, loads.M_inner))
+        # the contact moment M_i and the external moment are held fixed in space under a material
+        # rotation increment: K = -(R^T m)~ each (rigid_body.material_moment_of_spatial_moment)
+        Kb[i3:i3 + 3, i3:i3 + 3] += -skew(m_load) - skew(m_contact)
         if ip[IP_GYRO]:
             Cb[i3:i3 + 3, i3:i3 + 3] += gyroscopic_moment(np.diag(np.array([fp[FP_JIX], fp[FP_JIX], fp[FP_JIZ]])),
                                                           Om_i)[1]
@@ -334,13 +335,11 @@ def _border(t, v, model, bodies, loads, ma, g, diag, Kb, Cb, want_tangent):
         Om_c = v[o_c + 3:o_c + 6]
         for i in range(3):
             g[o_c + i] += loads.F_cage[i]
-        for i in range(3):  # R_c^T M_cage
-            m_contact = 0.0
-            for l in range(3):
-                m_contact += cage.R[l, i] * loads.M_cage[l]
-            g[o_c + 3 + i] += m_contact
+        mtv_into(cage.R, loads.M_cage, m_contact)  # the inner race's moment is spent
+        for i in range(3):
+            g[o_c + 3 + i] += m_contact[i]
         if want_tangent:
-            Kb[c3:c3 + 3, c3:c3 + 3] += -skew(mtv(cage.R, loads.M_cage))
+            Kb[c3:c3 + 3, c3:c3 + 3] += -skew(m_contact)
         if ip[IP_GYRO]:
             _add_gyroscopic(fp[FP_JCX], fp[FP_JCX], fp[FP_JCZ], Om_c, g, o_c + 3)
             if want_tangent:

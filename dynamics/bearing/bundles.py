@@ -66,13 +66,12 @@ class HingeArrays(NamedTuple):
 
 class CageArrays(NamedTuple):
     """Ball–pocket parameters (contact/pocket.py P_*), cage–land parameters (journal/hybrid.py
-    J_*), pocket azimuths psi [rad], the impact speeds v_0 [m/s] the hysteresis law
-    remembers per pocket (state of the model, updated after every accepted step), and
-    cos psi, sin psi (`cage_arrays` computes them once)."""
+    J_*), the impact speeds v_0 [m/s] the hysteresis law remembers per pocket (state of the
+    model, updated after every accepted step), and cos psi, sin psi of the pocket azimuths
+    (`model.cage_arrays` computes them once)."""
 
     pocket: np.ndarray
     journal: np.ndarray
-    psi: np.ndarray
     impact_speeds: np.ndarray
     cos_psi: np.ndarray
     sin_psi: np.ndarray
@@ -99,9 +98,9 @@ class ContactScratch(NamedTuple):
 class ResidualWork(NamedTuple):
     """The residual kernel's scratch, allocated once per model instead of in every call:
     contact rows (2Z, N_RC) and pocket rows (Z, N_POCKET_OUT), one contact's scratch, the
-    border load sums, the outer race (fixed: x = 0, R = I, v = 0, w = (0, 0, omega_o)), the
-    rotation (3x3) and spatial angular velocity (3) of the inner race and the cage, the
-    external loads and the cage–land result row. Like
+    border load sums, the outer race (x = 0, R = I, v = 0; the kernel sets w = (0, 0, omega_o)
+    from the parameters), the rotation (3x3) and spatial angular velocity (3) of the inner race
+    and the cage, the external loads, two material moments (3) and the cage–land result row. Like
     the traction rule's workspace it belongs to one model: one evaluation at a time."""
 
     rows: np.ndarray
@@ -115,6 +114,8 @@ class ResidualWork(NamedTuple):
     w_cage: np.ndarray
     ext_f: np.ndarray  # external force on the inner race (3) [N]
     ext_m: np.ndarray  # external moment (3) [N m]
+    moment_contact: np.ndarray  # contact moment sum on a border body, material (3) [N m]
+    moment_load: np.ndarray  # external moment on the inner race, material (3) [N m]
     journal_row: np.ndarray  # the cage–land result row (journal/hybrid.py, N_JOURNAL_OUT)
 
 

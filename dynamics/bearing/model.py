@@ -22,7 +22,7 @@ from bearingsim.dynamics.multibody.linear_solvers import BlockArrowMatrix, assem
 
 from . import channels, layout
 from .assembly import evaluate_bearing, mass_diagonal
-from .params import FP_OMEGA_O, IP_CAGE, IP_Z
+from .params import IP_CAGE, IP_Z
 from .bundles import Body, BorderLoads, CageArrays, ContactScratch, ModelArrays, ResidualWork
 from .race_forces import N_CONTACT_SCRATCH, N_RC
 from .channels import (
@@ -119,19 +119,20 @@ def bearing_chunk(kernel, model, log, settings, coords, work, out, max_steps):
 def cage_arrays(pocket, journal, psi, impact_speeds) -> CageArrays:
     """`bundles.CageArrays` with the cosines and sines of the pocket azimuths (math.cos and
     math.sin: the same libm the kernels would call, so the same bits)."""
-    return CageArrays(pocket, journal, psi, impact_speeds, np.array([math.cos(p) for p in psi]),
+    return CageArrays(pocket, journal, impact_speeds, np.array([math.cos(p) for p in psi]),
                       np.array([math.sin(p) for p in psi]))
 
 
-def residual_work(Z: int, omega_outer: float) -> ResidualWork:
+def residual_work(Z: int) -> ResidualWork:
     """Fresh scratch of the residual kernel for a bearing of Z balls (`bundles.ResidualWork`)."""
     return ResidualWork(
         rows=np.zeros((2 * Z, N_RC)), pocket_rows=np.zeros((Z, N_POCKET_OUT)),
         scratch=ContactScratch(np.zeros(N_CONTACT_SCRATCH), np.zeros(12)),
         loads=BorderLoads(np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3)),
-        outer=Body(np.zeros(3), np.eye(3), np.zeros(3), np.array([0.0, 0.0, omega_outer])),
+        outer=Body(np.zeros(3), np.eye(3), np.zeros(3), np.zeros(3)),
         R_inner=np.zeros((3, 3)), w_inner=np.zeros(3), R_cage=np.zeros((3, 3)), w_cage=np.zeros(3),
-        ext_f=np.zeros(3), ext_m=np.zeros(3), journal_row=np.zeros(N_JOURNAL_OUT))
+        ext_f=np.zeros(3), ext_m=np.zeros(3), moment_contact=np.zeros(3), moment_load=np.zeros(3),
+        journal_row=np.zeros(N_JOURNAL_OUT))
 
 
 class _Kernel:
@@ -192,7 +193,7 @@ class BearingModel:
         self.arrays = ModelArrays(
             fp=P.fp, ip=P.ip, mass=self.mass, races=P.races, traction=P.traction,
             cage=cage_arrays(P.pocket, P.journal, P.pocket_psi, self.impact_speeds), hinge=P.hinge,
-            work=residual_work(Z, P.fp[FP_OMEGA_O]))
+            work=residual_work(Z))
         self._blocks = (self.K.blocks(), self.C.blocks())
         self._kernel_call = _Kernel(self.n_dof)
         self.impact_threshold = impact_force_threshold

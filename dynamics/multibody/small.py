@@ -47,10 +47,18 @@ def mv_into(A, x, y):
 @numba.njit(cache=True)
 def mtv(A, x):
     """A^T x for a small matrix A (n x k) and vector x (n)."""
+    y = np.zeros(A.shape[1])
+    mtv_into(A, x, y)
+    return y
+
+
+@numba.njit(cache=True)
+def mtv_into(A, x, y):
+    """y = A^T x written into y (no allocation)."""
     n, k = A.shape
-    y = np.zeros(k)
+    for i in range(k):
+        y[i] = 0.0
     for l in range(n):
         xl = x[l]
         for i in range(k):
             y[i] += A[l, i] * xl
-    return y

@@ -83,6 +83,27 @@ def test_startup_spike_then_quiet_settles_after_the_spike():
     assert s["land_film_min"] == pytest.approx(float(np.min(run["min_film"][late])), rel=1e-12)
 
 
+def test_a_late_touch_of_the_land_in_a_wandering_regime_is_still_startup():
+    """A touch of the land (eps 0.85 -> 1.0 for 0.5 ms) at 0.30 s, after the crash, in a regime
+    whose block means wander (eps 0.85 +- 0.02 at 5 Hz). The touch moves its block's mean by
+    0.002 and its spread by 0.013, both inside the band of the wandering reference, but not
+    its largest eps: the touch is start-up, and the window starts after it. Made up to show the
+    case found in case b (settled_window.py, rule 2)."""
+    t = np.linspace(0.0, 1.2, 120001)
+    run = crash_then_pressed(t)
+    regime = 0.85 + 0.02 * np.sin(2 * math.pi * 5 * t) + 0.01 * np.sin(2 * math.pi * 23 * t)
+    calm_eps = np.where(t < 0.08, run["eccentricity_ratio"], regime)
+    touch = (t >= 0.3000) & (t < 0.3005)
+    eps = np.where(touch, 1.0, calm_eps)
+    xy = run["cage_xy"] / run["eccentricity_ratio"][:, None]  # unit direction * C
+    window = detect_settled_window(t, eps, xy * eps[:, None], run["cage_speed"], C)
+    assert window.limited_by == ("eps max",)
+    assert 0.3005 < window.start <= 0.3005 + 0.5 * REV + 1e-9
+    # the same run without the touch settles after the crash
+    calm = detect_settled_window(t, calm_eps, xy * calm_eps[:, None], run["cage_speed"], C)
+    assert calm.start < 0.2
+
+
 def test_split_weights_add_up_to_the_whole_run():
     t = np.sort(np.random.default_rng(3).uniform(0.0, 1.0, 500))
     early, late = split_weights(t, 0.4)

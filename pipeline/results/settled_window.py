@@ -17,9 +17,15 @@ Rule (`detect_settled_window`):
    the cage, yet a run of 10-20 cage revolutions still has 20-40 blocks; a run too short
    for 12 such blocks gets 12 shorter ones, and a warning below).
 2. **Block statistics.** Per block (time-weighted): mean and standard deviation of the
-   eccentricity ratio eps, and the mean cage centre (x, y) / C. The mean eps and the centre
-   say *where* the cage runs, the spread of eps *how violently*: a start-up crash shows as
-   a large spread even where its mean happens to match the regime.
+   eccentricity ratio eps, the largest eps, and the mean cage centre (x, y) / C. The mean eps
+   and the centre say *where* the cage runs, the spread of eps *how violently*: a start-up
+   crash shows as a large spread even where its mean happens to match the regime. The largest
+   eps says *how close* the cage came to its land. The verdict's extremes (thinnest film,
+   metal contact) read it, and a single late touch of the land hardly moves a block's mean or
+   spread. Case b with a 9 x 18/22/28 traction rule had one at t = 0.074 s (eps 1.001, 14 µm
+   of film, metal contact) in blocks whose mean and spread lay in the band of a slowly
+   drifting regime. The window started at one revolution, and the verdict reported that
+   touch as the settled regime's thinnest film (2026-11-24).
 3. **Reference.** The blocks of the last half of the run are the regime. Each statistic of
    a block must lie within ``band_sigmas`` (3) standard deviations of the reference blocks'
    values around their mean (the centre: within 3 RMS distances of the mean centre), or
@@ -148,9 +154,13 @@ def detect_settled_window(
     ref = starts >= half_time - 1e-9 * span
     if ref.sum() < 2:  # cannot happen with min_blocks >= 4; keep the rule total
         ref[-2:] = True
+    eps_max = np.full(n, -np.inf)
+    np.maximum.at(eps_max, k, eps)
+    eps_max[~np.isfinite(eps_max)] = np.nan  # a block without samples has no statistic
     out = {
         "eps mean": _band_violations(eps_mean, eps_mean[ref], eps_tolerance, band_sigmas),
         "eps spread": _band_violations(eps_sd, eps_sd[ref], eps_tolerance, band_sigmas),
+        "eps max": _band_violations(eps_max, eps_max[ref], eps_tolerance, band_sigmas),
     }
     cref = np.column_stack([cx[ref], cy[ref]])
     cref = cref[np.all(np.isfinite(cref), axis=1)]

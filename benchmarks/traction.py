@@ -27,36 +27,44 @@ from bearingsim.dynamics.traction.fast import FastTraction, traction_fast, tract
 D, DM, E_EFF, OMEGA = 0.01905, 0.158003, 208e9 / 0.91, 320.0
 BATCH = 44  # 22 balls x (inner, outer race)
 SETTINGS = {
-    "default (10 x 20/24/32, cone 16/24)": {},
+    "default (10 x 20/24/32, cone 16/56)": {},
     "previous default (10 x 24/32, cone 16/32)": {"n_angle": (24, 24, 32), "n_cone": (16, 32), "n_far": (8, 16)},
     "n_radial 9": {"n_radial": 9},
     "n_radial 8": {"n_radial": 8},
 }
 
 
-def _points(n: int, lub, seed: int = 1) -> np.ndarray:
-    """(a, b, p_h, h, du0, dv0, w_s) over 100..6000 N, 0.1..2x speed, SRR 1e-5..0.3, spin 0.01..0.1.
+def contact(lub, inner: bool, c: float, F: float, speed_factor: float) -> tuple[float, float, float, float, float]:
+    """(a, b, p_h, h, u) of a contact of the reference bearing: race (inner or outer), cos of the
+    contact angle c, load F [N], speed_factor x nominal entrainment speed u [m/s] (pure rolling).
 
     Same construction as tests/lubrication_points.py (Hamrock-Brewe ellipse, NVM film),
-    repeated so that the benchmark does not import the test suite.
+    repeated so that the benchmarks do not import the test suite.
     """
+    Rx = 1 / (2 / D + 2 * c / (DM - D * c)) if inner else 1 / (2 / D - 2 * c / (DM + D * c))
+    Ry = 1 / (2 / D - 1 / ((0.512 if inner else 0.520) * D))
+    k, ell, R = 1.0339 * (Ry / Rx) ** 0.636, 1.0003 + 0.5968 * Rx / Ry, 1 / (1 / Rx + 1 / Ry)
+    b = (6 * k * k * ell * F * R / (math.pi * E_EFF)) ** (1 / 3)
+    a = (6 * ell * F * R / (math.pi * k * E_EFF)) ** (1 / 3)
+    u = DM * OMEGA / 4 * (1 - (D * c / DM) ** 2) * speed_factor
+    h = film.film_central_nvm(F, Rx, Ry, E_EFF, lub.eta0, lub.alpha_star, 2 * u)
+    return a, b, 3 * F / (2 * math.pi * a * b), h, u
+
+
+def _points(n: int, lub, seed: int = 1) -> np.ndarray:
+    """(a, b, p_h, h, du0, dv0, w_s) over 100..6000 N, 0.1..2x speed, SRR 1e-5..0.3, spin 0.01..0.1
+    (`contact` at random race, contact angle 25..35 deg, load and speed)."""
     rng = np.random.default_rng(seed)
     logu = lambda lo, hi: math.exp(rng.uniform(math.log(lo), math.log(hi)))  # noqa: E731
     rows = []
     for _ in range(n):
         c = math.cos(math.radians(rng.uniform(25, 35)))
         inner = rng.uniform() < 0.5
-        Rx = 1 / (2 / D + 2 * c / (DM - D * c)) if inner else 1 / (2 / D - 2 * c / (DM + D * c))
-        Ry = 1 / (2 / D - 1 / ((0.512 if inner else 0.520) * D))
         F = logu(100, 6000)
-        k, ell, R = 1.0339 * (Ry / Rx) ** 0.636, 1.0003 + 0.5968 * Rx / Ry, 1 / (1 / Rx + 1 / Ry)
-        b = (6 * k * k * ell * F * R / (math.pi * E_EFF)) ** (1 / 3)
-        a = (6 * ell * F * R / (math.pi * k * E_EFF)) ** (1 / 3)
-        u = DM * OMEGA / 4 * (1 - (D * c / DM) ** 2) * logu(0.1, 2)
-        h = film.film_central_nvm(F, Rx, Ry, E_EFF, lub.eta0, lub.alpha_star, 2 * u)
+        a, b, p_h, h, u = contact(lub, inner, c, F, logu(0.1, 2))
         slip, phi = logu(1e-5, 0.3) * u, rng.uniform(0, 2 * math.pi)
         w_s = math.copysign(logu(0.01, 0.1), rng.uniform(-1, 1)) * u / b
-        rows.append((a, b, 3 * F / (2 * math.pi * a * b), h, slip * math.cos(phi), slip * math.sin(phi), w_s))
+        rows.append((a, b, p_h, h, slip * math.cos(phi), slip * math.sin(phi), w_s))
     return np.array(rows)
 
 

@@ -89,8 +89,8 @@ def test_contact_forces_are_equal_and_opposite(dry):
     """Sum of all generalised contact forces on balls + inner race + cage, plus the outer
     race's share, is the applied load: checked through linear momentum with the outer race
     removed from the sum — so here via one ball–race contact's wrench pair."""
-    from bearingsim.dynamics.bearing.bundles import Ball, Body, ContactScratch
-    from bearingsim.dynamics.bearing.race_forces import N_CONTACT_SCRATCH, RACE_ROW, race_contact
+    from bearingsim.dynamics.bearing.bundles import Ball, Body
+    from bearingsim.dynamics.bearing.race_forces import RACE_ROW, contact_scratch, race_contact
     from bearingsim.dynamics.multibody.crv import crv_to_matrix
 
     params, _, model, q, v = dry
@@ -101,7 +101,7 @@ def test_contact_forces_are_equal_and_opposite(dry):
     ball = Ball(x_b, v[0:3].copy(), v[3:6].copy())
     race = Body(x_r, R, v[o:o + 3].copy(), R @ v[o + 3:o + 6])
     hit = race_contact(ball, race, False, params.fp, params.ip, params.races.inner, params.traction,
-                       ContactScratch(np.zeros(N_CONTACT_SCRATCH), np.zeros(12)), res, True)
+                       contact_scratch(1), res, True)
     assert hit
     f_b, f_r = RACE_ROW["force_ball"].view(res), RACE_ROW["force_race"].view(res)
     m_b, m_r = RACE_ROW["moment_ball"].view(res), RACE_ROW["moment_race"].view(res)
@@ -238,26 +238,38 @@ def _film_inputs(lubricated, outer):
 @pytest.mark.parametrize("outer", [False, True])
 def test_tabulated_film_equals_the_nvm_formula(lubricated, outer):
     """The time loop's film reads R_x and the lambda-only NVM terms from the race table
-    (race_table.film_geometry_columns); it must equal film.film_central_nvm with R_x, R_y
-    computed from the contact angle (docs/model.md §6.2–§6.3) -- over the table's whole range of
-    contact angles, between and on its nodes, for loads and speeds of the reference bearing."""
-    from bearingsim.dynamics.bearing.params import FILM_NVM
-    from bearingsim.dynamics.bearing.race_forces import _film
+    (race_table.film_geometry_columns) and takes the formula for all contacts at once
+    (film.film_central_nvm_batch); both it and the one-contact path (race_forces.film_of_carry)
+    must equal film.film_central_nvm with R_x, R_y computed from the contact angle
+    (docs/model.md §6.2–§6.3) -- over the table's whole range of contact angles, between and on
+    its nodes, for loads and speeds of the reference bearing."""
+    from bearingsim.dynamics.bearing.params import FILM_NVM, FP_ALPHA_P, FP_E_EFF, FP_ETA0
+    from bearingsim.dynamics.bearing.race_forces import (
+        CA_FEL, CA_RX, CA_U, N_CARRY, film_of_carry, nvm_terms_into,
+    )
     from bearingsim.dynamics.bearing.race_table import curvature_radii
-    from bearingsim.dynamics.lubrication.film import film_central_nvm
     from bearingsim.dynamics.contact.hertz import table_position
+    from bearingsim.dynamics.lubrication.film import FILM_BATCH_ROWS, film_central_nvm, film_central_nvm_batch
 
     params = lubricated[0]
     table = params.races.outer if outer else params.races.inner
     D, d_m, r, e_eff, eta0, alpha_p, min_film = _film_inputs(lubricated, outer)
     rng = np.random.default_rng(5)
     alphas = np.concatenate([rng.uniform(0.0, 1.5, 60), np.linspace(0.0, np.pi / 2, 181)[1:170:7], [-0.45]])
-    for alpha in alphas:
+    carries, direct = np.zeros((alphas.size, N_CARRY)), np.empty(alphas.size)
+    for i, alpha in enumerate(alphas):
         F, u_s = 10 ** rng.uniform(2.0, 3.8), 10 ** rng.uniform(0.5, 1.5)  # 100 N..6 kN, 3..30 m/s
         Rx, Ry = curvature_radii(abs(alpha), outer, D, d_m, r)
-        direct = max(film_central_nvm(F, Rx, Ry, e_eff, eta0, alpha_p, u_s), min_film)
-        tabulated = _film(F, alpha, outer, u_s, params.fp, FILM_NVM, table, *table_position(table, alpha))
-        assert tabulated == pytest.approx(direct, rel=1e-8), alpha
+        direct[i] = max(film_central_nvm(F, Rx, Ry, e_eff, eta0, alpha_p, u_s), min_film)
+        carries[i, CA_FEL], carries[i, CA_U] = F, u_s
+        nvm_terms_into(table, *table_position(table, alpha), carries[i])
+        assert film_of_carry(carries[i], alpha, outer, params.fp, FILM_NVM) == pytest.approx(direct[i], rel=1e-8), alpha
+    n = alphas.size
+    cols = [np.ascontiguousarray(carries[:, c]) for c in (CA_FEL, CA_RX, CA_U, *range(CA_RX + 1, CA_RX + 6))]
+    h = np.empty(n)
+    film_central_nvm_batch(*cols, n, params.fp[FP_E_EFF], params.fp[FP_ETA0], params.fp[FP_ALPHA_P], h,
+                           np.empty((FILM_BATCH_ROWS, 5 * n)), np.empty(5 * n, dtype=np.int64))
+    np.testing.assert_allclose(np.maximum(h, min_film), direct, rtol=1e-8)
 
 
 @pytest.mark.parametrize("outer", [False, True])
@@ -282,19 +294,18 @@ def test_hamrock_dowson_film_option_uses_the_contact_curvatures(lubricated):
     """With the Hamrock–Dowson option the model's film is film_hamrock_dowson's central film
     at R_x, R_y of the contact angle (docs/model.md §6.3), not the tabulated NVM terms."""
     from bearingsim.dynamics.bearing.params import FILM_HD
-    from bearingsim.dynamics.bearing.race_forces import _film
+    from bearingsim.dynamics.bearing.race_forces import CA_FEL, CA_U, N_CARRY, film_of_carry
     from bearingsim.dynamics.bearing.race_table import curvature_radii
     from bearingsim.dynamics.lubrication.film import film_hamrock_dowson
-    from bearingsim.dynamics.contact.hertz import table_position
 
     params = lubricated[0]
-    table = params.races.inner
     D, d_m, r, e_eff, eta0, alpha_p, min_film = _film_inputs(lubricated, False)
     for alpha, F, u_s in [(0.3, 800.0, 12.0), (0.55, 4000.0, 25.0), (0.45, 150.0, 4.0)]:
         Rx, Ry = curvature_radii(alpha, False, D, d_m, r)
         expected = max(film_hamrock_dowson(F, Rx, Ry, e_eff, eta0, alpha_p, u_s)[0], min_film)
-        assert _film(F, alpha, False, u_s, params.fp, FILM_HD, table, *table_position(table, alpha)) == pytest.approx(
-            expected, rel=1e-12)
+        carry = np.full(N_CARRY, np.nan)  # the NVM terms stay unread
+        carry[CA_FEL], carry[CA_U] = F, u_s
+        assert film_of_carry(carry, alpha, False, params.fp, FILM_HD) == pytest.approx(expected, rel=1e-12)
 
 
 def test_the_direct_kernel_call_is_taken_only_for_arrays_it_can_read(dry):

@@ -101,3 +101,22 @@ def test_log_space_nvm_equals_the_direct_formula():
         direct = film.film_central_nvm_direct(*args)
         assert direct > 0.0
         assert film.film_central_nvm(*args) == pytest.approx(direct, rel=1e-10), args
+
+
+def test_batch_nvm_equals_the_one_contact_kernel():
+    # film_central_nvm_batch (the time loop: all contacts at once, exp and log vectorised in
+    # dynamics.simd_math) against film_central_nvm_terms, contact by contact, over the same
+    # four regimes as above: the same formula, so agreement to rounding.
+    rng = np.random.default_rng(17)
+    logu = lambda lo, hi: np.exp(rng.uniform(math.log(lo), math.log(hi), n))  # noqa: E731
+    n = 3000
+    Rx = logu(1e-4, 0.05)
+    F, Ry, u_s = logu(1e-2, 1e5), Rx / logu(0.005, 2.0), logu(1e-3, 100.0)
+    eta0 = 0.02
+    terms = np.array([film.nvm_geometry_terms(Rx[i], Ry[i]) for i in range(n)]).T.copy()
+    for alpha_p in (0.0, 1.5e-8):
+        h = np.full(n, np.nan)
+        film.film_central_nvm_batch(F, Rx, u_s, *terms, n, E_EFF, eta0, alpha_p, h,
+                                    np.empty((film.FILM_BATCH_ROWS, 5 * n)), np.empty(5 * n, dtype=np.int64))
+        one = [film.film_central_nvm_terms(F[i], Rx[i], E_EFF, eta0, alpha_p, u_s[i], *terms[:, i]) for i in range(n)]
+        np.testing.assert_allclose(h, one, rtol=1e-12)

@@ -231,6 +231,23 @@ def test_taylor_sin_cos_on_the_cone_range():
         assert abs(c - math.cos(p)) < 3e-12 and abs(s - math.sin(p)) < 3e-12
 
 
+def test_cone_edges_equal_the_angle_construction():
+    """`nodes._cone_edges` turns -P by +-asin(1/|P|) with rotations; the angles themselves
+    (atan2 of each edge mapped to the working plane, the mid-angle and half the opening)
+    must give the same cone, from a pole on the ellipse edge to the far rule's 4 radii."""
+    rng = np.random.default_rng(23)
+    for _ in range(400):
+        A = math.sqrt(rng.uniform(0.05, 0.25))
+        P_scaled, phi = 1.0 + rng.choice([0.0, 1e-9, 1e-3, rng.uniform(0, 3)]), rng.uniform(-math.pi, math.pi)
+        PX, PV = P_scaled * math.cos(phi), P_scaled * math.sin(phi)
+        beta, centre = math.asin(1.0 / P_scaled), math.atan2(-PV, -PX)
+        e1 = math.atan2(math.sin(centre - beta), A * math.cos(centre - beta))
+        e2 = math.atan2(math.sin(centre + beta), A * math.cos(centre + beta))
+        half = 0.5 * ((e2 - e1) % (2 * math.pi))
+        c, s, h = traction_nodes._cone_edges(A, PX * A, PV, P_scaled)
+        assert abs(h - half) < 1e-12 and abs(c - math.cos(e1 + half)) < 1e-12 and abs(s - math.sin(e1 + half)) < 1e-12
+
+
 def test_passes_equal_their_py_funcs(o156, fast):
     """Every njit pass of traction_fast against its plain-Python twin on random contacts."""
     rng = np.random.default_rng(13)

@@ -19,6 +19,7 @@ from bearingsim.dynamics._kernel_options import NO_REFCOUNT
 from bearingsim.dynamics.contact.pocket import (
     P_OUT_APPROACH, P_OUT_DFN_DRATE, P_OUT_FRICTION_POWER, P_OUT_IN_CONTACT,
 )
+from bearingsim.dynamics.lubrication.film import film_central_nvm_batch
 from bearingsim.dynamics.multibody.crv import crv_to_matrix_into, skew
 from bearingsim.dynamics.multibody.hinge import add_hinge_force, hinge_energy, hinge_forces
 from bearingsim.dynamics.multibody.joints import prescribe_velocity_residual
@@ -35,11 +36,13 @@ from .layout import BALL_DOF, CAGE_BORDER, CAGE_DOF, INNER_BORDER, RACE_DOF
 from .params import (
     FP_D, FP_FX, FP_FZ, FP_JB, FP_JCX, FP_JCZ, FP_JIX, FP_JIZ, FP_MB, FP_MC, FP_MI, FP_MY,
     FP_MY_STEP, FP_OMEGA_I, FP_OMEGA_O, FP_T_LOAD_STEP, IP_CAGE, IP_GYRO, IP_HINGE, IP_JOURNAL, IP_Z,
+    FP_ALPHA_P, FP_E_EFF, FP_ETA0, FP_MIN_FILM, FILM_HD, FILM_NVM, IP_FILM,
 )
 from .race_forces import (
     RC_ACTIVE, RC_ALPHA, RC_CN, RC_DN, RC_EX, RC_EY, RC_FB, RC_FILM, RC_FLAG,
     RC_FR, RC_JT, RC_KP, RC_LOAD_SLOPE, RC_MB, RC_MR, RC_N, RC_PB, RC_PDISS, RC_PMAX, RC_PR, RC_Q,
-    RC_SRR, RC_VHZ, RC_WTB, RC_WTR, race_contact,
+    RC_SRR, RC_VHZ, RC_WTB, RC_WTR, CA_FEL, CA_RI, CA_RX, CA_U, film_of_carry, race_contact_forces,
+    race_contact_normal,
 )
 from .tangents import add_pair, point_map, slip_map
 
@@ -118,23 +121,65 @@ def _ball_forces(q, v, model, bodies, scratch, rows, pocket_rows, g, diag, loads
     when want_tangent) stay in rows (2k inner, 2k + 1 outer) and, with a cage, pocket_rows
     for the tangent pass. Allocation-free and without reference counting
     (dynamics/_kernel_options.py): this loop, with its per-ball views, is the hot path of
-    every residual."""
+    every residual.
+
+    Three passes: every ball–race contact's geometry and normal load (`race_contact_normal`);
+    the NVM film of all of them at once (`film.film_central_nvm_batch`, whose exp and log
+    vectorise over the contacts: ~1 us instead of ~6 us for the 44 of the reference bearing);
+    then each contact's traction and wrenches (`race_contact_forces`) and each ball's pockets.
+    """
     fp, ip, races, cage = model.fp, model.ip, model.races, model.cage
-    for k in range(ip[IP_Z]):
+    Z = ip[IP_Z]
+    film = ip[IP_FILM]
+    film_in = scratch.film_in
+    for k in range(Z):
+        b = BALL_DOF * k
+        ball = Ball(q[b:b + 3], v[b:b + 3], v[b + 3:b + 6])
+        for j in range(2):
+            c = 2 * k + j
+            res = rows[c]
+            # one call site with a run-time is_outer: two call sites with the constants True and
+            # False made numba compile the contact kernels twice (see `_ball_tangents`)
+            is_outer = j == 1
+            carry = scratch.carry[c]
+            hit = race_contact_normal(ball, bodies.outer if is_outer else bodies.inner, is_outer, fp, ip,
+                                      races.outer if is_outer else races.inner, scratch.contact[c], carry, res,
+                                      want_tangent)
+            diag[N_DG + DB * k + DB_AI + j] = res[RC_ALPHA]
+            res[RC_ACTIVE] = 1.0 if hit else 0.0
+            if film == FILM_NVM:
+                if hit:
+                    film_in[0, c] = carry[CA_FEL]
+                    film_in[1, c] = carry[CA_RX]
+                    film_in[2, c] = carry[CA_U]
+                    for i in range(5):
+                        film_in[3 + i, c] = carry[CA_RI + i]
+                else:  # any finite film: the batch has no branches, and this result is not read
+                    film_in[0, c] = film_in[1, c] = film_in[2, c] = 1.0
+                    for i in range(5):
+                        film_in[3 + i, c] = 0.0
+    if film == FILM_NVM:
+        film_central_nvm_batch(film_in[0], film_in[1], film_in[2], film_in[3], film_in[4], film_in[5], film_in[6],
+                               film_in[7], 2 * Z, fp[FP_E_EFF], fp[FP_ETA0], fp[FP_ALPHA_P], scratch.film_h,
+                               scratch.film_work, scratch.film_iwork)
+    for k in range(Z):
         b = BALL_DOF * k
         ball = Ball(q[b:b + 3], v[b:b + 3], v[b + 3:b + 6])
         d = N_DG + DB * k
         for j in range(2):
-            res = rows[2 * k + j]
-            # one call site with a run-time is_outer: two call sites with the constants True and
-            # False made numba compile race_contact and its film and geometry twice (see
-            # `_ball_tangents`)
-            is_outer = j == 1
-            hit = race_contact(ball, bodies.outer if is_outer else bodies.inner, is_outer, fp, ip,
-                               races.outer if is_outer else races.inner, model.traction, scratch, res, want_tangent)
-            diag[d + DB_AI + j] = res[RC_ALPHA]
-            if not hit:
+            c = 2 * k + j
+            res = rows[c]
+            if res[RC_ACTIVE] == 0.0:
                 continue
+            is_outer = j == 1
+            carry = scratch.carry[c]
+            h = 0.0
+            if film == FILM_NVM:
+                h = max(scratch.film_h[c], fp[FP_MIN_FILM])
+            elif film == FILM_HD:
+                h = film_of_carry(carry, res[RC_ALPHA], is_outer, fp, film)
+            race_contact_forces(ball, bodies.outer if is_outer else bodies.inner, fp, ip, model.traction,
+                                scratch.contact[c], scratch.traction, carry, h, res, want_tangent)
             for i in range(3):
                 g[b + i] += res[RC_FB + i]
                 g[b + 3 + i] += res[RC_MB + i]

@@ -88,16 +88,23 @@ class BorderLoads(NamedTuple):
 
 
 class ContactScratch(NamedTuple):
-    """Work rows of one contact evaluation: its geometry (contact/race.py, N_CONTACT_SCRATCH)
-    and its traction result (12: T, dT/ds)."""
+    """Work rows of the ball–race contacts (`race_forces.contact_scratch`): per contact its
+    geometry (contact/race.py, N_CONTACT_SCRATCH) and what its two phases pass on
+    (race_forces.N_CARRY); one traction result (12: T, dT/ds); the film batch's inputs
+    (F, R_x, u_s and the five NVM terms, rows of length n), its result and its scratch."""
 
     contact: np.ndarray
     traction: np.ndarray
+    carry: np.ndarray
+    film_in: np.ndarray
+    film_h: np.ndarray
+    film_work: np.ndarray
+    film_iwork: np.ndarray
 
 
 class ResidualWork(NamedTuple):
     """The residual kernel's scratch, allocated once per model instead of in every call:
-    contact rows (2Z, N_RC) and pocket rows (Z, N_POCKET_OUT), one contact's scratch, the
+    contact rows (2Z, N_RC) and pocket rows (Z, N_POCKET_OUT), the contacts' scratch, the
     border load sums, the outer race (x = 0, R = I, v = 0; the kernel sets w = (0, 0, omega_o)
     from the parameters), the rotation (3x3) and spatial angular velocity (3) of the inner race
     and the cage, the external loads, two material moments (3) and the cage–land result row. Like

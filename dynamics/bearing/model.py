@@ -23,8 +23,8 @@ from bearingsim.dynamics.multibody.linear_solvers import BlockArrowMatrix, assem
 from . import channels, layout
 from .assembly import evaluate_bearing, mass_diagonal
 from .params import IP_CAGE, IP_Z
-from .bundles import Body, BorderLoads, CageArrays, ContactScratch, ModelArrays, ResidualWork
-from .race_forces import N_CONTACT_SCRATCH, N_RC
+from .bundles import Body, BorderLoads, CageArrays, ModelArrays, ResidualWork
+from .race_forces import N_RC, contact_scratch
 from .channels import (
     DB, DB_POCKET, DB_POCKET_APPROACH, DB_POCKET_IN_CONTACT, DB_POCKET_ORBITAL, DG_P_DISS, DG_P_DRIVE,
     DG_P_EXT, N_DG, diag_size,
@@ -127,7 +127,7 @@ def residual_work(Z: int) -> ResidualWork:
     """Fresh scratch of the residual kernel for a bearing of Z balls (`bundles.ResidualWork`)."""
     return ResidualWork(
         rows=np.zeros((2 * Z, N_RC)), pocket_rows=np.zeros((Z, N_POCKET_OUT)),
-        scratch=ContactScratch(np.zeros(N_CONTACT_SCRATCH), np.zeros(12)),
+        scratch=contact_scratch(2 * Z),
         loads=BorderLoads(np.zeros(3), np.zeros(3), np.zeros(3), np.zeros(3)),
         outer=Body(np.zeros(3), np.eye(3), np.zeros(3), np.zeros(3)),
         R_inner=np.zeros((3, 3)), w_inner=np.zeros(3), R_cage=np.zeros((3, 3)), w_cage=np.zeros(3),

@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 
 import numba
+import numpy as np
 
 from bearingsim.dynamics._kernel_options import NO_REFCOUNT
 from bearingsim.dynamics.contact.hertz import TAB_KH, hermite, table_position
@@ -21,14 +22,15 @@ from bearingsim.dynamics.contact.race import (
     OUT_ALPHA, OUT_DELTA, OUT_EX, OUT_EY, OUT_LEVER, OUT_N, OUT_P, OUT_SLIDE, OUT_SPIN,
     OUT_SRR, OUT_U_SUM, ball_race_contact_kernel,
 )
-from bearingsim.dynamics.lubrication.film import film_central_nvm_terms, film_hamrock_dowson
+from bearingsim.dynamics.lubrication.film import FILM_BATCH_ROWS, film_central_nvm_terms, film_hamrock_dowson
 from bearingsim.dynamics.traction.fast import traction_fast
 
+from .bundles import ContactScratch
 from .channels import Channel, RowLayout
 from .params import (
     FP_ALPHA_P, FP_D, FP_DI, FP_DM, FP_DO, FP_E_EFF, FP_ETA0, FP_MB, FP_MIN_FILM,
     FP_MU_DRY, FP_RI, FP_RO, FP_V_REG, FP_ZETA, FILM_HD, FILM_NONE,
-    IP_FILM, IP_TRACTION, TRACTION_COULOMB, TRACTION_EYRING,
+    FILM_NVM, IP_FILM, IP_TRACTION, TRACTION_COULOMB, TRACTION_EYRING,
 )
 from .race_table import TAB_FILM, TAB_SEMI_AXES, curvature_radii_kernel
 
@@ -100,41 +102,69 @@ def _coulomb(F_n, a_x, b_y, du0, dv0, w_s, mu, v_reg, out):
     out[5] = out[8] = out[9] = out[10] = 0.0
 
 
+# What one contact carries from `race_contact_normal` to `race_contact_forces`: the Hertz
+# ellipse, the slip, the loads, and the film's inputs (NVM: R_x and its lambda terms at the
+# contact angle, read from the race table), so that the time loop can take every contact's
+# film in one batch between the two (`assembly._ball_forces`).
+(CA_AX, CA_BY, CA_PMAX, CA_DU0, CA_DV0, CA_WS, CA_FN, CA_FEL, CA_DELTA, CA_DDOT, CA_KN, CA_U,
+ CA_RX, CA_RI, CA_EI, CA_H00, CA_RP, CA_EP) = range(18)
+N_CARRY = 18
+
+
+def contact_scratch(n: int) -> ContactScratch:
+    """Fresh `bundles.ContactScratch` for n ball–race contacts."""
+    return ContactScratch(np.zeros((n, N_CONTACT_SCRATCH)), np.zeros(12), np.zeros((n, N_CARRY)),
+                          np.zeros((8, n)), np.zeros(n), np.zeros((FILM_BATCH_ROWS, 5 * n)),
+                          np.zeros(5 * n, dtype=np.int64))
+
+
 @numba.njit(**NO_REFCOUNT)
-def _film(F_n, alpha, is_outer, u_s, fp, method, table, j, t, step):
-    """Central film thickness [m], floored at FP_MIN_FILM. NVM reads R_x and its lambda
-    terms from the race table's film columns at the table position (j, t, step) of alpha
-    (`hertz.table_position`); Hamrock–Dowson computes R_x, R_y from alpha."""
-    u = max(u_s, 1e-6)
+def film_of_carry(carry, alpha, is_outer, fp, method):
+    """Central film thickness [m] of one contact from its carry (CA_*), floored at
+    FP_MIN_FILM: NVM from the table terms `race_contact_normal` read; Hamrock–Dowson computes
+    R_x, R_y from the contact angle alpha. (The time loop takes NVM for all contacts at once:
+    `film.film_central_nvm_batch`, then the same floor.)"""
     if method == FILM_HD:
         Rx, Ry = curvature_radii_kernel(alpha, is_outer, fp[FP_D], fp[FP_DM], fp[FP_RO] if is_outer else fp[FP_RI])
-        h = film_hamrock_dowson(F_n, Rx, Ry, fp[FP_E_EFF], fp[FP_ETA0], fp[FP_ALPHA_P], u)[0]
+        h = film_hamrock_dowson(carry[CA_FEL], Rx, Ry, fp[FP_E_EFF], fp[FP_ETA0], fp[FP_ALPHA_P], carry[CA_U])[0]
         return max(h, fp[FP_MIN_FILM])
-    Rx = hermite(table, j, TAB_FILM, t, step)[0]
-    ri = hermite(table, j, TAB_FILM + 2, t, step)[0]
-    ei = hermite(table, j, TAB_FILM + 4, t, step)[0]
-    h00 = hermite(table, j, TAB_FILM + 6, t, step)[0]
-    rp = hermite(table, j, TAB_FILM + 8, t, step)[0]
-    ep = hermite(table, j, TAB_FILM + 10, t, step)[0]
-    h = film_central_nvm_terms(F_n, Rx, fp[FP_E_EFF], fp[FP_ETA0], fp[FP_ALPHA_P], u, ri, ei, h00, rp, ep)
+    h = film_central_nvm_terms(carry[CA_FEL], carry[CA_RX], fp[FP_E_EFF], fp[FP_ETA0], fp[FP_ALPHA_P], carry[CA_U],
+                               carry[CA_RI], carry[CA_EI], carry[CA_H00], carry[CA_RP], carry[CA_EP])
     return max(h, fp[FP_MIN_FILM])
 
 
 @numba.njit(**NO_REFCOUNT)
 def race_contact(ball, race, is_outer, fp, ip, table, traction, scratch, res, want_tangent):
     """Forces of one ball on one race and (want_tangent) their tangent ingredients, into
-    res (RACE_ROW); the tangent-only fields stay zero otherwise.
+    res (RACE_ROW); the tangent-only fields stay zero otherwise: the two phases below with
+    this contact's film between them (the time loop takes the film of all contacts at once
+    between the phases, `assembly._ball_forces`).
 
     ball: `bundles.Ball` (centre [m], velocity [m/s], angular velocity [rad/s]); race:
     `bundles.Body` (centre, rotation race -> global, velocity, spatial angular velocity);
     fp, ip: the model's parameter vectors (params.FP_*, IP_*); table: the race's contact
     table (race_table.race_contact_table); traction: the `TractionRule` of the Eyring fast
-    path; scratch: `bundles.ContactScratch`.
+    path; scratch: `bundles.ContactScratch` (its first contact and carry rows are used).
     Returns True when in contact.
     """
+    cbuf, carry = scratch.contact[0], scratch.carry[0]
+    if not race_contact_normal(ball, race, is_outer, fp, ip, table, cbuf, carry, res, want_tangent):
+        return False
+    h = 0.0
+    if ip[IP_FILM] != FILM_NONE:
+        h = film_of_carry(carry, res[RC_ALPHA], is_outer, fp, ip[IP_FILM])
+    race_contact_forces(ball, race, fp, ip, traction, cbuf, scratch.traction, carry, h, res, want_tangent)
+    return True
+
+
+@numba.njit(**NO_REFCOUNT, inline="always")
+def race_contact_normal(ball, race, is_outer, fp, ip, table, cbuf, carry, res, want_tangent):
+    """First phase of one contact: geometry into cbuf (`contact.race`'s OUT_* layout), the
+    Hertz load with normal damping and (want_tangent) its stiffness and damping into res
+    (which it clears first), the rest of what the second phase needs into carry (CA_*).
+    Returns True when in contact."""
     x_b, v_b, w_b = ball.x, ball.v, ball.w
     x_r, R_r, v_r, w_r = race.x, race.R, race.v, race.w
-    cbuf, tbuf = scratch.contact, scratch.traction
     res[:] = 0.0
     d_g = fp[FP_DO] if is_outer else fp[FP_DI]
     r_g = fp[FP_RO] if is_outer else fp[FP_RI]
@@ -167,14 +197,44 @@ def race_contact(ball, race, is_outer, fp, ip, table, traction, scratch, res, wa
             for i in range(3):
                 for j in range(3):
                     res[RC_CN + 3 * i + j] = c_n * n[i] * n[j]
-    p_max = 1.5 * F_el / (math.pi * a_x * b_y)
-    du0 = cbuf[OUT_SLIDE] * cbuf[OUT_EX] + cbuf[OUT_SLIDE + 1] * cbuf[OUT_EX + 1] + cbuf[OUT_SLIDE + 2] * cbuf[OUT_EX + 2]
-    dv0 = cbuf[OUT_SLIDE] * cbuf[OUT_EY] + cbuf[OUT_SLIDE + 1] * cbuf[OUT_EY + 1] + cbuf[OUT_SLIDE + 2] * cbuf[OUT_EY + 2]
-    w_s = cbuf[OUT_SPIN]
+    slide, ex, ey = cbuf[OUT_SLIDE:OUT_SLIDE + 3], cbuf[OUT_EX:OUT_EX + 3], cbuf[OUT_EY:OUT_EY + 3]
+    carry[CA_AX] = a_x
+    carry[CA_BY] = b_y
+    carry[CA_PMAX] = 1.5 * F_el / (math.pi * a_x * b_y)
+    carry[CA_DU0] = slide[0] * ex[0] + slide[1] * ex[1] + slide[2] * ex[2]
+    carry[CA_DV0] = slide[0] * ey[0] + slide[1] * ey[1] + slide[2] * ey[2]
+    carry[CA_WS] = cbuf[OUT_SPIN]
+    carry[CA_FN] = F_n
+    carry[CA_FEL] = F_el
+    carry[CA_DELTA] = delta
+    carry[CA_DDOT] = delta_dot
+    carry[CA_KN] = k_n
+    carry[CA_U] = max(cbuf[OUT_U_SUM], 1e-6)
+    if ip[IP_FILM] == FILM_NVM:
+        nvm_terms_into(table, j, t, step, carry)
+    return True
+
+
+@numba.njit(**NO_REFCOUNT)
+def nvm_terms_into(table, j, t, step, carry):
+    """R_x and the lambda-only NVM terms (`film.nvm_geometry_terms`) at the race table's
+    position (j, t, step) of the contact angle (`hertz.table_position`) into carry[CA_RX:CA_EP + 1]."""
+    for i in range(6):
+        carry[CA_RX + i] = hermite(table, j, TAB_FILM + 2 * i, t, step)[0]
+
+
+@numba.njit(**NO_REFCOUNT, inline="always")
+def race_contact_forces(ball, race, fp, ip, traction, cbuf, tbuf, carry, h, res, want_tangent):
+    """Second phase of one contact that touches: traction with the film h [m] (0: none), the
+    wrenches on ball and race, and the contact's diagnostics, into res. cbuf and carry as
+    `race_contact_normal` left them; tbuf: the traction's scratch (12)."""
+    x_b, x_r = ball.x, race.x
+    n = cbuf[OUT_N:OUT_N + 3]
+    p = cbuf[OUT_P:OUT_P + 3]
+    a_x, b_y, p_max = carry[CA_AX], carry[CA_BY], carry[CA_PMAX]
+    du0, dv0, w_s = carry[CA_DU0], carry[CA_DV0], carry[CA_WS]
+    F_n, F_el, delta, delta_dot, k_n = carry[CA_FN], carry[CA_FEL], carry[CA_DELTA], carry[CA_DDOT], carry[CA_KN]
     mode = ip[IP_TRACTION]
-    h = 0.0
-    if ip[IP_FILM] != FILM_NONE:
-        h = _film(F_el, cbuf[OUT_ALPHA], is_outer, cbuf[OUT_U_SUM], fp, ip[IP_FILM], table, j, t, step)
     # traction T = tbuf[0:3] and dT/ds = tbuf[3:12] (row-major), on the ball
     if mode == TRACTION_EYRING:
         res[RC_FLAG] = traction_fast(a_x, b_y, p_max, h, du0, dv0, w_s, traction, tbuf, want_tangent)
@@ -202,7 +262,6 @@ def race_contact(ball, race, is_outer, fp, ip, table, traction, scratch, res, wa
     res[RC_VHZ] = 0.4 * F_el * delta  # Hertz elastic energy 2/5 k_h delta^(5/2) [J]
     res[RC_PDISS] = -(tbuf[0] * du0 + tbuf[1] * dv0 + tbuf[2] * w_s) + max(F_n - F_el, 0.0) * delta_dot
     res[RC_ACTIVE] = 1.0
-    return True
 
 
 @numba.njit(**NO_REFCOUNT)

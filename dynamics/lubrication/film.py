@@ -30,6 +30,8 @@ import math
 
 import numba
 
+from bearingsim.dynamics.simd_math import VEC, exp_array, log_array
+
 
 @numba.njit(cache=True)
 def moes_parameters(F, Rx, Ry, E_eff, eta0, alpha_p, u_s):
@@ -136,6 +138,70 @@ def film_central_nvm_terms(F, Rx, E_eff, eta0, alpha_p, u_s, ln_RI0, ln_EI0, h00
 
 _LN_145, _LN_3_18, _LN_1_29, _LN_1_48 = math.log(145.0), math.log(3.18), math.log(1.29), math.log(1.48)
 _EXP_UNDERFLOW = -746.0  # exp(x) rounds to 0.0 for every x below about -745.13
+
+
+FILM_BATCH_ROWS = 13  # rows of `film_central_nvm_batch`'s float scratch, each 5n long
+
+
+@numba.njit(**VEC)
+def film_central_nvm_batch(F, Rx, u_s, ln_RI0, ln_EI0, h00_m4, ln_RP0, ln_EP0, n, E_eff, eta0, alpha_p, h,
+                           work, iwork):
+    """`film_central_nvm_terms` for n contacts at once: h[m] [m] from F[m] > 0 [N], Rx[m] [m],
+    u_s[m] > 0 [m/s] and the geometry terms of `nvm_geometry_terms` (arrays of length >= n);
+    E_eff, eta0, alpha_p as there. Agrees with it to ~1e-14 relative (tests/test_film.py).
+
+    The same formula, its 16 exp and log taken for every contact in one vectorised pass each
+    (`dynamics.simd_math`) instead of one libm call after the other: 44 contacts of the
+    reference bearing in ~1.1 us instead of ~6.0 us (`python -m benchmarks.film`).
+    work: (FILM_BATCH_ROWS, >= 5n) float64, iwork: (>= 5n,) int64 scratch.
+    """
+    arg, lns, x, ex, y, ey, t = work[0], work[1], work[2], work[3], work[4], work[5], work[6]
+    ln_RI, ln_EI, ln_RP, ln_EP, s, kf = work[7], work[8], work[9], work[10], work[11], work[12]
+    for m in range(n):
+        arg[m] = eta0 * u_s[m] / (E_eff * Rx[m])  # the speed group
+        arg[n + m] = F[m] / (E_eff * Rx[m] * Rx[m])  # the load group
+    log_array(arg, 2 * n, kf, iwork, lns)
+    piezo = alpha_p > 0.0
+    ln_aE = math.log(alpha_p * E_eff) if piezo else 0.0
+    for m in range(n):
+        ln_speed = lns[m]
+        ln_M = lns[n + m] - 0.75 * ln_speed
+        ln_L = ln_aE + 0.25 * ln_speed
+        ln_RI[m] = ln_RI0[m] - 2.0 * ln_M
+        ln_EI[m] = ln_EI0[m] - 2.0 / 15.0 * ln_M
+        ln_RP[m] = ln_RP0[m] + 2.0 / 3.0 * ln_L
+        ln_EP[m] = ln_EP0[m] - ln_M / 12.0 + 0.75 * ln_L
+        x[m] = ln_EI[m] - ln_RI[m]       # H_EI / H_RI
+        x[n + m] = -4.0 * ln_EI[m]       # H_EI^-4
+        x[2 * n + m] = 1.5 * ln_RI[m]    # H_RI^1.5
+        x[3 * n + m] = -8.0 * ln_RP[m]   # H_RP^-8
+        x[4 * n + m] = -8.0 * ln_EP[m]   # H_EP^-8
+    exp_array(x, 5 * n, kf, iwork, ex)
+    for m in range(n):
+        x[m] = -1.2 * ex[m]                      # the blend's exponent
+        y[m] = ex[n + m] + h00_m4[m]             # H_EI^-4 + H_00^-4
+        y[n + m] = ex[3 * n + m] + ex[4 * n + m] if piezo else 1.0
+    exp_array(x, n, kf, iwork, t)                # exp(blend): 0 below EXP_MIN, as libm's underflow
+    log_array(y, 2 * n, kf, iwork, ey)
+    for m in range(n):
+        s[m] = 1.5 * (1.0 + t[m])
+        x[m] = -0.375 * ey[m]
+    exp_array(x, n, kf, iwork, t)                # (H_EI^-4 + H_00^-4)^(-3/8)
+    for m in range(n):
+        y[m] = ex[2 * n + m] + t[m]
+    log_array(y, n, kf, iwork, t)
+    for m in range(n):
+        x[m] = 2.0 * s[m] / 3.0 * t[m]           # ln iso
+        x[n + m] = -s[m] / 8.0 * ey[n + m]       # ln piezo
+    exp_array(x, 2 * n, kf, iwork, t)
+    for m in range(n):
+        y[m] = t[m] + (t[n + m] if piezo else 0.0)
+    log_array(y, n, kf, iwork, x)
+    for m in range(n):
+        x[m] = x[m] / s[m] + 0.5 * lns[m]        # ln(H sqrt(speed))
+    exp_array(x, n, kf, iwork, t)
+    for m in range(n):
+        h[m] = t[m] * Rx[m]
 
 
 @numba.njit(cache=True)

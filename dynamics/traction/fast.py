@@ -5,9 +5,9 @@ Jacobian d(F_x, F_y, M_z)/d(du0, dv0, w_s)); the nodes come from `dynamics.tract
 (rules centred on the spin pole, 200-320 nodes). What makes it fast is how the nodes are
 evaluated: in short passes over contiguous scratch arrays that LLVM vectorises (numba
 `fastmath`, `error_model="numpy"` so that `/` carries no zero-division branch), with
-asinh(x) = log(x + sqrt(1 + x^2)) and a branch-free log of our own (`log_ge1`) because
-numba's `math.log` is a scalar libm call that blocks vectorisation (no SVML in this
-llvmlite). The one scalar pass is the viscosity table lookup.
+asinh(x) = log(x + sqrt(1 + x^2)) and a branch-free log of our own (`log_ge1`, that is
+`dynamics.simd_math.log_array`) because numba's `math.log` is a scalar libm call that
+blocks vectorisation (no SVML in this llvmlite). The one scalar pass is the viscosity table lookup.
 
 Square roots and divisions share one unit that neither wider vectors nor fast-math speed up;
 they set the cost. Where their rounding is harmless they run in float32, which that unit
@@ -50,6 +50,8 @@ import numpy as np
 
 from bearingsim.dynamics.lubrication import rheology
 from bearingsim.dynamics._kernel_options import NO_REFCOUNT
+from bearingsim.dynamics.simd_math import LN2 as _LN2
+from bearingsim.dynamics.simd_math import log_array as log_ge1  # ln z for z >= 1 here (asinh x = ln z)
 from bearingsim.dynamics.traction.nodes import max_nodes, pack_rule, place_nodes
 
 FLAG_OK = 0
@@ -65,11 +67,7 @@ VALIDATED_P_H = (2.0e8, 3.0e9)  # Pa, maximum Hertz pressure checked in tests
 EYRING_ARG_MAX = 1e18
 SMALL_ARG = 1e-2  # below this the series of asinh(x)/x is used (cancellation in c otherwise)
 
-_LN2 = math.log(2.0)
-_MANTISSA = 0x000FFFFFFFFFFFFF
-_EXP_ONE = 0x3FF0000000000000
-_SQRT2_MANTISSA = 0x6A09E667F3BCD  # mantissa bits of sqrt(2)
-# the same for float32 (23 mantissa bits, exponent bias 127)
+# the bit layout of `simd_math.log_array` for float32 (23 mantissa bits, exponent bias 127)
 _MANTISSA32 = np.int32(0x007FFFFF)
 _EXP_ONE32 = np.int32(0x3F800000)
 _SQRT2_MANTISSA32 = np.int32(0x3504F3)
@@ -116,37 +114,6 @@ class _NodeValues(NamedTuple):
     x: np.ndarray
     z: np.ndarray
     ash: np.ndarray
-
-
-@numba.njit(**_VEC)
-def log_ge1(z, n, exponent, mantissa_bits, out):
-    """out[m] = ln z[m] for z >= 1 (finite), m < n; |error| < 1e-13 (tested against math.log).
-
-    z = 2^e m with m in [sqrt(1/2), sqrt(2)) taken apart through an int64 view of the bits;
-    ln m = 2 atanh(s), s = (m - 1)/(m + 1), |s| <= 0.172, series to s^15 (next term
-    2 s^17/17 < 1.2e-14). Branch-free so that the loop vectorises.
-    """
-    zi = z.view(np.int64)
-    for m in range(n):
-        bits = zi[m]
-        mant = bits & _MANTISSA
-        up = np.int64(mant > _SQRT2_MANTISSA)
-        exponent[m] = float((bits >> 52) - 1023 + up)
-        mantissa_bits[m] = mant | (_EXP_ONE - (up << 52))
-    mf = mantissa_bits.view(np.float64)
-    for m in range(n):
-        x = mf[m]
-        s = (x - 1.0) / (x + 1.0)
-        s2 = s * s
-        p = 1.0 / 15.0
-        p = p * s2 + 1.0 / 13.0
-        p = p * s2 + 1.0 / 11.0
-        p = p * s2 + 1.0 / 9.0
-        p = p * s2 + 1.0 / 7.0
-        p = p * s2 + 1.0 / 5.0
-        p = p * s2 + 1.0 / 3.0
-        p = p * s2 + 1.0
-        out[m] = exponent[m] * _LN2 + 2.0 * s * p
 
 
 @numba.njit(**_VEC)

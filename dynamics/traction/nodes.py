@@ -186,18 +186,30 @@ def _cos_sin_small(phi):
 
 @numba.njit(**_VEC)
 def _cone_edges(A, PU, PV, P_scaled):
-    """(mid, half): central direction and half-angle [rad] of the cone of rays from the pole
-    that cross the ellipse, in the working plane. Found in the scaled plane (unit disc:
-    half-angle asin(1/|P|) about -P) and mapped with the anisotropy A."""
-    PX = PU / A
-    beta = math.asin(min(1.0 / P_scaled, 1.0))
-    centre = math.atan2(-PV, -PX)
-    e1 = math.atan2(math.sin(centre - beta), A * math.cos(centre - beta))
-    e2 = math.atan2(math.sin(centre + beta), A * math.cos(centre + beta))
-    half = 0.5 * (e2 - e1)
-    if half < 0.0:
-        half += math.pi
-    return e1 + half, half
+    """(cos mid, sin mid, half): central direction and half-angle [rad] of the cone of rays
+    from the pole that cross the ellipse, in the working plane.
+
+    In the scaled plane (the unit disc) the two tangents from P make the angle
+    beta = asin(1/|P|) with -P; each edge's direction (c, s) there is (A c, s) in the working
+    plane, normalised. mid lies half-way from the first edge to the second, counter-clockwise:
+    perpendicular to their difference, which stays well conditioned when the edges are almost
+    opposite (|P| -> 1). Rotations instead of angles: one libm call (atan2) where angles took
+    six (asin, three atan2, cos, sin: ~0.1 us a cone contact)."""
+    inv_P = 1.0 / P_scaled
+    sb = min(inv_P, 1.0)
+    cb = math.sqrt(max(1.0 - sb * sb, 0.0))
+    ux = -PU / A * inv_P  # -P/|P| in the scaled plane
+    uy = -PV * inv_P
+    d1x, d1y = A * (ux * cb + uy * sb), uy * cb - ux * sb  # -P turned by -beta, mapped
+    d2x, d2y = A * (ux * cb - uy * sb), uy * cb + ux * sb  # and by +beta
+    n1 = 1.0 / math.sqrt(d1x * d1x + d1y * d1y)
+    n2 = 1.0 / math.sqrt(d2x * d2x + d2y * d2y)
+    d1x, d1y, d2x, d2y = d1x * n1, d1y * n1, d2x * n2, d2y * n2
+    dx, dy = d2x - d1x, d2y - d1y  # 2 sin(half) (-sin mid, cos mid)
+    sx, sy = d2x + d1x, d2y + d1y  # 2 cos(half) (cos mid, sin mid)
+    chord = math.sqrt(dx * dx + dy * dy)
+    half = math.atan2(chord, math.sqrt(sx * sx + sy * sy))
+    return dy / chord, -dx / chord, half
 
 
 @numba.njit(**_VEC)
@@ -206,7 +218,7 @@ def nodes_cone(a, b, PU, PV, P_scaled, rule, n_cone, o_cone, X, Y, W, ray):
 
     Radial: zeta = pi v (Gauss v on [0, 1]), t = t_mid - chord cos(zeta); angular:
     Gauss-Legendre in xi (n_cone nodes, block at o_cone), psi = mid + half sin(xi). rule from
-    `pack_rule`; ray: scratch (>= 5, >= n_cone). Six libm trig calls per contact, none per
+    `pack_rule`; ray: scratch (>= 5, >= n_cone). One libm call per contact (atan2), none per
     ray. Node m = i n_cone + j.
     """
     n_r = int(rule[H_N_RADIAL])
@@ -220,9 +232,7 @@ def nodes_cone(a, b, PU, PV, P_scaled, rule, n_cone, o_cone, X, Y, W, ray):
     inv_A = 1.0 / A
     inv_A2 = inv_A * inv_A
     wscale = math.sqrt(a * b) * b
-    mid, half = _cone_edges(A, PU, PV, P_scaled)
-    cos_mid = math.cos(mid)
-    sin_mid = math.sin(mid)
+    cos_mid, sin_mid, half = _cone_edges(A, PU, PV, P_scaled)
     c0 = PU * PU * inv_A2 + PV * PV - 1.0
     DX, DY, CH, TM, DW = ray[0], ray[1], ray[2], ray[3], ray[4]
     for j in range(n_cone):

@@ -61,3 +61,16 @@ def test_singular_small_block_is_reported():
     A = random_block_arrow(3, 6, 2)
     A.D[1] = 0.0
     assert not BlockArrowSolver(3, 6, 2).factor(A)
+
+
+def test_block_arrow_solve_refuses_the_right_hand_side_as_output():
+    # the solve writes the border of out before it has read every small block of rhs
+    rng = np.random.default_rng(4)
+    A = BlockArrowMatrix.zeros(3, 2, 2)
+    A.D[:] = rng.normal(size=A.D.shape) + 4 * np.eye(2)
+    A.B[:] = 4 * np.eye(2)
+    s = BlockArrowSolver(3, 2, 2)
+    assert s.factor(A)
+    b = rng.normal(size=8)
+    with pytest.raises(ValueError, match="rhs and out must be different arrays"):
+        s.solve(b, b)

@@ -127,7 +127,9 @@ class Factors(NamedTuple):
 
     LU_D: np.ndarray
     piv_D: np.ndarray
-    DinvE: np.ndarray
+    Dinv_T: np.ndarray
+    F_T: np.ndarray
+    DinvE_T: np.ndarray
     schur: np.ndarray
     piv_S: np.ndarray
 
@@ -245,7 +247,7 @@ def _factor(kernel, data, ls, co, w, t1, q, v, a, h):
         prescribe_velocity_blocks(w.S, i, 1.0, c_v, 1.0)
     w.counters[N_FACTORIZATIONS] += 1
     f = w.factors
-    ok = block_arrow_factor(w.S.D, w.S.E, w.S.F, w.S.B, f.LU_D, f.piv_D, f.DinvE, f.schur, f.piv_S)
+    ok = block_arrow_factor(w.S.D, w.S.E, w.S.F, w.S.B, f.LU_D, f.piv_D, f.Dinv_T, f.F_T, f.DinvE_T, f.schur, f.piv_S)
     w.state[S_H_FACTORED] = h if ok else 0.0
     w.state[S_STALE] = 0.0 if ok else 1.0
     return ok
@@ -273,7 +275,7 @@ def _newton(kernel, data, ls, co, w, t1, h, y, y1, fresh):
             if not _factor(kernel, data, ls, co, w, t1, q1, v1, a1, h):
                 return _SINGULAR
             fresh, rebuild = True, False
-        block_arrow_solve(f.LU_D, f.piv_D, f.DinvE, w.S.F, f.schur, f.piv_S, w.r, w.da)
+        block_arrow_solve(f.Dinv_T, f.F_T, f.DinvE_T, f.schur, f.piv_S, w.r, w.da)
         subtract_inplace(a1, w.da)
         w.counters[N_NEWTON_ITERATIONS] += 1
         corr = _norm(ls, co, w.da, w.zeros, ls.beta * h * h, q, q1)
@@ -402,8 +404,8 @@ def new_work(n: int, diag: np.ndarray, K: Blocks, C: Blocks) -> Work:
     """Zeroed state and scratch for a problem of n unknowns whose kernel fills diag, K and C."""
     Z, m, nb = K.E.shape
     S = BlockArrowMatrix.zeros(Z, m, nb).blocks()
-    factors = Factors(np.zeros((Z, m, m)), np.zeros((Z, m), dtype=np.int64), np.zeros((Z, m, nb)),
-                      np.zeros((nb, nb)), np.zeros(nb, dtype=np.int64))
+    factors = Factors(np.zeros((Z, m, m)), np.zeros((Z, m), dtype=np.int64), np.zeros((Z, m, m)), np.zeros((Z, m, nb)),
+                      np.zeros((Z, nb, m)), np.zeros((nb, nb)), np.zeros(nb, dtype=np.int64))
     return Work(np.zeros((2, 5, n)), *(np.zeros(n) for _ in range(7)), diag, K, C, S, factors,
                 np.zeros(10), np.zeros(11, dtype=np.int64))
 

@@ -70,14 +70,14 @@ def log_array(z, n, exponent, mantissa_bits, out):
 
 
 @numba.njit(**_VEC_EXACT)
-def exp_array(x, n, k_float, k_bits, out):
+def exp_array(x, n, mantissa, exponent_bits, out):
     """out[m] = exp(x[m]), m < n; relative error < 1e-15 for x in [EXP_MIN, EXP_MAX] (tested
     against math.exp), 0 below EXP_MIN, exp(EXP_MAX) above. x and out may be the same array.
 
     x = k ln 2 + r with k = round(x / ln 2), |r| <= ln(2)/2 (Cody-Waite: ln 2 in two parts, so
     r carries no rounding of k ln 2); e^r by its Taylor series to r^13 (next term
     0.347^14/14! < 4e-18); 2^k built in the exponent bits through an int64 view.
-    k_float (float64) and k_bits (int64): scratch of length >= n.
+    mantissa (float64: e^r) and exponent_bits (int64: 2^k): scratch of length >= n.
     """
     for m in range(n):
         xm = min(max(x[m], EXP_MIN), EXP_MAX)
@@ -98,8 +98,8 @@ def exp_array(x, n, k_float, k_bits, out):
         p = p * r + 1.0
         p = p * r + 1.0
         # the underflow test reads x before out overwrites it (they may alias)
-        k_float[m] = p if x[m] >= EXP_MIN else 0.0
-        k_bits[m] = (np.int64(k) + 1023) << 52
-    scale = k_bits.view(np.float64)
+        mantissa[m] = p if x[m] >= EXP_MIN else 0.0
+        exponent_bits[m] = (np.int64(k) + 1023) << 52
+    scale = exponent_bits.view(np.float64)
     for m in range(n):
-        out[m] = k_float[m] * scale[m]
+        out[m] = mantissa[m] * scale[m]

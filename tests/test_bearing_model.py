@@ -368,3 +368,21 @@ def test_border_gyroscopic_moment_is_the_rigid_body_ones_bit_for_bit():
         expected[2:5] += gyroscopic_moment(np.diag(np.array([Jx, Jx, Jz])), Om)[0]
         _add_gyroscopic(Jx, Jx, Jz, Om, g, 2)
         assert np.array_equal(g, expected)
+
+
+def test_a_tangent_call_leaves_the_residual_and_the_films_as_they_are(lubricated):
+    """The Newton matrix's evaluation (want_tangent) returns the same residual and diagnostics
+    as a residual-only one. Until 2026-11-24 a loop variable of the damping block shadowed the
+    race table position, and tangent calls read the film at the wrong contact angle."""
+    params, _, model, q, v = lubricated
+    n = model.n_dof
+    results = []
+    for want_tangent in (False, True):
+        ma, g = np.zeros(n), np.zeros(n)
+        model._kernel(0.0, q, v, np.zeros(n), ma, g, want_tangent)
+        films = np.stack([model.channel("contacts/inner_film"), model.channel("contacts/outer_film")])
+        results.append((g, films))
+    assert np.all(results[0][1] > 0.0)
+    np.testing.assert_allclose(results[1][1], results[0][1], rtol=1e-12)
+    # the tangent call takes the traction in float64, the residual-only one through float32 passes
+    np.testing.assert_allclose(results[1][0], results[0][0], rtol=0, atol=1e-5 * np.abs(results[0][0]).max())

@@ -194,9 +194,11 @@ def race_contact_normal(ball, race, is_outer, fp, ip, table, cbuf, carry, res, w
     if want_tangent:
         _contact_stiffness(k_n, F_el, delta, n, x_b, x_r, R_r, d_g, cbuf, res)
         if F_n > 0.0:
-            for i in range(3):
-                for j in range(3):
-                    res[RC_CN + 3 * i + j] = c_n * n[i] * n[j]
+            # r and c, not j: j is the table position the film's terms are read at below (it was
+            # reused here until 2026-11-24, so tangent calls read the film at interval 2)
+            for r in range(3):
+                for c in range(3):
+                    res[RC_CN + 3 * r + c] = c_n * n[r] * n[c]
     slide, ex, ey = cbuf[OUT_SLIDE:OUT_SLIDE + 3], cbuf[OUT_EX:OUT_EX + 3], cbuf[OUT_EY:OUT_EY + 3]
     carry[CA_AX] = a_x
     carry[CA_BY] = b_y

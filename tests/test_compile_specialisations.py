@@ -5,7 +5,9 @@ site (`True`, `0`, `-1`) is a type of its own: two call sites that pass `True` a
 compile the callee, and everything it links in, twice. That doubled ~15 s of a machine's
 first run. This test compiles the force kernel from an empty cache in a child process (the
 cache would otherwise hold the callers and never compile the callees) and counts the
-overloads of the kernels that used to be compiled more than once.
+overloads of the kernels a ball–race contact calls (its two phases, `race_contact_normal` and
+`race_contact_forces`, are inlined into the force kernel's contact loop, so they have none of
+their own) and of `add_pair`, which used to be compiled more than once.
 """
 
 from __future__ import annotations
@@ -25,6 +27,8 @@ import json
 import numpy as np
 from bearingsim.dynamics.bearing import BearingModel, ModelOptions
 from bearingsim.dynamics.bearing import race_forces, tangents
+from bearingsim.dynamics.contact import race
+from bearingsim.dynamics.traction import fast
 from bearingsim.dynamics.bearing.run import initial_coordinates
 from bearingsim.dynamics.lubrication.lubricant import load_builtin_lubricant
 from tests.bearing_fixtures import reference_model
@@ -36,7 +40,8 @@ n = model.n_dof
 model.evaluate(0.0, q, v, np.zeros(n), np.zeros(n), np.zeros(n))
 model.jacobian(0.0, q, v, np.zeros(n), 1.0, 1e-6, 1e-12)
 print(json.dumps({f.py_func.__name__: [str(sig) for sig in f.overloads]
-                  for f in (race_forces.race_contact, race_forces._film, tangents.add_pair)}))
+                  for f in (race.ball_race_contact_kernel, race_forces._contact_stiffness, race_forces.nvm_terms_into,
+                            race_forces._wrenches, fast.traction_fast, tangents.add_pair)}))
 """
 
 
@@ -48,5 +53,6 @@ def test_contact_kernels_compile_once(tmp_path):
     overloads = json.loads(out.stdout.strip().splitlines()[-1])
     # each was compiled: an empty list would mean the child found them in a cache
     assert all(len(sigs) >= 1 for sigs in overloads.values()), overloads
-    assert {name: len(sigs) for name, sigs in overloads.items()} == {"race_contact": 1, "_film": 1, "add_pair": 1}, \
-        overloads
+    assert {name: len(sigs) for name, sigs in overloads.items()} == {
+        "ball_race_contact_kernel": 1, "_contact_stiffness": 1, "nvm_terms_into": 1, "_wrenches": 1, "traction_fast": 1,
+        "add_pair": 1}, overloads

@@ -52,7 +52,7 @@ from .linear_solvers import Blocks, BlockArrowMatrix, BlockArrowSolver, assemble
     block_arrow_factor, block_arrow_solve
 from .newton import needs_refactor
 from .problem import check_problem, checked_error_scales
-from .results import IntegrationError, Result, Solution, SolverStats
+from .results import IntegrationError, NewtonStallWatch, Result, Solution, SolverStats
 from .sampling import Samples, StepEnds, hermite_fill
 from .settings import HHTSettings, JacobianReuse
 from .step_control import proposed_step, scaled_difference_norm
@@ -476,6 +476,7 @@ def integrate_compiled(problem, t0: float, t1: float, q0, v0, settings: HHTSetti
     co = Coordinates(cp.mass, cp.prescribed_rows, np.ascontiguousarray(problem.rotation_slots, dtype=np.int64),
                      np.ascontiguousarray(problem.error_weights, dtype=float), np.ascontiguousarray(scales))
     ls = loop_settings(settings, t0, t1)
+    stall = NewtonStallWatch(settings.alpha)
     while True:
         status = cp.chunk(cp.kernel, cp.data, cp.hook, ls, co, w, out, chunk_steps)
         cp.drain()
@@ -488,6 +489,7 @@ def integrate_compiled(problem, t0: float, t1: float, q0, v0, settings: HHTSetti
             result = FAILURES[status - FAILED]
             where = "at the minimum step" if settings.adaptive else "at the fixed step"
             raise IntegrationError(w.state[S_T_FAIL], w.state[S_H_FAIL], f"{result.value} {where}", result.hint)
+        stall.check(w.state[S_T], w.state[S_H], stats.steps, stats.newton_failures)
         if on_chunk is not None:
             on_chunk(w.state[S_T], w.state[S_H])
         if status == DONE:

@@ -17,7 +17,7 @@ import numpy as np
 from .hht import HHTState, HHTStepper
 from .linear_solvers import DenseSolver
 from .problem import check_problem, checked_error_scales
-from .results import IntegrationError, Result, Solution, SolverStats
+from .results import IntegrationError, NewtonStallWatch, Result, Solution, SolverStats
 from .settings import HHTSettings
 from .step_control import next_step
 
@@ -48,7 +48,8 @@ def integrate(problem, t0: float, t1: float, q0, v0, settings: HHTSettings | Non
     sampler: e.g. `FixedIntervalSampler`. on_step(t, q, v, a): called after each accepted
     step (default: `problem.on_accepted_step` if the problem has one).
     With `settings.adaptive = False` the step is fixed at `first_step` and the last step
-    lands on t1. Raises IntegrationError when Newton fails at the minimum step.
+    lands on t1. Raises IntegrationError when Newton fails at the minimum step, or when it
+    fails on so many steps in a row that the run would crawl (`results.NewtonStallWatch`).
     """
     settings = settings or HHTSettings()
     check_problem(problem)
@@ -58,6 +59,7 @@ def integrate(problem, t0: float, t1: float, q0, v0, settings: HHTSettings | Non
     stats = SolverStats()
     wall0 = time.perf_counter()
     stepper = HHTStepper(problem, settings, solver, stats)
+    stall = NewtonStallWatch(settings.alpha)
     if hasattr(problem, "error_scales"):
         stepper.set_error_scales(checked_error_scales(problem, t0, q0, v0))
     y = HHTState(n)
@@ -103,6 +105,8 @@ def integrate(problem, t0: float, t1: float, q0, v0, settings: HHTSettings | Non
         stepper.accepted(y, y1, h)
         y, stepper.y1 = y1, y  # swap buffers: no copies
         stats.steps += 1
+        if stats.steps % NewtonStallWatch.WINDOW == 0:
+            stall.check(t, h, stats.steps, stats.newton_failures)
         if on_step is not None:
             on_step(t, y.q, y.v, y.a)
         if settings.adaptive:

@@ -28,6 +28,10 @@ _LN2_LO = 1.90821492927058770002e-10
 _MANTISSA = 0x000FFFFFFFFFFFFF
 _EXP_ONE = 0x3FF0000000000000
 _SQRT2_MANTISSA = 0x6A09E667F3BCD  # mantissa bits of sqrt(2)
+# the same for float32 (23 mantissa bits, exponent bias 127)
+_MANTISSA32 = np.int32(0x007FFFFF)
+_EXP_ONE32 = np.int32(0x3F800000)
+_SQRT2_MANTISSA32 = np.int32(0x3504F3)
 # exp_array's range: below EXP_MIN the result is 0 (exp(-708.4) is the smallest normal float),
 # above EXP_MAX it is held at exp(EXP_MAX) (~8e307) instead of overflowing
 EXP_MIN, EXP_MAX = -708.0, 709.0
@@ -67,6 +71,34 @@ def log_array(z, n, exponent, mantissa_bits, out):
         p = p * s2 + 1.0 / 3.0
         p = p * s2 + 1.0
         out[m] = exponent[m] * LN2 + 2.0 * s * p
+
+
+@numba.njit(**VEC)
+def log_array32(z, n, exponent, mantissa_bits, out):
+    """out[m] = ln z[m] (float64) for float32 z >= 1, m < n; |error| < 3e-7 max(1, ln z).
+
+    `log_array` in float32 (the traction's residual-only passes, traction/fast.py): z = 2^e m,
+    m in [sqrt(1/2), sqrt(2)), ln m = 2 atanh(s) to s^9 (next term 2 s^11/11 < 7e-10); e ln 2
+    is added in float64. exponent (float32) and mantissa_bits (int32): scratch of length >= n."""
+    zi = z.view(np.int32)
+    for m in range(n):
+        bits = zi[m]
+        mant = bits & _MANTISSA32
+        up = np.int32(mant > _SQRT2_MANTISSA32)
+        exponent[m] = np.float32((bits >> np.int32(23)) - np.int32(127) + up)
+        mantissa_bits[m] = mant | (_EXP_ONE32 - (up << np.int32(23)))
+    mf = mantissa_bits.view(np.float32)
+    one = np.float32(1.0)
+    for m in range(n):
+        x = mf[m]
+        s = (x - one) / (x + one)
+        s2 = s * s
+        p = np.float32(1.0 / 9.0)
+        p = p * s2 + np.float32(1.0 / 7.0)
+        p = p * s2 + np.float32(1.0 / 5.0)
+        p = p * s2 + np.float32(1.0 / 3.0)
+        p = p * s2 + one
+        out[m] = float(exponent[m]) * LN2 + float(np.float32(2.0) * s * p)
 
 
 @numba.njit(**_VEC_EXACT)

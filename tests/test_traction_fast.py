@@ -25,9 +25,9 @@ from bearingsim.dynamics.traction.fast import (
     FLAG_NO_CONTACT, FLAG_OK, FLAG_PRESSURE_CLAMPED, FLAG_SLIP_CLAMPED, FLAG_UNVALIDATED, FastTraction, _accumulate,
     _Nodes, _NodeValues,
     _accumulate_force, _eyring_argument, _eyring_argument32, _slip_and_table_index, _slip_and_table_index32,
-    _viscosity_lookup, log_ge1,
-    log_ge1_32, traction_fast,
+    _viscosity_lookup, traction_fast,
 )
+from bearingsim.dynamics.simd_math import log_array, log_array32
 from tests.lubrication_points import (
     curvature_radii, E_EFF, hertz_ellipse, random_operating_points, rolling_speed,
 )
@@ -198,32 +198,6 @@ def test_fast_jacobian_matches_finite_differences_of_reference(o156, fast):
             assert np.allclose(J[:, col], fd, rtol=TOL_J, atol=TOL_J * np.abs(fd).max())
 
 
-def test_log_kernel_matches_math_log_and_its_py_func():
-    rng = np.random.default_rng(3)
-    z = np.concatenate([1.0 + rng.uniform(0, 1e-9, 50), np.exp(rng.uniform(0, 700, 200)), [1.0, 2.0, math.sqrt(2.0)]])
-    n = z.size
-    out, slow = np.empty(n), np.empty(n)
-    log_ge1(z, n, np.empty(n), np.empty(n, dtype=np.int64), out)
-    log_ge1.py_func(z, n, np.empty(n), np.empty(n, dtype=np.int64), slow)
-    exact = np.log(z)
-    assert np.all(np.abs(out - exact) <= 1e-13 * np.maximum(exact, 1.0))
-    assert np.allclose(out, slow, rtol=1e-14, atol=1e-15)  # FMA contraction: last-bit differences
-
-
-def test_float32_log_kernel_matches_math_log():
-    rng = np.random.default_rng(5)
-    z = np.concatenate([1.0 + rng.uniform(0, 1e-3, 50), np.exp(rng.uniform(0, 43, 500)),  # z <= 2 x 1e18 + 1
-                        [1.0, 2.0, math.sqrt(2.0), 4e18]]).astype(np.float32)
-    n = z.size
-    out, slow = np.empty(n), np.empty(n)
-    scratch = (np.empty(n, dtype=np.float32), np.empty(n, dtype=np.int32))
-    log_ge1_32(z, n, *scratch, out)
-    log_ge1_32.py_func(z, n, *scratch, slow)
-    exact = np.log(z.astype(np.float64))  # of the float32 argument: the kernel's own error only
-    assert np.all(np.abs(out - exact) <= 3e-7 * np.maximum(exact, 1.0))
-    assert np.allclose(out, slow, rtol=1e-6, atol=1e-7)
-
-
 def test_taylor_sin_cos_on_the_cone_range():
     phi = np.linspace(-math.pi / 2, math.pi / 2, 101)
     for p in phi:
@@ -263,7 +237,7 @@ def test_passes_equal_their_py_funcs(o156, fast):
             pick(_slip_and_table_index)(X, Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / fast.p_step, fi, r)
             pick(_viscosity_lookup)(fi, n, fast.eta_table, 1.0 / (fast.tau0 * h), k)
             pick(_eyring_argument)(k, r, n, x, z)
-            pick(log_ge1)(z, n, fi, iwork, ash)
+            pick(log_array)(z, n, fi, iwork, ash)
             out, force_only = np.empty(12), np.full(12, np.nan)
             nodes, values = _Nodes(X, Y, W), _NodeValues(k, r, x, z, ash)
             pick(_accumulate)(nodes, values, n, a, b, du0, dv0, w_s, out)
@@ -274,12 +248,12 @@ def test_passes_equal_their_py_funcs(o156, fast):
             work32, iwork32 = fast.workspace32()
             r32, fi32, k32, ash32 = (np.empty_like(r) for _ in range(4))
             pick(_slip_and_table_index32)(X, Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / fast.p_step, fi32, r32)
-            fi64 = np.empty_like(fi)  # (fi itself now holds log_ge1's exponents)
+            fi64 = np.empty_like(fi)  # (fi itself now holds log_array's exponents)
             pick(_slip_and_table_index)(X, Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / fast.p_step, fi64, np.empty_like(r))
             assert np.allclose(r32[:n], r[:n], rtol=2e-7) and np.allclose(fi32[:n], fi64[:n], rtol=2e-7, atol=1e-6)
             pick(_viscosity_lookup)(fi32, n, fast.eta_table, 1.0 / (fast.tau0 * h), k32)
             pick(_eyring_argument32)(k32, r32, n, x32 := np.empty_like(x), work32[0])
-            pick(log_ge1_32)(work32[0], n, work32[1], iwork32, ash32)
+            pick(log_array32)(work32[0], n, work32[1], iwork32, ash32)
             assert np.all(np.abs(ash32[:n] - ash[:n]) <= 1e-6 * np.maximum(ash[:n], 1.0))
             force32 = np.empty(12)
             pick(_accumulate_force)(nodes, _NodeValues(k32, r32, x32, z, ash32), n, a, b, du0, dv0, w_s, force32)

@@ -5,16 +5,16 @@ Jacobian d(F_x, F_y, M_z)/d(du0, dv0, w_s)); the nodes come from `dynamics.tract
 (rules centred on the spin pole, 200-320 nodes). What makes it fast is how the nodes are
 evaluated: in short passes over contiguous scratch arrays that LLVM vectorises (numba
 `fastmath`, `error_model="numpy"` so that `/` carries no zero-division branch), with
-asinh(x) = log(x + sqrt(1 + x^2)) and a branch-free log of our own (`log_ge1`, that is
-`dynamics.simd_math.log_array`) because numba's `math.log` is a scalar libm call that
-blocks vectorisation (no SVML in this llvmlite). The one scalar pass is the viscosity table lookup.
+asinh(x) = log(x + sqrt(1 + x^2)) and a branch-free log of our own (`dynamics.simd_math`)
+because numba's `math.log` is a scalar libm call that blocks vectorisation (no SVML in this
+llvmlite). The one scalar pass is the viscosity table lookup.
 
 Square roots and divisions share one unit that neither wider vectors nor fast-math speed up;
 they set the cost. Where their rounding is harmless they run in float32, which that unit
 serves about three times faster. A rule built with `float32_residual` (what the time loop
 uses) evaluates residual-only calls (`jacobian=False`, the loop's common call) that way: the
 node's pressure and sliding speed, z = x + sqrt(1 + x^2) and its log (`_slip_and_table_index32`,
-`_eyring_argument32`, `log_ge1_32`; ln z to 3e-7), which moves the force by less than 1e-6 of
+`_eyring_argument32`, `simd_math.log_array32`; ln z to 3e-7), which moves the force by less than 1e-6 of
 tau0 times the contact area from the float64 path, far inside the quadrature's 2 %. The
 Jacobian stays float64 (its x/sqrt(1 + x^2) - asinh x cancels to -x^3/3 for small x), and so
 does every call of a default rule: a force with rounding steps of 1e-7 is no input for
@@ -50,8 +50,7 @@ import numpy as np
 
 from bearingsim.dynamics.lubrication import rheology
 from bearingsim.dynamics._kernel_options import NO_REFCOUNT
-from bearingsim.dynamics.simd_math import LN2 as _LN2
-from bearingsim.dynamics.simd_math import log_array as log_ge1  # ln z for z >= 1 here (asinh x = ln z)
+from bearingsim.dynamics.simd_math import log_array, log_array32
 from bearingsim.dynamics.traction.nodes import max_nodes, pack_rule, place_nodes
 
 FLAG_OK = 0
@@ -67,10 +66,6 @@ VALIDATED_P_H = (2.0e8, 3.0e9)  # Pa, maximum Hertz pressure checked in tests
 EYRING_ARG_MAX = 1e18
 SMALL_ARG = 1e-2  # below this the series of asinh(x)/x is used (cancellation in c otherwise)
 
-# the bit layout of `simd_math.log_array` for float32 (23 mantissa bits, exponent bias 127)
-_MANTISSA32 = np.int32(0x007FFFFF)
-_EXP_ONE32 = np.int32(0x3F800000)
-_SQRT2_MANTISSA32 = np.int32(0x3504F3)
 _WORK_ROWS = 9
 # fast-math without nnan/ninf: pole_position returns inf for "no pole", which must compare correctly
 _VEC = {"fastmath": {"nsz", "arcp", "contract", "afn", "reassoc"}, "error_model": "numpy", **NO_REFCOUNT}
@@ -183,33 +178,6 @@ def _eyring_argument32(k, r, n, x, z32):
         x[m] = xm
         x32 = np.float32(xm)
         z32[m] = x32 + math.sqrt(one + x32 * x32)
-
-
-@numba.njit(**_VEC)
-def log_ge1_32(z, n, exponent, mantissa_bits, out):
-    """out[m] = ln z[m] (float64) for float32 z >= 1, m < n; |error| < 3e-7 max(1, ln z).
-
-    `log_ge1` in float32: z = 2^e m, m in [sqrt(1/2), sqrt(2)), ln m = 2 atanh(s) to s^9
-    (next term 2 s^11/11 < 7e-10); e ln 2 is added in float64."""
-    zi = z.view(np.int32)
-    for m in range(n):
-        bits = zi[m]
-        mant = bits & _MANTISSA32
-        up = np.int32(mant > _SQRT2_MANTISSA32)
-        exponent[m] = np.float32((bits >> np.int32(23)) - np.int32(127) + up)
-        mantissa_bits[m] = mant | (_EXP_ONE32 - (up << np.int32(23)))
-    mf = mantissa_bits.view(np.float32)
-    one = np.float32(1.0)
-    for m in range(n):
-        x = mf[m]
-        s = (x - one) / (x + one)
-        s2 = s * s
-        p = np.float32(1.0 / 9.0)
-        p = p * s2 + np.float32(1.0 / 7.0)
-        p = p * s2 + np.float32(1.0 / 5.0)
-        p = p * s2 + np.float32(1.0 / 3.0)
-        p = p * s2 + one
-        out[m] = float(exponent[m]) * _LN2 + float(np.float32(2.0) * s * p)
 
 
 @numba.njit(cache=True, inline="always")
@@ -336,12 +304,12 @@ def traction_fast(a, b, p_h, h, du0, dv0, w_s, tr, out, jacobian=True):
         _slip_and_table_index32(nodes.X, nodes.Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / p_step, f_index, values.r)
         _viscosity_lookup(f_index, n, eta_table, 1.0 / (tau0 * h), values.k)
         _eyring_argument32(values.k, values.r, n, values.x, tr.work32[0])
-        log_ge1_32(tr.work32[0], n, tr.work32[1], tr.iwork32, values.ash)
+        log_array32(tr.work32[0], n, tr.work32[1], tr.iwork32, values.ash)
     else:
         _slip_and_table_index(nodes.X, nodes.Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / p_step, f_index, values.r)
         _viscosity_lookup(f_index, n, eta_table, 1.0 / (tau0 * h), values.k)
         _eyring_argument(values.k, values.r, n, values.x, values.z)
-        log_ge1(values.z, n, f_index, tr.iwork, values.ash)  # f_index is spent: reuse it for the exponents
+        log_array(values.z, n, f_index, tr.iwork, values.ash)  # f_index is spent: reuse it for the exponents
     if jacobian:
         _accumulate(nodes, values, n, a, b, du0, dv0, w_s, out)
     else:

@@ -75,11 +75,12 @@ def log_array(z, n, exponent, mantissa_bits, out):
 
 @numba.njit(**VEC)
 def log_array32(z, n, exponent, mantissa_bits, out):
-    """out[m] = ln z[m] (float64) for float32 z >= 1, m < n; |error| < 3e-7 max(1, ln z).
+    """out[m] = ln z[m] for float32 z >= 1, m < n, computed in float32 (out is float32 in the
+    traction's residual-only passes, traction/fast.py); |error| < 3e-7 max(1, ln z).
 
-    `log_array` in float32 (the traction's residual-only passes, traction/fast.py): z = 2^e m,
-    m in [sqrt(1/2), sqrt(2)), ln m = 2 atanh(s) to s^9 (next term 2 s^11/11 < 7e-10); e ln 2
-    is added in float64. exponent (float32) and mantissa_bits (int32): scratch of length >= n."""
+    `log_array` in float32: z = 2^e m, m in [sqrt(1/2), sqrt(2)), ln m = 2 atanh(s) to s^9 (next
+    term 2 s^11/11 < 7e-10); e ln 2 with ln 2 rounded to float32 (relative 3e-8). exponent
+    (float32) and mantissa_bits (int32): scratch of length >= n."""
     zi = z.view(np.int32)
     for m in range(n):
         bits = zi[m]
@@ -89,6 +90,7 @@ def log_array32(z, n, exponent, mantissa_bits, out):
         mantissa_bits[m] = mant | (_EXP_ONE32 - (up << np.int32(23)))
     mf = mantissa_bits.view(np.float32)
     one = np.float32(1.0)
+    ln2 = np.float32(LN2)
     for m in range(n):
         x = mf[m]
         s = (x - one) / (x + one)
@@ -98,7 +100,7 @@ def log_array32(z, n, exponent, mantissa_bits, out):
         p = p * s2 + np.float32(1.0 / 5.0)
         p = p * s2 + np.float32(1.0 / 3.0)
         p = p * s2 + one
-        out[m] = float(exponent[m]) * LN2 + float(np.float32(2.0) * s * p)
+        out[m] = exponent[m] * ln2 + np.float32(2.0) * s * p
 
 
 @numba.njit(**_VEC_EXACT)

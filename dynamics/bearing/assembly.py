@@ -24,7 +24,7 @@ from bearingsim.dynamics.multibody.crv import crv_to_matrix_into, skew
 from bearingsim.dynamics.multibody.hinge import add_hinge_force, hinge_energy, hinge_forces
 from bearingsim.dynamics.multibody.joints import prescribe_velocity_residual
 from bearingsim.dynamics.multibody.rigid_body import gyroscopic_moment
-from bearingsim.dynamics.multibody.small import mtv_into, mv, mv_into
+from bearingsim.dynamics.multibody.small import mm, mtv_into, mv, mv_into
 
 from .bundles import Ball, Bodies, Body
 from .cage_forces import journal_diag, journal_forces, pocket_diag, pocket_forces, pocket_tangent
@@ -44,7 +44,7 @@ from .race_forces import (
     RC_SRR, RC_VHZ, RC_WTB, RC_WTR, CA_FEL, CA_RI, CA_RX, CA_U, film_of_carry, race_contact_forces,
     race_contact_normal,
 )
-from .tangents import add_pair, point_map, slip_map
+from .tangents import add_congruent, add_pair, point_map, slip_map
 
 
 def mass_diagonal(fp, ip, n):
@@ -267,18 +267,18 @@ def _kinematic_coupling(k, off, res, Jt, SA, SB, w_b, w_r, D, K):
     ex, ey = res[RC_EX:RC_EX + 3], res[RC_EY:RC_EY + 3]
     N = res[RC_DN:RC_DN + 9].copy().reshape(3, 3)
     dw = w_b - w_r
-    ds = -skew(w_r) - 0.5 * D * (skew(dw) @ N)
+    ds = -skew(w_r) - 0.5 * D * mm(skew(dw), N)
     Mx = np.empty((3, 3))  # d(du0, dv0, w_s)/dx_b
-    Mx[0, :] = ex @ ds
-    Mx[1, :] = ey @ ds
-    Mx[2, :] = dw @ N
-    JM = Jt @ Mx
-    K.D[k, :, 0:3] += SA.T @ JM
+    for j in range(3):
+        Mx[0, j] = ex[0] * ds[0, j] + ex[1] * ds[1, j] + ex[2] * ds[2, j]
+        Mx[1, j] = ey[0] * ds[0, j] + ey[1] * ds[1, j] + ey[2] * ds[2, j]
+        Mx[2, j] = dw[0] * N[0, j] + dw[1] * N[1, j] + dw[2] * N[2, j]
+    add_congruent(K.D[k, :, 0:3], SA, Jt, Mx, 1.0)
     if off < 0:
         return
-    K.E[k, :, off:off + 3] -= SA.T @ JM
-    K.F[k, off:off + 6, 0:3] -= SB.T @ JM
-    K.B[off:off + 6, off:off + 3] += SB.T @ JM
+    add_congruent(K.E[k, :, off:off + 3], SA, Jt, Mx, -1.0)
+    add_congruent(K.F[k, off:off + 6, 0:3], SB, Jt, Mx, -1.0)
+    add_congruent(K.B[off:off + 6, off:off + 3], SB, Jt, Mx, 1.0)
 
 
 @numba.njit(cache=True, inline="always")
@@ -288,15 +288,15 @@ def _race_spin_coupling(k, off, res, Jt, SA, SB, R_r, Om_r, K):
     -dw_r x (p - x_r): d(slip)/dTheta = -r~ R Omega~, d(w_s)/dTheta = n^T R Omega~."""
     ex, ey, n = res[RC_EX:RC_EX + 3], res[RC_EY:RC_EY + 3], res[RC_N:RC_N + 3]
     r = res[RC_PR:RC_PR + 3]
-    ROm = R_r @ skew(Om_r)
-    ds = -(skew(r) @ ROm)
+    ROm = mm(R_r, skew(Om_r))
+    ds = mm(skew(r), ROm)  # its negative, d(slip)/dTheta: the sign goes into Mt's rows
     Mt = np.empty((3, 3))
-    Mt[0, :] = ex @ ds
-    Mt[1, :] = ey @ ds
-    Mt[2, :] = n @ ROm
-    JM = Jt @ Mt
-    K.E[k, :, off + 3:off + 6] += SA.T @ JM
-    K.B[off:off + 6, off + 3:off + 6] -= SB.T @ JM
+    for j in range(3):
+        Mt[0, j] = -(ex[0] * ds[0, j] + ex[1] * ds[1, j] + ex[2] * ds[2, j])
+        Mt[1, j] = -(ey[0] * ds[0, j] + ey[1] * ds[1, j] + ey[2] * ds[2, j])
+        Mt[2, j] = n[0] * ROm[0, j] + n[1] * ROm[1, j] + n[2] * ROm[2, j]
+    add_congruent(K.E[k, :, off + 3:off + 6], SA, Jt, Mt, 1.0)
+    add_congruent(K.B[off:off + 6, off + 3:off + 6], SB, Jt, Mt, -1.0)
 
 
 @numba.njit(cache=True, inline="always")

@@ -12,10 +12,16 @@ llvmlite). The one scalar pass is the viscosity table lookup.
 Square roots and divisions share one unit that neither wider vectors nor fast-math speed up;
 they set the cost. Where their rounding is harmless they run in float32, which that unit
 serves about three times faster. A rule built with `float32_residual` (what the time loop
-uses) evaluates residual-only calls (`jacobian=False`, the loop's common call) that way: the
-node's pressure and sliding speed, z = x + sqrt(1 + x^2) and its log (`_slip_and_table_index32`,
-`_eyring_argument32`, `simd_math.log_array32`; ln z to 3e-7), which moves the force by less than 1e-6 of
-tau0 times the contact area from the float64 path, far inside the quadrature's 2 %. The
+uses) evaluates residual-only calls (`jacobian=False`, the loop's common call) with every
+node value in float32 -- pressure index, sliding speed, viscosity (a float32 copy of the
+table), Eyring argument, z = x + sqrt(1 + x^2) and its log (`_slip_and_table_index32`,
+`_viscosity_lookup32`, `_eyring_argument32`, `simd_math.log_array32`) -- and only the nodes'
+positions, weights and the sums in float64. The force moves by less than 1e-6 of tau0 times
+the contact area from the float64 path, far inside the quadrature's 2 %. One width
+throughout matters: passes that converted between float64 and float32 ran 4 lanes wide,
+and converting only the roots and the log paid little (2026-11-23); with the values in
+float32 the residual of the reference bearing took 0.93 of its time (2026-11-24, the
+residual kernels of both versions timed in one process, `benchmarks/contacts.py`). The
 Jacobian stays float64 (its x/sqrt(1 + x^2) - asinh x cancels to -x^3/3 for small x), and so
 does every call of a default rule: a force with rounding steps of 1e-7 is no input for
 finite differences (scipy's solve_ivp, finite-difference tangents and their tests).
@@ -32,11 +38,11 @@ Accuracy against the (128, 1024) quadrature of `dynamics.traction.quadrature`, d
 of 240 random operating points of the reference scene (tests/test_traction_fast.py, -m slow):
 |dF|/|F| <= 0.74 %, |dM_z|/max(|M_z|, |F| b) <= 0.76 %, max|dJ|/max|J| <= 1.4 %; edge cases
 (slip 1e-5 and 0.3, pure spin, pure roll, 20 N, pole at 0.97 / 1.03 ellipse radii) <= 0.7 %.
-Cost on the 2-core dev box of 2026-11-23 (`python -m benchmarks.traction`, one core), over that
-sample: 1.48 us per contact with the Jacobian; without it 1.25 us in float64 and 0.93 us through
-the float32 passes. The 44 contacts of the reference bearing 20 ms into a run: 51 us through the
-float32 passes, 67 us in float64 (`python -m benchmarks.contacts`, both commits back to back).
-The AMD box of 2026-11-21 ran the float64 passes ~2.4x faster.
+Cost on the 2-core dev box (`python -m benchmarks.traction --quick`, one core, 40 random points,
+2026-11-24, this version and the one before back to back): 1.48 us per contact with the
+Jacobian; without it 0.79 us with the node values in float32, against 0.90 us when only the
+roots and the log were float32 (and 1.25 us in float64, 2026-11-23). The AMD box of
+2026-11-21 ran the float64 passes ~2.4x faster.
 """
 
 from __future__ import annotations
@@ -67,6 +73,7 @@ EYRING_ARG_MAX = 1e18
 SMALL_ARG = 1e-2  # below this the series of asinh(x)/x is used (cancellation in c otherwise)
 
 _WORK_ROWS = 9
+_WORK32_ROWS = 6  # the residual-only passes' float32 rows: f_index (then log exponents), r, k, x, z, asinh x
 # fast-math without nnan/ninf: pole_position returns inf for "no pole", which must compare correctly
 _VEC = {"fastmath": {"nsz", "arcp", "contract", "afn", "reassoc"}, "error_model": "numpy", **NO_REFCOUNT}
 
@@ -81,15 +88,17 @@ class TractionRule(NamedTuple):
     rule: np.ndarray       # packed quadrature rule, `traction_nodes.pack_rule`
     work: np.ndarray       # (9, n_max) float64 scratch
     iwork: np.ndarray      # (n_max,) int64 scratch
-    work32: np.ndarray     # (2, n_max) float32 scratch of the residual-only passes
+    work32: np.ndarray     # (_WORK32_ROWS, n_max) float32 scratch of the residual-only passes
     iwork32: np.ndarray    # (n_max,) int32 scratch of the residual-only passes
+    eta_flat32: np.ndarray  # eta_table in float32, flattened (the residual-only passes' table)
     float32_residual: bool  # residual-only calls through the float32 passes (module docstring)
 
 
 def unused_traction_rule() -> TractionRule:
     """A placeholder of the right types for a model without Eyring traction."""
     return TractionRule(np.zeros((2, 2)), 0.0, 0.0, np.zeros(1), np.zeros((1, 1)), np.zeros(1, dtype=np.int64),
-                        np.zeros((2, 1), dtype=np.float32), np.zeros(1, dtype=np.int32), False)
+                        np.zeros((_WORK32_ROWS, 1), dtype=np.float32), np.zeros(1, dtype=np.int32),
+                        np.zeros(4, dtype=np.float32), False)
 
 
 class _Nodes(NamedTuple):
@@ -124,15 +133,23 @@ def _slip_and_table_index(X, Y, n, a, b, p_h, du0, dv0, w_s, inv_p_step, f_index
 
 @numba.njit(**_VEC)
 def _slip_and_table_index32(X, Y, n, a, b, p_h, du0, dv0, w_s, inv_p_step, f_index, r):
-    """`_slip_and_table_index` with both square roots in float32 (relative 6e-8): a float32
-    root costs a third of a float64 one on the divider (2026-11-23, 0.39 vs 1.05 ns per root)."""
+    """`_slip_and_table_index` in float32 into float32 f_index and r: a float32 root costs a
+    third of a float64 one on the divider (2026-11-23, 0.39 vs 1.05 ns per root), and a pass in
+    one width vectorises twice as wide as one that converts. Rounding: 6e-8 of p and of the
+    terms of s (|du0| + |w_s| b), so near the spin pole, where they cancel, |s| is good to
+    ~1e-7 (|du0| + |dv0| + |w_s| b) rather than relatively; the force moves by < 1e-6 of
+    tau0 pi a b either way (tests/test_traction_fast.py)."""
     zero = np.float32(0.0)
+    scale = np.float32(p_h * inv_p_step)
+    a32, b32, du32, dv32, ws32 = np.float32(a), np.float32(b), np.float32(du0), np.float32(dv0), np.float32(w_s)
     for m in range(n):
-        q = np.float32(1.0 - X[m] * X[m] - Y[m] * Y[m])
-        f_index[m] = p_h * inv_p_step * math.sqrt(max(q, zero))
-        sx = du0 - w_s * b * Y[m]
-        sy = dv0 + w_s * a * X[m]
-        r[m] = math.sqrt(np.float32(sx * sx + sy * sy))
+        # 1 - X^2 - Y^2 cancels at the ellipse edge: formed in float64 (~1e-7 of p_step there in float32)
+        f_index[m] = scale * math.sqrt(max(np.float32(1.0 - X[m] * X[m] - Y[m] * Y[m]), zero))
+        x = np.float32(X[m])
+        y = np.float32(Y[m])
+        sx = du32 - ws32 * b32 * y
+        sy = dv32 + ws32 * a32 * x
+        r[m] = math.sqrt(sx * sx + sy * sy)
 
 
 @numba.njit(**_VEC)
@@ -165,19 +182,30 @@ def _eyring_argument(k, r, n, x, z):
 
 
 @numba.njit(**_VEC)
-def _eyring_argument32(k, r, n, x, z32):
-    """`_eyring_argument` for a residual-only evaluation: z in float32.
-
-    x = k |s| stays float64 (the small-argument series reads it); z = x + sqrt(1 + x^2) is
-    rounded to float32 (relative 6e-8, so asinh x = ln z to ~6e-8 absolute): a float32 square
-    root costs a third of a float64 one on the divider (2026-11-23, 0.39 vs 1.05 ns per root). Not for
-    the Jacobian, whose (x/sqrt(1 + x^2) - asinh x) cancels to x^3/3 for small x."""
-    one = np.float32(1.0)
+def _viscosity_lookup32(f_index, n, eta_flat32, inv_tau0_h, k):
+    """`_viscosity_lookup` in float32: f_index, k and the table (`TractionRule.eta_flat32`, the
+    rows (eta_i, eta_(i+1) - eta_i) flattened, relative 6e-8 against the table's own 1e-4)."""
+    last = np.float32(eta_flat32.size // 2 - 1.000001)
+    scale = np.float32(inv_tau0_h)
+    one = np.uint64(1)
     for m in range(n):
-        xm = min(k[m] * r[m], EYRING_ARG_MAX)
+        f = min(f_index[m], last)
+        i = np.uint64(f)
+        j = i + i
+        k[m] = (eta_flat32[j] + (f - np.float32(i)) * eta_flat32[j + one]) * scale
+
+
+@numba.njit(**_VEC)
+def _eyring_argument32(k, r, n, x, z):
+    """`_eyring_argument` in float32 for a residual-only evaluation (k, r, x, z all float32; asinh x
+    = ln z then to ~1e-7 absolute). Not for the Jacobian, whose (x/sqrt(1 + x^2) - asinh x)
+    cancels to x^3/3 for small x."""
+    one = np.float32(1.0)
+    arg_max = np.float32(EYRING_ARG_MAX)
+    for m in range(n):
+        xm = min(k[m] * r[m], arg_max)
         x[m] = xm
-        x32 = np.float32(xm)
-        z32[m] = x32 + math.sqrt(one + x32 * x32)
+        z[m] = xm + math.sqrt(one + xm * xm)
 
 
 @numba.njit(cache=True, inline="always")
@@ -250,12 +278,14 @@ def _accumulate_force(nodes, values, n, a, b, du0, dv0, w_s, out):
     thirds of the arithmetic per node."""
     X, Y, W = nodes.X, nodes.Y, nodes.W
     k, r, x, ash = values.k, values.r, values.x, values.ash
+    # constants in the values' own width: float32 values stay float32 until they meet W
+    small_arg, one, sixth = x.dtype.type(SMALL_ARG), x.dtype.type(1.0), x.dtype.type(1.0 / 6.0)
     Fx = Fy = Mz = 0.0
     for m in range(n):
         xp, yp, sx, sy = _node_slip(X, Y, m, a, b, du0, dv0, w_s)
         xm = x[m]
-        small = xm < SMALL_ARG
-        g = k[m] * (1.0 - xm * xm / 6.0) if small else ash[m] / (1.0 if small else r[m])
+        small = xm < small_arg
+        g = k[m] * (one - xm * xm * sixth) if small else ash[m] / (one if small else r[m])
         wgt = W[m] * g
         Fx -= wgt * sx
         Fy -= wgt * sy
@@ -298,18 +328,23 @@ def traction_fast(a, b, p_h, h, du0, dv0, w_s, tr, out, jacobian=True):
     # f_index (table position), r, k, x, z; 8 is asinh x
     nodes = _Nodes(work[0], work[1], work[2])
     n = place_nodes(a, b, du0, dv0, w_s, tr.rule, nodes.X, nodes.Y, nodes.W, work[3:8])
+    if tr.float32_residual and not jacobian:  # the node values in float32 (module docstring)
+        w32 = tr.work32
+        values32 = _NodeValues(k=w32[2], r=w32[1], x=w32[3], z=w32[4], ash=w32[5])
+        _slip_and_table_index32(nodes.X, nodes.Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / p_step, w32[0], values32.r)
+        _viscosity_lookup32(w32[0], n, tr.eta_flat32, 1.0 / (tau0 * h), values32.k)
+        _eyring_argument32(values32.k, values32.r, n, values32.x, values32.z)
+        log_array32(values32.z, n, w32[0], tr.iwork32, values32.ash)  # row 0 is spent: the exponents
+        _accumulate_force(nodes, values32, n, a, b, du0, dv0, w_s, out)
+        for m in range(3):
+            out[m] *= tau0
+        return flag
     f_index = work[3]
     values = _NodeValues(k=work[5], r=work[4], x=work[6], z=work[7], ash=work[8])
-    if tr.float32_residual and not jacobian:
-        _slip_and_table_index32(nodes.X, nodes.Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / p_step, f_index, values.r)
-        _viscosity_lookup(f_index, n, eta_table, 1.0 / (tau0 * h), values.k)
-        _eyring_argument32(values.k, values.r, n, values.x, tr.work32[0])
-        log_array32(tr.work32[0], n, tr.work32[1], tr.iwork32, values.ash)
-    else:
-        _slip_and_table_index(nodes.X, nodes.Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / p_step, f_index, values.r)
-        _viscosity_lookup(f_index, n, eta_table, 1.0 / (tau0 * h), values.k)
-        _eyring_argument(values.k, values.r, n, values.x, values.z)
-        log_array(values.z, n, f_index, tr.iwork, values.ash)  # f_index is spent: reuse it for the exponents
+    _slip_and_table_index(nodes.X, nodes.Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / p_step, f_index, values.r)
+    _viscosity_lookup(f_index, n, eta_table, 1.0 / (tau0 * h), values.k)
+    _eyring_argument(values.k, values.r, n, values.x, values.z)
+    log_array(values.z, n, f_index, tr.iwork, values.ash)  # f_index is spent: reuse it for the exponents
     if jacobian:
         _accumulate(nodes, values, n, a, b, du0, dv0, w_s, out)
     else:
@@ -392,7 +427,7 @@ class FastTraction:
 
     def workspace32(self) -> tuple[np.ndarray, np.ndarray]:
         """Fresh float32 scratch (work32, iwork32) of the residual-only passes, one thread."""
-        return np.empty((2, self.max_nodes), dtype=np.float32), np.empty(self.max_nodes, dtype=np.int32)
+        return np.empty((_WORK32_ROWS, self.max_nodes), dtype=np.float32), np.empty(self.max_nodes, dtype=np.int32)
 
     def traction_rule(self, float32_residual: bool = False) -> TractionRule:
         """The bundle `traction_fast` takes, with a fresh workspace (one per thread).
@@ -401,7 +436,7 @@ class FastTraction:
         ~25 % cheaper, but the force then carries rounding steps of ~1e-7 that finite
         differences amplify, so only for callers with an analytic tangent (the time loop)."""
         return TractionRule(self.eta_table, self.p_step, self.tau0, self.rule, *self.workspace(), *self.workspace32(),
-                            bool(float32_residual))
+                            self.eta_table.astype(np.float32).ravel(), bool(float32_residual))
 
     def evaluate(self, a, b, p_h, h, du0, dv0, w_s) -> tuple[np.ndarray, np.ndarray, int]:
         """(F = [F_x, F_y, M_z], J[3, 3], flag) on the ball; units as traction_fast."""

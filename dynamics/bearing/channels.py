@@ -98,7 +98,9 @@ PER_BALL = RowLayout(
     Channel("pocket/in_contact", 1, "-", "1 while the ball touches its pocket wall", saved=False, cage=True),
     Channel("pocket/approach_speed", 1, "m/s", "approach speed of ball and pocket wall (+: closing)",
             saved=False, cage=True),
-    Channel("pocket/orbital_position", 1, "rad", "orbital position of the ball, atan2(y, x)", saved=False, cage=True),
+    Channel("pocket/orbital_position", 1, "rad",
+            "orbital position of the ball, atan2(y, x), while it touches its pocket (0 otherwise)", saved=False,
+            cage=True),
     Channel("pocket/friction_power", 1, "W", "ball-pocket friction power", saved=False, cage=True),
 )
 

@@ -70,7 +70,7 @@ P_OUT_DFN_DDELTA = 25  # dF_n/d delta [N/m]
 P_OUT_DFN_DRATE = 26  # dF_n/d delta_dot [N s/m]
 P_OUT_SLIDING_SPEED = 27  # |v_s| [m/s]
 P_OUT_FRICTION_POWER = 28  # |F_f| |v_s| [W]
-P_OUT_ORBITAL_POSITION = 29  # azimuth of the ball centre, atan2(y, x) [rad]
+P_OUT_ORBITAL_POSITION = 29  # azimuth of the ball centre, atan2(y, x) [rad], in contact only (0 otherwise)
 N_POCKET_OUT = 30
 
 DAMPING_MODELS = ("flores", "hunt-crossley", "lankarani-nikravesh")
@@ -160,10 +160,12 @@ def _pocket_contact_into(out, x_ball, v_ball, w_ball, x_cage, rot_cage, v_cage, 
     out[P_OUT_POINT] = x_cage[0] + cx
     out[P_OUT_POINT + 1] = x_cage[1] + cy
     out[P_OUT_POINT + 2] = x_cage[2] + cz
-    out[P_OUT_ORBITAL_POSITION] = math.atan2(x_ball[1], x_ball[0])
     if delta <= 0.0:
         return
     out[P_OUT_IN_CONTACT] = 1.0
+    # read only while the ball touches (the impact log): one libm call per touching pocket
+    # rather than per pocket in every residual
+    out[P_OUT_ORBITAL_POSITION] = math.atan2(x_ball[1], x_ball[0])
     v_0 = max(impact_speed, params[P_IMPACT_SPEED_REF])
     f_n, dfn_dd, dfn_drate = pocket_normal_force(delta, delta_dot, v_0, params[P_K_H], params[P_DAMPING])
     ratio = 0.0  # friction = -ratio * v_s

@@ -222,6 +222,24 @@ def test_cone_edges_equal_the_angle_construction():
         assert abs(h - half) < 1e-12 and abs(c - math.cos(e1 + half)) < 1e-12 and abs(s - math.sin(e1 + half)) < 1e-12
 
 
+def test_float32_residual_stays_within_a_millionth_of_tau0_times_the_area(o156, fast):
+    """docs/model.md §6.4: the time loop's residual-only call (every node value in float32) moves
+    the force by < 1e-6 of tau0 pi a b and the spin moment by < 1e-6 of tau0 pi a b^2 from the
+    float64 evaluation of the same rule, over the reference scene's operating range."""
+    points = random_operating_points(300, seed=21, lubricant=o156, film=film.film_central_nvm)
+    rule64, rule32 = fast.traction_rule(), fast.traction_rule(float32_residual=True)
+    f64, f32 = np.empty(12), np.empty(12)
+    worst = np.zeros(2)
+    for a, b, p_h, h, du0, dv0, w_s in points:
+        traction_fast(a, b, p_h, h, du0, dv0, w_s, rule64, f64, False)
+        traction_fast(a, b, p_h, h, du0, dv0, w_s, rule32, f32, False)
+        unit = fast.tau0 * math.pi * a * b
+        dF, dM = math.hypot(f32[0] - f64[0], f32[1] - f64[1]), abs(f32[2] - f64[2])
+        worst = np.maximum(worst, (dF / unit, dM / (unit * b)))
+    print(f"float32 against float64 over {len(points)} points: F {worst[0]:.2e}, M {worst[1]:.2e} of tau0 pi a b (b)")
+    assert 0.0 < worst[0] < 1e-6 and worst[1] < 1e-6
+
+
 def test_passes_equal_their_py_funcs(o156, fast):
     """Every njit pass of traction_fast against its plain-Python twin on random contacts."""
     rng = np.random.default_rng(13)
@@ -254,7 +272,8 @@ def test_passes_equal_their_py_funcs(o156, fast):
             terms = abs(du0) + abs(dv0) + abs(w_s) * b
             assert np.allclose(r32[:n], r[:n], rtol=2e-7, atol=2e-7 * terms)
             assert np.allclose(fi32[:n], fi64[:n], rtol=2e-7, atol=1e-6)
-            pick(_viscosity_lookup32)(fi32, n, fast.eta_table.astype(np.float32).ravel(), 1.0 / (fast.tau0 * h), k32)
+            eta_flat32 = fast.eta_table.astype(np.float32).ravel()
+            pick(_viscosity_lookup32)(fi32, n, eta_flat32, 1.0 / (fast.tau0 * h), k32)
             # a float32 index near the table's end (4096) resolves 2^-12 of an interval, over which eta
             # changes by ~2.5 % (alpha p_step): ~6e-6 relative, far inside the table's own 1e-4
             assert np.allclose(k32[:n], k[:n], rtol=1e-5)

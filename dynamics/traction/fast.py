@@ -20,8 +20,8 @@ positions, weights and the sums in float64. The force moves by less than 1e-6 of
 the contact area from the float64 path, far inside the quadrature's 2 %. One width
 throughout matters: passes that converted between float64 and float32 ran 4 lanes wide,
 and converting only the roots and the log paid little (2026-11-23); with the values in
-float32 the residual of the reference bearing took 0.93 of its time (2026-11-24, the
-residual kernels of both versions timed in one process, `benchmarks/contacts.py`). The
+float32 the residual of the reference bearing took 0.93 of its time (2026-11-24, both
+versions' residual kernels timed alternately in one process, case b 20 ms in). The
 Jacobian stays float64 (its x/sqrt(1 + x^2) - asinh x cancels to -x^3/3 for small x), and so
 does every call of a default rule: a force with rounding steps of 1e-7 is no input for
 finite differences (scipy's solve_ivp, finite-difference tangents and their tests).
@@ -137,13 +137,14 @@ def _slip_and_table_index32(X, Y, n, a, b, p_h, du0, dv0, w_s, inv_p_step, f_ind
     third of a float64 one on the divider (2026-11-23, 0.39 vs 1.05 ns per root), and a pass in
     one width vectorises twice as wide as one that converts. Rounding: 6e-8 of p and of the
     terms of s (|du0| + |w_s| b), so near the spin pole, where they cancel, |s| is good to
-    ~1e-7 (|du0| + |dv0| + |w_s| b) rather than relatively; the force moves by < 1e-6 of
-    tau0 pi a b either way (tests/test_traction_fast.py)."""
+    ~1e-7 (|du0| + |dv0| + |w_s| b) rather than relatively; the force still moves by < 1e-6
+    of tau0 pi a b (tests/test_traction_fast.py)."""
     zero = np.float32(0.0)
     scale = np.float32(p_h * inv_p_step)
     a32, b32, du32, dv32, ws32 = np.float32(a), np.float32(b), np.float32(du0), np.float32(dv0), np.float32(w_s)
     for m in range(n):
-        # 1 - X^2 - Y^2 cancels at the ellipse edge: formed in float64 (~1e-7 of p_step there in float32)
+        # 1 - X^2 - Y^2 cancels at the ellipse edge: formed in float64 (in float32 the index
+        # moved there by up to 2e-3 of a table step)
         f_index[m] = scale * math.sqrt(max(np.float32(1.0 - X[m] * X[m] - Y[m] * Y[m]), zero))
         x = np.float32(X[m])
         y = np.float32(Y[m])

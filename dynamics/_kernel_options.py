@@ -18,3 +18,10 @@ checks that the arrays passed through the model keep their reference counts.
 """
 
 NO_REFCOUNT = {"cache": True, "_nrt": False}
+
+# The vectorised passes over arrays (dynamics/simd_math.py, traction/nodes.py, traction/fast.py,
+# the film batch): fast-math so that LLVM vectorises their loops and reductions, without
+# nnan/ninf because callers hold inf in some lanes (`traction.nodes.pole_position` returns inf
+# for "no pole", which must compare correctly), and numpy's error model so that `/` carries no
+# zero-division branch.
+VEC = {"fastmath": {"nsz", "arcp", "contract", "afn", "reassoc"}, "error_model": "numpy", **NO_REFCOUNT}

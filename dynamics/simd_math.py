@@ -15,10 +15,7 @@ import math
 import numba
 import numpy as np
 
-from bearingsim.dynamics._kernel_options import NO_REFCOUNT
-
-# fast-math without nnan/ninf (callers may hold inf in other lanes of their passes)
-VEC = {"fastmath": {"nsz", "arcp", "contract", "afn", "reassoc"}, "error_model": "numpy", **NO_REFCOUNT}
+from bearingsim.dynamics._kernel_options import VEC
 
 LN2 = math.log(2.0)
 _INV_LN2 = 1.0 / LN2

@@ -30,7 +30,8 @@ import math
 
 import numba
 
-from bearingsim.dynamics.simd_math import VEC, exp_array, log_array
+from bearingsim.dynamics._kernel_options import VEC
+from bearingsim.dynamics.simd_math import exp_array, log_array
 
 
 @numba.njit(cache=True)

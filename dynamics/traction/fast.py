@@ -55,7 +55,7 @@ import numba
 import numpy as np
 
 from bearingsim.dynamics.lubrication import rheology
-from bearingsim.dynamics._kernel_options import NO_REFCOUNT
+from bearingsim.dynamics._kernel_options import NO_REFCOUNT, VEC
 from bearingsim.dynamics.simd_math import log_array, log_array32
 from bearingsim.dynamics.traction.nodes import max_nodes, pack_rule, place_nodes
 
@@ -74,8 +74,6 @@ SMALL_ARG = 1e-2  # below this the series of asinh(x)/x is used (cancellation in
 
 _WORK_ROWS = 9
 _WORK32_ROWS = 6  # the residual-only passes' float32 rows: f_index (then log exponents), r, k, x, z, asinh x
-# fast-math without nnan/ninf: pole_position returns inf for "no pole", which must compare correctly
-_VEC = {"fastmath": {"nsz", "arcp", "contract", "afn", "reassoc"}, "error_model": "numpy", **NO_REFCOUNT}
 
 
 class TractionRule(NamedTuple):
@@ -120,7 +118,7 @@ class _NodeValues(NamedTuple):
     ash: np.ndarray
 
 
-@numba.njit(**_VEC)
+@numba.njit(**VEC)
 def _slip_and_table_index(X, Y, n, a, b, p_h, du0, dv0, w_s, inv_p_step, f_index, r):
     """Per node: fractional index of p = p_h sqrt(1 - X^2 - Y^2) in the eta table, |s| [m/s]."""
     for m in range(n):
@@ -131,7 +129,7 @@ def _slip_and_table_index(X, Y, n, a, b, p_h, du0, dv0, w_s, inv_p_step, f_index
         r[m] = math.sqrt(sx * sx + sy * sy)
 
 
-@numba.njit(**_VEC)
+@numba.njit(**VEC)
 def _slip_and_table_index32(X, Y, n, a, b, p_h, du0, dv0, w_s, inv_p_step, f_index, r):
     """`_slip_and_table_index` in float32 into float32 f_index and r: a float32 root costs a
     third of a float64 one on the divider (2026-11-23, 0.39 vs 1.05 ns per root), and a pass in
@@ -153,7 +151,7 @@ def _slip_and_table_index32(X, Y, n, a, b, p_h, du0, dv0, w_s, inv_p_step, f_ind
         r[m] = math.sqrt(sx * sx + sy * sy)
 
 
-@numba.njit(**_VEC)
+@numba.njit(**VEC)
 def _viscosity_lookup(f_index, n, eta_table, inv_tau0_h, k):
     """k[m] = eta(p)/(tau0 h) [s/m] by linear interpolation (scalar: gathers do not vectorise).
 
@@ -173,7 +171,7 @@ def _viscosity_lookup(f_index, n, eta_table, inv_tau0_h, k):
         k[m] = (flat[j] + (f - float(i)) * flat[j + one]) * inv_tau0_h
 
 
-@numba.njit(**_VEC)
+@numba.njit(**VEC)
 def _eyring_argument(k, r, n, x, z):
     """x = k |s| (clamped at EYRING_ARG_MAX) and z = x + sqrt(1 + x^2) >= 1, so asinh x = ln z."""
     for m in range(n):
@@ -182,7 +180,7 @@ def _eyring_argument(k, r, n, x, z):
         z[m] = xm + math.sqrt(1.0 + xm * xm)
 
 
-@numba.njit(**_VEC)
+@numba.njit(**VEC)
 def _viscosity_lookup32(f_index, n, eta_flat32, inv_tau0_h, k):
     """`_viscosity_lookup` in float32: f_index, k and the table (`TractionRule.eta_flat32`, the
     rows (eta_i, eta_(i+1) - eta_i) flattened, relative 6e-8 against the table's own 1e-4)."""
@@ -196,7 +194,7 @@ def _viscosity_lookup32(f_index, n, eta_flat32, inv_tau0_h, k):
         k[m] = (eta_flat32[j] + (f - np.float32(i)) * eta_flat32[j + one]) * scale
 
 
-@numba.njit(**_VEC)
+@numba.njit(**VEC)
 def _eyring_argument32(k, r, n, x, z):
     """`_eyring_argument` in float32 for a residual-only evaluation (k, r, x, z all float32; asinh x
     = ln z then to ~1e-7 absolute). Not for the Jacobian, whose (x/sqrt(1 + x^2) - asinh x)
@@ -217,7 +215,7 @@ def _node_slip(X, Y, m, a, b, du0, dv0, w_s):
     return xp, yp, du0 - w_s * yp, dv0 + w_s * xp
 
 
-@numba.njit(**_VEC)
+@numba.njit(**VEC)
 def _accumulate(nodes, values, n, a, b, du0, dv0, w_s, out):
     """Sum tau = g s over the nodes into out[0:3] and its Jacobian into out[3:12] (tau0 = 1).
 
@@ -271,7 +269,7 @@ def _accumulate(nodes, values, n, a, b, du0, dv0, w_s, out):
     out[11] = j22
 
 
-@numba.njit(**_VEC)
+@numba.njit(**VEC)
 def _accumulate_force(nodes, values, n, a, b, du0, dv0, w_s, out):
     """`_accumulate` without the Jacobian: out[0:3] = (F_x, F_y, M_z) (tau0 = 1), out[3:12] = 0.
 

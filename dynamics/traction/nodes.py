@@ -37,15 +37,12 @@ import math
 import numba
 import numpy as np
 
-from bearingsim.dynamics._kernel_options import NO_REFCOUNT
+from bearingsim.dynamics._kernel_options import VEC
 
-# fastmath + numpy error model: no zero-division branch on `/`, so the ray loops vectorise
-# fast-math without nnan/ninf: pole_position returns inf for "no pole", which must compare correctly
-_VEC = {"fastmath": {"nsz", "arcp", "contract", "afn", "reassoc"}, "error_model": "numpy", **NO_REFCOUNT}
 ANGLE_MAP_BETA = 0.3  # strength of the 4-fold angular stretch of the inside rule
 
 
-@numba.njit(**_VEC)
+@numba.njit(**VEC)
 def pole_position(a, b, du0, dv0, w_s):
     """Spin pole in working-plane units (PU, PV) and |P| in ellipse radii; |P| = inf if w_s = 0."""
     if w_s == 0.0:
@@ -130,7 +127,7 @@ def _block(rule, start, length):
     return rule[start:start + length]
 
 
-@numba.njit(**_VEC)
+@numba.njit(**VEC)
 def nodes_inside(a, b, PU, PV, rule, n_angle, o_angle, X, Y, W, ray):
     """Pole inside the ellipse: n_angle rays x n_radial nodes from the pole; returns the count.
 
@@ -184,7 +181,7 @@ def _cos_sin_small(phi):
     return c, s
 
 
-@numba.njit(**_VEC)
+@numba.njit(**VEC)
 def _cone_edges(A, PU, PV, P_scaled):
     """(cos mid, sin mid, half): central direction and half-angle [rad] of the cone of rays
     from the pole that cross the ellipse, in the working plane.
@@ -212,7 +209,7 @@ def _cone_edges(A, PU, PV, P_scaled):
     return dy / chord, -dx / chord, half
 
 
-@numba.njit(**_VEC)
+@numba.njit(**VEC)
 def nodes_cone(a, b, PU, PV, P_scaled, rule, n_cone, o_cone, X, Y, W, ray):
     """Pole outside: the cone of chords through the ellipse; returns the node count.
 
@@ -263,7 +260,7 @@ def nodes_cone(a, b, PU, PV, P_scaled, rule, n_cone, o_cone, X, Y, W, ray):
     return n_r * n_cone
 
 
-@numba.njit(**_VEC)
+@numba.njit(**VEC)
 def nodes_far(a, b, rule, X, Y, W):
     """Pole far away: the fixed ellipse-centred grid of the packed rule; returns the count."""
     n_far = int(rule[H_N_FAR])
@@ -279,7 +276,7 @@ def nodes_far(a, b, rule, X, Y, W):
     return n_far
 
 
-@numba.njit(**_VEC)
+@numba.njit(**VEC)
 def place_nodes(a, b, du0, dv0, w_s, rule, X, Y, W, ray):
     """Fill X, Y, W with the rule the spin-pole position calls for; returns the node count.
 

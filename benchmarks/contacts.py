@@ -27,12 +27,19 @@ import numpy as np
 from bearingsim.dynamics.bearing.assembly import evaluate_bearing
 
 
-@numba.njit
-def _repeat(n, t, q, v, a, arrays, want_tangent, ma, g, diag, K, C):
-    s = 0.0
-    for _ in range(n):
-        s += evaluate_bearing(t, q, v, a, arrays, want_tangent, ma, g, diag, K, C)
-    return s
+def repeat_loop(evaluate):
+    """A numba loop calling the force kernel `evaluate` (`evaluate_bearing` of one version of
+    the package) n times: no Python dispatch in the figure."""
+    @numba.njit
+    def repeat(n, t, q, v, a, arrays, want_tangent, ma, g, diag, K, C):
+        s = 0.0
+        for _ in range(n):
+            s += evaluate(t, q, v, a, arrays, want_tangent, ma, g, diag, K, C)
+        return s
+    return repeat
+
+
+_repeat = repeat_loop(evaluate_bearing)
 
 
 def _time_kernel(model, q, v, want_tangent: bool, number: int, repeat: int = 25) -> float:

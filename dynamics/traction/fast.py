@@ -21,7 +21,8 @@ the contact area from the float64 path, far inside the quadrature's 2 %. One wid
 throughout matters: passes that converted between float64 and float32 ran 4 lanes wide,
 and converting only the roots and the log paid little (2026-11-23); with the values in
 float32 the residual of the reference bearing took 0.93 of its time (2026-11-24, both
-versions' residual kernels timed alternately in one process, case b 20 ms in). The
+versions' residual kernels timed alternately in one process, case b 20 ms in; that
+comparison favours the newer side by ~3 %, `benchmarks/residual_ab.py`). The
 Jacobian stays float64 (its x/sqrt(1 + x^2) - asinh x cancels to -x^3/3 for small x), and so
 does every call of a default rule: a force with rounding steps of 1e-7 is no input for
 finite differences (scipy's solve_ivp, finite-difference tangents and their tests).

@@ -45,6 +45,7 @@ import numpy as np
 from numba.core import types as nbtypes
 from numba.extending import intrinsic
 
+from .buffers import zeroed
 from .hht import NEWTON_CONVERGED, NEWTON_DIVERGED, hht_residual, newmark_kinematics, newton_verdict, \
     predict_acceleration, subtract_inplace
 from .joints import prescribe_velocity_blocks
@@ -463,8 +464,9 @@ def integrate_compiled(problem, t0: float, t1: float, q0, v0, settings: HHTSetti
     n_rec = int(math.floor((t1 - t0) / record_dt + 1e-9)) + 2 if record_dt > 0.0 else 0
     n_log = chunk_steps // log_every + 2 if log_every > 0 else 0  # per chunk, drained after each
     logged = log_sink if log_sink is not None else []
-    out = Output(_samples(sampler, n), np.zeros(n_rec), np.zeros((n_rec, n)), np.zeros((n_rec, n)),
-                 np.zeros((n_rec, cp.diag.size)), record_dt if record_dt > 0.0 else 1.0,
+    # the records are hundreds of MB for a long run: in ordinary pages (buffers.py)
+    out = Output(_samples(sampler, n), zeroed(n_rec), zeroed((n_rec, n)), zeroed((n_rec, n)),
+                 zeroed((n_rec, cp.diag.size)), record_dt if record_dt > 0.0 else 1.0,
                  np.zeros((n_log, 4)), max(log_every, 1))
     if n_rec:
         out.record_t[0], out.record_q[0], out.record_v[0], out.record_diag[0] = t0, q0, v0, cp.diag

@@ -386,3 +386,46 @@ def test_a_tangent_call_leaves_the_residual_and_the_films_as_they_are(lubricated
     np.testing.assert_allclose(results[1][1], results[0][1], rtol=1e-12)
     # the tangent call takes the traction in float64, the residual-only one through float32 passes
     np.testing.assert_allclose(results[1][0], results[0][0], rtol=0, atol=1e-5 * np.abs(results[0][0]).max())
+
+
+@pytest.mark.parametrize("case", ["lubricated", "dry"])
+def test_the_loops_residual_kernel_is_evaluate_bearing_bit_for_bit(case, lubricated, dry):
+    """The compiled loop's Newton iterations call `evaluate_bearing_residual` (no reference
+    counting, tangent branches pruned) and its refactorisations `evaluate_bearing`: both must
+    give the same M a, g, diagnostics and drive moment to the bit, here with every contact
+    slipping and the cage off centre (its land film and the dynamic squeeze term acting), in
+    float32 and float64 traction. Then the refcount check of the test above, for this kernel."""
+    import sys
+
+    from bearingsim.dynamics.bearing.assembly import evaluate_bearing, evaluate_bearing_residual
+
+    params, _, _, q, v = {"lubricated": lubricated, "dry": dry}[case]
+    Z = params.ball_count
+    q, v = q.copy(), v.copy()
+    v[: 6 * Z: 6] += 0.05
+    cage = 6 * Z + 6
+    q[cage:cage + 2] += (1.2e-4, -0.7e-4)  # of a 0.29 mm guide clearance
+    v[cage:cage + 2] += (0.02, 0.01)
+    rng = np.random.default_rng(7)
+    a = rng.normal(scale=10.0, size=q.size)
+    for p in (params, params.with_float32_residual()):
+        model = BearingModel(p)
+        K, C = model.K.blocks(), model.C.blocks()
+        out = []
+        for kernel in (evaluate_bearing, evaluate_bearing_residual):
+            ma, g, diag = np.zeros(q.size), np.zeros(q.size), np.zeros(model.diag.size)
+            drive = kernel(0.0, q, v, a, model.arrays, False, ma, g, diag, K, C)
+            out.append((drive, ma, g, diag))
+        assert out[0][0] == out[1][0]
+        for x, y in zip(out[0][1:], out[1][1:]):
+            assert np.array_equal(x, y)
+        assert np.abs(out[0][2]).max() > 1.0
+        if case == "lubricated":
+            from bearingsim.dynamics.bearing import channels
+            assert channels.read(out[1][3], Z, "cage_race/eccentricity_ratio") > 0.3  # the land film acts
+    watched = [q, v, a, ma, g, diag, params.fp, params.journal, model.arrays.work.journal_row,
+               model.arrays.work.journal_squeeze, model.K.D, model.C.B]
+    before = [sys.getrefcount(x) for x in watched]
+    for _ in range(50):
+        evaluate_bearing_residual(0.0, q, v, a, model.arrays, False, ma, g, diag, K, C)
+    assert [sys.getrefcount(x) for x in watched] == before

@@ -70,6 +70,20 @@ def evaluate_bearing(t, q, v, a, model, want_tangent, ma, g, diag, K, C):
     """Fill ma = M a, g = g(t, q, v), diag (channels.py) and, when want_tangent, the
     tangent blocks K, C (`linear_solvers.Blocks`). model: `bundles.ModelArrays`.
     Returns the drive moment [N m] that holds the inner-race spin (M.52)."""
+    return _evaluate(t, q, v, a, model, want_tangent, ma, g, diag, K, C)
+
+
+@numba.njit(**NO_REFCOUNT)
+def evaluate_bearing_residual(t, q, v, a, model, want_tangent, ma, g, diag, K, C):
+    """`evaluate_bearing` without tangents (want_tangent, K and C are not read): the same
+    residual bit for bit, compiled without reference counting (`NO_REFCOUNT`), for the
+    residual-only calls of every Newton iteration. The tangent branches of `_evaluate` allocate;
+    with want_tangent the constant False here numba prunes them before typing."""
+    return _evaluate(t, q, v, a, model, False, ma, g, diag, K, C)
+
+
+@numba.njit(cache=True, inline="always")
+def _evaluate(t, q, v, a, model, want_tangent, ma, g, diag, K, C):
     fp, ip = model.fp, model.ip
     Z = ip[IP_Z]
     g[:] = 0.0
@@ -393,8 +407,8 @@ def _border(t, v, model, bodies, loads, ma, g, diag, Kb, Cb, want_tangent):
         if ip[IP_JOURNAL]:
             jres = work.journal_row
             cage_block = slice(CAGE_BORDER, CAGE_BORDER + CAGE_DOF)
-            power = journal_forces(cage, bodies.outer, model.cage.journal, jres, g, o_c, want_tangent,
-                                   Kb[cage_block, cage_block], Cb[cage_block, cage_block])
+            power = journal_forces(cage, bodies.outer, model.cage.journal, jres, work.journal_squeeze, g, o_c,
+                                   want_tangent, Kb[cage_block, cage_block], Cb[cage_block, cage_block])
             journal_diag(jres, diag)
             diag[DG_P_DISS] -= power
     drive = prescribe_velocity_residual(o_i + 5, v, fp[FP_OMEGA_I], 1.0, ma, g)

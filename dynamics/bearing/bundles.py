@@ -107,7 +107,7 @@ class ResidualWork(NamedTuple):
     contact rows (2Z, N_RC) and pocket rows (Z, N_POCKET_OUT), the contacts' scratch, the
     border load sums, the outer race (x = 0, R = I, v = 0; the kernel sets w = (0, 0, omega_o)
     from the parameters), the rotation (3x3) and spatial angular velocity (3) of the inner race
-    and the cage, the external loads, two material moments (3) and the cage–land result row. Like
+    and the cage, the external loads, two material moments (3), the cage–land result row and its film's scratch. Like
     the traction rule's workspace it belongs to one model: one evaluation at a time."""
 
     rows: np.ndarray
@@ -124,6 +124,7 @@ class ResidualWork(NamedTuple):
     moment_contact: np.ndarray  # contact moment sum on a border body, material (3) [N m]
     moment_load: np.ndarray  # external moment on the inner race, material (3) [N m]
     journal_row: np.ndarray  # the cage–land result row (journal/hybrid.py, N_JOURNAL_OUT)
+    journal_squeeze: np.ndarray  # the dynamic cage film's scratch (journal/squeeze_film.py, N_SQUEEZE_OUT)
 
 
 class ModelArrays(NamedTuple):

@@ -11,7 +11,7 @@ from bearingsim.dynamics._kernel_options import NO_REFCOUNT
 from bearingsim.dynamics.journal.hybrid import (
     J_OUT_CONTACT_AZIMUTH, J_OUT_DF_DOMEGA_CAGE, J_OUT_DF_DPOS, J_OUT_DF_DVEL,
     J_OUT_DT_DOMEGA_CAGE, J_OUT_DT_DPOS, J_OUT_DT_DVEL, J_OUT_EPS, J_OUT_FILM_POWER, J_OUT_FORCE,
-    J_OUT_FRICTION_POWER, J_OUT_METAL_FORCE, J_OUT_MIN_FILM, J_OUT_TORQUE, cage_race_journal,
+    J_OUT_FRICTION_POWER, J_OUT_METAL_FORCE, J_OUT_MIN_FILM, J_OUT_TORQUE, cage_race_journal_into,
 )
 from bearingsim.dynamics.contact.pocket import (
     P_MU, P_OUT_APPROACH, P_OUT_DFN_DDELTA, P_OUT_DFN_DRATE, P_OUT_FN, P_OUT_FORCE_BALL,
@@ -74,19 +74,18 @@ def pocket_tangent(k, x_b, cage, pp, pres, K, C):
 
 
 @numba.njit(cache=True)
-def journal_forces(cage, race, jp, jres, g, cage_off, want_tangent, Kb, Cb):
+def journal_forces(cage, race, jp, jres, squeeze, g, cage_off, want_tangent, Kb, Cb):
     """Cage on its guiding land (docs/model.md §8): cage and race are `bundles.Body` (the
     race turns about z); force and torque about z on the cage (spatial), into the cage rows
-    g[cage_off:cage_off+6]; the `cage_race_journal` row into jres; tangents into Kb, Cb, the
+    g[cage_off:cage_off+6]; the `cage_race_journal` row into jres (squeeze: the dynamic film's
+    scratch, N_SQUEEZE_OUT); tangents into Kb, Cb, the
     cage's own 6x6 blocks. Returns the power of the journal forces on the cage [W]
     (negative: dissipated)."""
-    off = np.empty(2)
-    vel = np.empty(2)
-    off[0], off[1] = cage.x[0] - race.x[0], cage.x[1] - race.x[1]
-    vel[0], vel[1] = cage.v[0] - race.v[0], cage.v[1] - race.v[1]
+    vel0, vel1 = cage.v[0] - race.v[0], cage.v[1] - race.v[1]
     w_race_z = race.w[2]
-    out = cage_race_journal(off, vel, cage.w[2], w_race_z, jp)
-    jres[:] = out
+    out = jres
+    cage_race_journal_into(cage.x[0] - race.x[0], cage.x[1] - race.x[1], vel0, vel1, cage.w[2], w_race_z, jp, out,
+                           squeeze)
     F = out[J_OUT_FORCE:J_OUT_FORCE + 3]
     T = out[J_OUT_TORQUE]
     # torque about the global z axis, mapped to material moments of the cage
@@ -99,7 +98,7 @@ def journal_forces(cage, race, jp, jres, g, cage_off, want_tangent, Kb, Cb):
         Cb[0, 5] -= out[J_OUT_DF_DOMEGA_CAGE]
         Cb[1, 5] -= out[J_OUT_DF_DOMEGA_CAGE + 1]
         Cb[5, 5] -= out[J_OUT_DT_DOMEGA_CAGE]
-    return F[0] * vel[0] + F[1] * vel[1] + T * (cage.w[2] - w_race_z)
+    return F[0] * vel0 + F[1] * vel1 + T * (cage.w[2] - w_race_z)
 
 
 @numba.njit(cache=True)

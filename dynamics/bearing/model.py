@@ -16,12 +16,13 @@ import numpy as np
 from bearingsim.dynamics._kernel_options import NO_REFCOUNT
 from bearingsim.dynamics.contact.pocket import N_POCKET_OUT, P_BALL_RADIUS, P_POCKET_RADIUS
 from bearingsim.dynamics.journal.hybrid import N_JOURNAL_OUT
+from bearingsim.dynamics.journal.squeeze_film import N_SQUEEZE_OUT
 from bearingsim.dynamics.multibody.compiled import CompiledProblem, hht_chunk, kernel_address
 from bearingsim.dynamics.multibody.joints import prescribe_velocity_blocks
 from bearingsim.dynamics.multibody.linear_solvers import BlockArrowMatrix, assemble_iteration_blocks
 
 from . import channels, layout
-from .assembly import evaluate_bearing, mass_diagonal
+from .assembly import evaluate_bearing, evaluate_bearing_residual, mass_diagonal
 from .params import IP_CAGE, IP_Z
 from .bundles import Body, BorderLoads, CageArrays, ModelArrays, ResidualWork
 from .race_forces import N_RC, contact_scratch
@@ -110,10 +111,11 @@ def log_step(t, diag, Z, has_cage, impact_speeds, log):
 
 
 @numba.njit(**NO_REFCOUNT)
-def bearing_chunk(kernel, model, log, settings, coords, work, out, max_steps):
-    """`multibody.compiled.hht_chunk` with the bearing's accepted-step hook and its force kernel
-    at address `kernel` (a module-level wrapper, so that numba caches it)."""
-    return hht_chunk(kernel, accepted_step, model, log, settings, coords, work, out, max_steps)
+def bearing_chunk(kernels, model, log, settings, coords, work, out, max_steps):
+    """`multibody.compiled.hht_chunk` with the bearing's accepted-step hook and its force kernels
+    at the addresses `kernels` (tangent, residual-only; a module-level wrapper, so that numba
+    caches it)."""
+    return hht_chunk(kernels, accepted_step, model, log, settings, coords, work, out, max_steps)
 
 
 def cage_arrays(pocket, journal, psi, impact_speeds) -> CageArrays:
@@ -132,7 +134,7 @@ def residual_work(Z: int) -> ResidualWork:
         outer=Body(np.zeros(3), np.eye(3), np.zeros(3), np.zeros(3)),
         R_inner=np.zeros((3, 3)), w_inner=np.zeros(3), R_cage=np.zeros((3, 3)), w_cage=np.zeros(3),
         ext_f=np.zeros(3), ext_m=np.zeros(3), moment_contact=np.zeros(3), moment_load=np.zeros(3),
-        journal_row=np.zeros(N_JOURNAL_OUT))
+        journal_row=np.zeros(N_JOURNAL_OUT), journal_squeeze=np.zeros(N_SQUEEZE_OUT))
 
 
 class _Kernel:
@@ -266,8 +268,11 @@ class BearingModel:
         rows = np.array([layout.spin_row(self.params.ball_count)], dtype=np.int64)
         K, C = self._blocks
         n = np.zeros(self.n_dof)  # the kernel's argument types, as the loop passes them
-        kernel = kernel_address(evaluate_bearing, (0.0, n, n, n, self.arrays, False, n, n, self.diag, K, C))
-        return CompiledProblem(bearing_chunk, kernel, self.arrays, self.log, self.mass, rows, self.diag, K, C,
+        args = (0.0, n, n, n, self.arrays, False, n, n, self.diag, K, C)
+        # Newton's residual-only calls go to the kernel compiled without reference counting
+        # (assembly.evaluate_bearing_residual: the same residual, ≈ 8 % cheaper)
+        kernel, residual = kernel_address(evaluate_bearing, args), kernel_address(evaluate_bearing_residual, args)
+        return CompiledProblem(bearing_chunk, kernel, residual, self.arrays, self.log, self.mass, rows, self.diag, K, C,
                                self.drain)
 
     # --- results -----------------------------------------------------------------------

@@ -255,13 +255,24 @@ def cage_race_journal(offset, velocity, omega_cage, omega_race, params):
     cage, eps, metal normal force, friction power, contact azimuth, and the exact
     derivatives of (F_x, F_y, T) with respect to (x, y), (v_x, v_y), omega_cage, omega_race.
     """
-    out = np.zeros(N_JOURNAL_OUT)
-    e = math.hypot(offset[0], offset[1])
-    erx, ery = (offset[0] / e, offset[1] / e) if e > 0.0 else (1.0, 0.0)
+    out = np.empty(N_JOURNAL_OUT)
+    cage_race_journal_into(offset[0], offset[1], velocity[0], velocity[1], omega_cage, omega_race, params, out,
+                           np.empty(N_SQUEEZE_OUT))
+    return out
+
+
+@numba.njit(cache=True)
+def cage_race_journal_into(ox, oy, vx, vy, omega_cage, omega_race, params, out, sq):
+    """`cage_race_journal` of offset (ox, oy) [m] and velocity (vx, vy) [m/s] into out
+    (N_JOURNAL_OUT), with sq (N_SQUEEZE_OUT) as the dynamic film's scratch: no allocation,
+    for the residual of every Newton iteration."""
+    out[:] = 0.0
+    e = math.hypot(ox, oy)
+    erx, ery = (ox / e, oy / e) if e > 0.0 else (1.0, 0.0)
     etx, ety = -ery, erx
     lever = params[J_GUIDANCE] * params[J_RADIUS]
-    v_r = velocity[0] * erx + velocity[1] * ery
-    v_slide = velocity[0] * etx + velocity[1] * ety + lever * (omega_cage - omega_race)
+    v_r = vx * erx + vy * ery
+    v_slide = vx * etx + vy * ety + lever * (omega_cage - omega_race)
     (a, b, t, da, db, dt, a_e, b_e, db_dv, dt_dv, da_dw, db_dw, dt_dwr,
      eps, metal, power, film_power, min_film) = journal_scalars(
         e, v_slide, omega_cage + omega_race, omega_cage - omega_race, params)
@@ -289,12 +300,11 @@ def cage_race_journal(offset, velocity, omega_cage, omega_race, params):
     out[J_OUT_DT_DOMEGA_CAGE] = dt_dwr + dt_dv * lever
     out[J_OUT_DT_DOMEGA_RACE] = -dt_dwr - dt_dv * lever
     if params[J_FILM] == FILM_DYNAMIC:
-        _add_squeeze_film(offset, velocity, omega_cage + omega_race, eps, erx, ery, params, out)
-    return out
+        _add_squeeze_film(ox, oy, vx, vy, omega_cage + omega_race, eps, erx, ery, params, out, sq)
 
 
 @numba.njit(cache=True)
-def _add_squeeze_film(offset, velocity, omega_sum, eps, erx, ery, params, out):
+def _add_squeeze_film(ox, oy, vx, vy, omega_sum, eps, erx, ery, params, out, sq):
     """Add the weighted dynamic film force f_F F(e, V) (squeeze_film.py) and its exact
     tangents to out; V = v - (omega/2) e_z x e, so dV/de = -(omega/2) e_z x and
     dV/domega = -(1/2) e_z x e for either surface's speed."""
@@ -303,11 +313,9 @@ def _add_squeeze_film(offset, velocity, omega_sum, eps, erx, ery, params, out):
         return
     n = params[J_LANDS]
     k_film = n * params[J_VISCOSITY] * params[J_RADIUS] * (params[J_LENGTH] / n) ** 3 / c_film**3
-    sq = np.empty(N_SQUEEZE_OUT)
-    squeeze_film_force(offset[0], offset[1], velocity[0], velocity[1], omega_sum, c_film, k_film,
-                       params[J_EPS_CLIP], sq)
+    squeeze_film_force(ox, oy, vx, vy, omega_sum, c_film, k_film, params[J_EPS_CLIP], sq)
     er = (erx, ery)
-    dvw = (0.5 * offset[1], -0.5 * offset[0])  # dV/d omega = -(1/2) e_z x e
+    dvw = (0.5 * oy, -0.5 * ox)  # dV/d omega = -(1/2) e_z x e
     for i in range(2):
         out[J_OUT_FORCE + i] += f_f * sq[i]
         dfw = 0.0

@@ -17,6 +17,9 @@ What a problem supplies (`CompiledProblem`), with K and C in block-arrow form
         fills ma = M a, g = g(t, q, v), its diagnostics `diag`, and K_t = -dg/dq,
         C_t = -dg/dv when want_tangent (as the protocol's evaluate / jacobian); given as
         the address of its compiled overload (`kernel_address`), called by `call_kernel`;
+    residual_kernel, of the same signature: the same ma, g and diag without tangents, called
+        in Newton's iterations (it may be the same address; a kernel of its own can be
+        compiled without what only the tangents need, such as reference counting);
     accepted(t, q, v, a, data, diag, hook) -> bool
         after each accepted step, from the diagnostics of its last evaluation; True asks
         for the chunk to end so that Python can drain what the hook collected;
@@ -171,14 +174,16 @@ class Output(NamedTuple):
 
 
 class CompiledProblem(NamedTuple):
-    """A problem's compiled side: `chunk(kernel, data, hook, settings, coords, work, out,
-    max_steps)` is its cached wrapper around `hht_chunk`; `kernel` the address of its compiled
-    force kernel (`kernel_address`); data and hook are the bundles its kernel and hook take;
+    """A problem's compiled side: `chunk(kernels, data, hook, settings, coords, work, out,
+    max_steps)` is its cached wrapper around `hht_chunk`; `kernel` and `residual_kernel` the
+    addresses of its compiled force kernels (`kernel_address`; the module docstring), passed
+    to `chunk` as the pair `kernels`; data and hook are the bundles its kernels and hook take;
     diag, K and C the buffers its kernel fills; `drain()` empties what the hook collected
     (called after every chunk)."""
 
     chunk: object
     kernel: int
+    residual_kernel: int
     data: tuple
     hook: tuple
     mass: np.ndarray
@@ -239,9 +244,9 @@ def _norm(ls, co, x, y, coef, q_a, q_b):
 # _attempt -> _newton -> _factor: bearing_chunk compiled in 19.4 s, 13.1 s inlined
 # (`python -m benchmarks.cold_start`, 2026-11-24, README). The steps taken are the same.
 @numba.njit(inline="always")
-def _factor(kernel, data, ls, co, w, t1, q, v, a, h):
+def _factor(kernels, data, ls, co, w, t1, q, v, a, h):
     """Rebuild S = M + (1 - alpha)(gamma h C_t + beta h^2 K_t) at (t1, q, v, a) and factor it."""
-    call_kernel(kernel, (t1, q, v, a, data, _bool(True), w.ma_t, w.g_t, w.diag, w.K, w.C))
+    call_kernel(kernels[0], (t1, q, v, a, data, _bool(True), w.ma_t, w.g_t, w.diag, w.K, w.C))
     c_v = (1.0 - ls.alpha) * ls.gamma * h
     assemble_iteration_blocks(w.K, w.C, co.mass, 1.0, c_v, (1.0 - ls.alpha) * ls.beta * h * h, w.S)
     for i in co.prescribed_rows:
@@ -255,7 +260,7 @@ def _factor(kernel, data, ls, co, w, t1, q, v, a, h):
 
 
 @numba.njit(inline="always")
-def _newton(kernel, data, ls, co, w, t1, h, y, y1, fresh):
+def _newton(kernels, data, ls, co, w, t1, h, y, y1, fresh):
     """Newton on a_{n+1} (as `HHTStepper._newton`); returns _OK or a failure index."""
     q, v, a, g = y[0], y[1], y[2], y[3]
     q1, v1, a1, g1, dq1 = y1[0], y1[1], y1[2], y1[3], y1[4]
@@ -265,7 +270,7 @@ def _newton(kernel, data, ls, co, w, t1, h, y, y1, fresh):
     floor = 100.0 * _norm(ls, co, q, w.zeros, 2.2e-16, q, q)
     for k in range(ls.max_newton_iter):
         newmark_kinematics(q, v, a, a1, h, ls.beta, ls.gamma, co.rotation_slots, dq1, q1, v1)
-        call_kernel(kernel, (t1, q1, v1, a1, data, _bool(False), w.ma, g1, w.diag, w.K, w.C))
+        call_kernel(kernels[1], (t1, q1, v1, a1, data, _bool(False), w.ma, g1, w.diag, w.K, w.C))
         w.counters[N_RESIDUALS] += 1
         r_max = hht_residual(w.ma, g1, g, ls.alpha, w.r)
         if r_max == math.inf:
@@ -273,7 +278,7 @@ def _newton(kernel, data, ls, co, w, t1, h, y, y1, fresh):
         if k > 0 and r_max <= ls.residual_tol:
             return _OK
         if rebuild:
-            if not _factor(kernel, data, ls, co, w, t1, q1, v1, a1, h):
+            if not _factor(kernels, data, ls, co, w, t1, q1, v1, a1, h):
                 return _SINGULAR
             fresh, rebuild = True, False
         block_arrow_solve(f.Dinv_T, f.F_T, f.DinvE_T, f.schur, f.piv_S, w.r, w.da)
@@ -293,7 +298,7 @@ def _newton(kernel, data, ls, co, w, t1, h, y, y1, fresh):
 
 
 @numba.njit(inline="always")
-def _attempt(kernel, data, ls, co, w, t, h, y, y1):
+def _attempt(kernels, data, ls, co, w, t, h, y, y1):
     """One attempted step (as `HHTStepper.step`): (error norm, _OK or a failure index)."""
     t1 = t + h
     h_prev = w.state[S_H_PREV]
@@ -302,10 +307,10 @@ def _attempt(kernel, data, ls, co, w, t, h, y, y1):
     if needs_refactor(w.state[S_STALE] > 0.0, w.state[S_H_FACTORED], h, ls.keep_across_steps,
                       ls.refactor_step_ratio):
         newmark_kinematics(y[0], y[1], y[2], y1[2], h, ls.beta, ls.gamma, co.rotation_slots, y1[4], y1[0], y1[1])
-        if not _factor(kernel, data, ls, co, w, t1, y1[0], y1[1], y1[2], h):
+        if not _factor(kernels, data, ls, co, w, t1, y1[0], y1[1], y1[2], h):
             return math.inf, _SINGULAR
         fresh = True
-    result = _newton(kernel, data, ls, co, w, t1, h, y, y1, fresh)
+    result = _newton(kernels, data, ls, co, w, t1, h, y, y1, fresh)
     if result != _OK:
         w.state[S_STALE] = 1.0
         return math.inf, result
@@ -348,7 +353,7 @@ def _record(ls, w, out, t, y):
 
 
 @numba.njit(inline="always")
-def hht_chunk(kernel, accepted, data, hook, ls, co, w, out, max_steps):
+def hht_chunk(kernels, accepted, data, hook, ls, co, w, out, max_steps):
     """Up to `max_steps` accepted HHT-α steps (the control flow of `time_loop.integrate`).
 
     Returns DONE at t1, CHUNK_END after max_steps or when the hook asks for a drain, or
@@ -367,7 +372,7 @@ def hht_chunk(kernel, accepted, data, hook, ls, co, w, out, max_steps):
             h = (ls.t1 - ls.t0) / ls.n_fixed
         cur = c[N_CUR]
         y, y1 = w.Y[cur], w.Y[1 - cur]
-        err, result = _attempt(kernel, data, ls, co, w, t, h, y, y1)
+        err, result = _attempt(kernels, data, ls, co, w, t, h, y, y1)
         if result != _OK:
             c[N_REJECTED] += 1
             c[N_NEWTON_FAILURES] += 1
@@ -480,7 +485,7 @@ def integrate_compiled(problem, t0: float, t1: float, q0, v0, settings: HHTSetti
     ls = loop_settings(settings, t0, t1)
     stall = NewtonStallWatch(settings.alpha)
     while True:
-        status = cp.chunk(cp.kernel, cp.data, cp.hook, ls, co, w, out, chunk_steps)
+        status = cp.chunk((cp.kernel, cp.residual_kernel), cp.data, cp.hook, ls, co, w, out, chunk_steps)
         cp.drain()
         logged.append(out.log[:int(w.counters[N_LOGGED])].copy())
         w.counters[N_LOGGED] = 0

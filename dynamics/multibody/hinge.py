@@ -119,12 +119,18 @@ def add_hinge_force(x_B, R_B, x_B_dot, Omega_B, x_A, R_A, H_u, H_psi, G_u, G_psi
 
 @numba.njit(cache=True)
 def hinge_energy(x_B, R_B, x_A, R_A, H_u, H_psi):
-    """Strain energy V = u^T H_u u / 2 + psi^T H_psi psi / 2 [J] (M.17)."""
-    u = mtv(R_A, x_B - x_A)
-    psi = np.empty(2)
-    psi[0] = -(R_A[0, 1] * R_B[0, 2] + R_A[1, 1] * R_B[1, 2] + R_A[2, 1] * R_B[2, 2])
-    psi[1] = R_A[0, 0] * R_B[0, 2] + R_A[1, 0] * R_B[1, 2] + R_A[2, 0] * R_B[2, 2]
-    return 0.5 * (u @ mv(H_u, u)) + 0.5 * (H_psi[0] * psi[0] ** 2 + H_psi[1] * psi[1] ** 2)
+    """Strain energy V = u^T H_u u / 2 + psi^T H_psi psi / 2 [J] (M.17). Scalar code without
+    temporaries: the residual of every Newton iteration writes it into the diagnostics."""
+    d0, d1, d2 = x_B[0] - x_A[0], x_B[1] - x_A[1], x_B[2] - x_A[2]
+    u0 = R_A[0, 0] * d0 + R_A[1, 0] * d1 + R_A[2, 0] * d2
+    u1 = R_A[0, 1] * d0 + R_A[1, 1] * d1 + R_A[2, 1] * d2
+    u2 = R_A[0, 2] * d0 + R_A[1, 2] * d1 + R_A[2, 2] * d2
+    strain = 0.0
+    for i, ui in enumerate((u0, u1, u2)):
+        strain += ui * (H_u[i, 0] * u0 + H_u[i, 1] * u1 + H_u[i, 2] * u2)
+    psi0 = -(R_A[0, 1] * R_B[0, 2] + R_A[1, 1] * R_B[1, 2] + R_A[2, 1] * R_B[2, 2])
+    psi1 = R_A[0, 0] * R_B[0, 2] + R_A[1, 0] * R_B[1, 2] + R_A[2, 0] * R_B[2, 2]
+    return 0.5 * strain + 0.5 * (H_psi[0] * psi0 ** 2 + H_psi[1] * psi1 ** 2)
 
 
 @numba.njit(cache=True)

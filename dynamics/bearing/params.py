@@ -9,6 +9,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from bearingsim.dynamics.geometry import BearingGeometry, CageGeometry, Material, effective_modulus
+from bearingsim.dynamics.simd_gather import gather_pays
 from bearingsim.dynamics.traction.fast import TractionRule, unused_traction_rule
 
 from . import layout
@@ -82,8 +83,11 @@ class BearingModelParams:
     def with_float32_residual(self, on: bool = True) -> "BearingModelParams":
         """A copy whose residual-only traction runs through the float32 passes (`on`) or not
         (dynamics/traction/fast.py): ~15 % off a time step, for callers whose tangent is the
-        model's own; the default float64 residual is the one to difference."""
-        return replace(self, traction=self.traction._replace(float32_residual=bool(on)))
+        model's own; the default float64 residual is the one to difference. Their viscosity
+        lookup takes 8-wide gathers where this CPU runs them faster (dynamics/simd_gather.py;
+        the same bits either way)."""
+        return replace(self, traction=self.traction._replace(float32_residual=bool(on),
+                                                             gather32=bool(on) and gather_pays()))
 
     def without(self, *parts: str) -> "BearingModelParams":
         """A copy with `parts` switched off (keys of SWITCHES: traction, film, cage, journal,

@@ -7,7 +7,8 @@ evaluated: in short passes over contiguous scratch arrays that LLVM vectorises (
 `fastmath`, `error_model="numpy"` so that `/` carries no zero-division branch), with
 asinh(x) = log(x + sqrt(1 + x^2)) and a branch-free log of our own (`dynamics.simd_math`)
 because numba's `math.log` is a scalar libm call that blocks vectorisation (no SVML in this
-llvmlite). The one scalar pass is the viscosity table lookup.
+llvmlite). The viscosity table lookup is a gather that LLVM leaves scalar; the float32 passes
+can read it eight nodes at a time through `dynamics.simd_gather` where the CPU's gathers pay.
 
 Square roots and divisions share one unit that neither wider vectors nor fast-math speed up;
 they set the cost. Where their rounding is harmless they run in float32, which that unit
@@ -57,6 +58,7 @@ import numpy as np
 
 from bearingsim.dynamics.lubrication import rheology
 from bearingsim.dynamics._kernel_options import NO_REFCOUNT, VEC
+from bearingsim.dynamics.simd_gather import gather_pays, lerp_table32
 from bearingsim.dynamics.simd_math import log_array, log_array32
 from bearingsim.dynamics.traction.nodes import max_nodes, pack_rule, place_nodes
 
@@ -91,13 +93,14 @@ class TractionRule(NamedTuple):
     iwork32: np.ndarray    # (n_max,) int32 scratch of the residual-only passes
     eta_flat32: np.ndarray  # eta_table in float32, flattened (the residual-only passes' table)
     float32_residual: bool  # residual-only calls through the float32 passes (module docstring)
+    gather32: bool = False  # their viscosity lookup by 8-wide gathers (simd_gather.py; the same bits)
 
 
 def unused_traction_rule() -> TractionRule:
     """A placeholder of the right types for a model without Eyring traction."""
     return TractionRule(np.zeros((2, 2)), 0.0, 0.0, np.zeros(1), np.zeros((1, 1)), np.zeros(1, dtype=np.int64),
                         np.zeros((_WORK32_ROWS, 1), dtype=np.float32), np.zeros(1, dtype=np.int32),
-                        np.zeros(4, dtype=np.float32), False)
+                        np.zeros(4, dtype=np.float32), False, False)
 
 
 class _Nodes(NamedTuple):
@@ -181,18 +184,12 @@ def _eyring_argument(k, r, n, x, z):
         z[m] = xm + math.sqrt(1.0 + xm * xm)
 
 
-@numba.njit(**VEC)
-def _viscosity_lookup32(f_index, n, eta_flat32, inv_tau0_h, k):
+@numba.njit(**NO_REFCOUNT)
+def _viscosity_lookup32(f_index, n, eta_flat32, inv_tau0_h, k, gather):
     """`_viscosity_lookup` in float32: f_index, k and the table (`TractionRule.eta_flat32`, the
-    rows (eta_i, eta_(i+1) - eta_i) flattened, relative 6e-8 against the table's own 1e-4)."""
-    last = np.float32(eta_flat32.size // 2 - 1.000001)
-    scale = np.float32(inv_tau0_h)
-    one = np.uint64(1)
-    for m in range(n):
-        f = min(f_index[m], last)
-        i = np.uint64(f)
-        j = i + i
-        k[m] = (eta_flat32[j] + (f - np.float32(i)) * eta_flat32[j + one]) * scale
+    rows (eta_i, eta_(i+1) - eta_i) flattened, relative 6e-8 against the table's own 1e-4), by
+    8-wide gathers or one node at a time (`gather`; the same bits, dynamics/simd_gather.py)."""
+    lerp_table32(f_index, n, eta_flat32, inv_tau0_h, k, gather)
 
 
 @numba.njit(**VEC)
@@ -332,7 +329,7 @@ def traction_fast(a, b, p_h, h, du0, dv0, w_s, tr, out, jacobian=True):
         w32 = tr.work32
         values32 = _NodeValues(k=w32[2], r=w32[1], x=w32[3], z=w32[4], ash=w32[5])
         _slip_and_table_index32(nodes.X, nodes.Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / p_step, w32[0], values32.r)
-        _viscosity_lookup32(w32[0], n, tr.eta_flat32, 1.0 / (tau0 * h), values32.k)
+        _viscosity_lookup32(w32[0], n, tr.eta_flat32, 1.0 / (tau0 * h), values32.k, tr.gather32)
         _eyring_argument32(values32.k, values32.r, n, values32.x, values32.z)
         log_array32(values32.z, n, w32[0], tr.iwork32, values32.ash)  # row 0 is spent: the exponents
         _accumulate_force(nodes, values32, n, a, b, du0, dv0, w_s, out)
@@ -429,14 +426,18 @@ class FastTraction:
         """Fresh float32 scratch (work32, iwork32) of the residual-only passes, one thread."""
         return np.empty((_WORK32_ROWS, self.max_nodes), dtype=np.float32), np.empty(self.max_nodes, dtype=np.int32)
 
-    def traction_rule(self, float32_residual: bool = False) -> TractionRule:
+    def traction_rule(self, float32_residual: bool = False, gather32: bool | None = None) -> TractionRule:
         """The bundle `traction_fast` takes, with a fresh workspace (one per thread).
 
         float32_residual: residual-only calls through the float32 passes (module docstring):
         ~25 % cheaper, but the force then carries rounding steps of ~1e-7 that finite
-        differences amplify, so only for callers with an analytic tangent (the time loop)."""
+        differences amplify, so only for callers with an analytic tangent (the time loop).
+        gather32: their viscosity lookup by gathers; None: where this CPU runs it faster
+        (`simd_gather.gather_pays`). Either way the same results."""
+        if gather32 is None:
+            gather32 = bool(float32_residual) and gather_pays()
         return TractionRule(self.eta_table, self.p_step, self.tau0, self.rule, *self.workspace(), *self.workspace32(),
-                            self.eta_table.astype(np.float32).ravel(), bool(float32_residual))
+                            self.eta_table.astype(np.float32).ravel(), bool(float32_residual), bool(gather32))
 
     def evaluate(self, a, b, p_h, h, du0, dv0, w_s) -> tuple[np.ndarray, np.ndarray, int]:
         """(F = [F_x, F_y, M_z], J[3, 3], flag) on the ball; units as traction_fast."""

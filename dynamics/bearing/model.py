@@ -138,7 +138,9 @@ def residual_work(Z: int) -> ResidualWork:
 
 
 class _Kernel:
-    """`evaluate_bearing` bound to one model's bundles.
+    """The force kernels bound to one model's bundles: `evaluate_bearing` for tangent calls,
+    `evaluate_bearing_residual` (the same residual bit for bit, without reference counting)
+    for residual-only ones.
 
     numba's per-call type dispatch costs ~6 us for the nested bundles (it types every array
     of every tuple in Python), more than a tenth of a residual; after the first call this
@@ -151,20 +153,23 @@ class _Kernel:
 
     def __init__(self, n_dof: int):
         self.n = n_dof
-        self.entry = None
+        self.entries = {}
 
     def _fits(self, x) -> bool:
         return (type(x) is np.ndarray and x.dtype == np.float64 and x.ndim == 1 and x.shape[0] == self.n
                 and x.flags.c_contiguous)
 
     def __call__(self, t, q, v, a, arrays, want_tangent, ma, g, diag, K, C):
-        args = (float(t), q, v, a, arrays, bool(want_tangent), ma, g, diag, K, C)
-        if self.entry is not None and self._fits(q) and self._fits(v) and self._fits(a) \
-                and self._fits(ma) and self._fits(g):
-            return self.entry(*args)
-        drive = evaluate_bearing(*args)
-        if self.entry is None and all(self._fits(x) for x in (q, v, a, ma, g)):
-            self.entry = evaluate_bearing.get_overload(tuple(numba.typeof(x) for x in args))
+        want_tangent = bool(want_tangent)
+        args = (float(t), q, v, a, arrays, want_tangent, ma, g, diag, K, C)
+        fits = self._fits(q) and self._fits(v) and self._fits(a) and self._fits(ma) and self._fits(g)
+        entry = self.entries.get(want_tangent)
+        if entry is not None and fits:
+            return entry(*args)
+        kernel = evaluate_bearing if want_tangent else evaluate_bearing_residual
+        drive = kernel(*args)
+        if entry is None and fits:
+            self.entries[want_tangent] = kernel.get_overload(tuple(numba.typeof(x) for x in args))
         return drive
 
 

@@ -14,6 +14,8 @@ from __future__ import annotations
 
 import numba
 import numpy as np
+from numba.core import types
+from numba.extending import intrinsic
 
 from bearingsim.dynamics._kernel_options import NO_REFCOUNT
 from bearingsim.dynamics.contact.pocket import (
@@ -82,6 +84,21 @@ def evaluate_bearing_residual(t, q, v, a, model, want_tangent, ma, g, diag, K, C
     return _evaluate(t, q, v, a, model, False, ma, g, diag, K, C)
 
 
+@intrinsic
+def _as_bool(typingctx, flag):
+    """flag typed as bool, not Literal[bool]: the kernels `_evaluate` calls (not inlined) are
+    then compiled once for both force kernels, not once more for the constant False of
+    `evaluate_bearing_residual` (tests/test_compile_specialisations.py). A jitted identity
+    function would not do: it returns the literal type it was given."""
+    if not isinstance(flag, (types.Boolean, types.BooleanLiteral)):
+        return None
+
+    def codegen(context, builder, signature, args):
+        return context.cast(builder, args[0], signature.args[0], types.boolean)
+
+    return types.boolean(flag), codegen
+
+
 @numba.njit(cache=True, inline="always")
 def _evaluate(t, q, v, a, model, want_tangent, ma, g, diag, K, C):
     fp, ip = model.fp, model.ip
@@ -122,7 +139,7 @@ def _evaluate(t, q, v, a, model, want_tangent, ma, g, diag, K, C):
         loads.M_cage[i] = 0.0
     rows = work.rows  # one row per ball-race contact: inner 2k, outer 2k + 1
     pocket_rows = work.pocket_rows
-    _ball_forces(q, v, model, bodies, work.scratch, rows, pocket_rows, g, diag, loads, want_tangent)
+    _ball_forces(q, v, model, bodies, work.scratch, rows, pocket_rows, g, diag, loads, _as_bool(want_tangent))
     if want_tangent:
         _ball_tangents(v, model, bodies, rows, pocket_rows, q, K, C)
     return _border(t, v, model, bodies, loads, ma, g, diag, K.B, C.B, want_tangent)
@@ -408,7 +425,7 @@ def _border(t, v, model, bodies, loads, ma, g, diag, Kb, Cb, want_tangent):
             jres = work.journal_row
             cage_block = slice(CAGE_BORDER, CAGE_BORDER + CAGE_DOF)
             power = journal_forces(cage, bodies.outer, model.cage.journal, jres, work.journal_squeeze, g, o_c,
-                                   want_tangent, Kb[cage_block, cage_block], Cb[cage_block, cage_block])
+                                   _as_bool(want_tangent), Kb[cage_block, cage_block], Cb[cage_block, cage_block])
             journal_diag(jres, diag)
             diag[DG_P_DISS] -= power
     drive = prescribe_velocity_residual(o_i + 5, v, fp[FP_OMEGA_I], 1.0, ma, g)

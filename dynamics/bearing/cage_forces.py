@@ -77,10 +77,10 @@ def pocket_tangent(k, x_b, cage, pp, pres, K, C):
 def journal_forces(cage, race, jp, jres, squeeze, g, cage_off, want_tangent, Kb, Cb):
     """Cage on its guiding land (docs/model.md §8): cage and race are `bundles.Body` (the
     race turns about z); force and torque about z on the cage (spatial), into the cage rows
-    g[cage_off:cage_off+6]; the `cage_race_journal` row into jres (squeeze: the dynamic film's
-    scratch, N_SQUEEZE_OUT); tangents into Kb, Cb, the
-    cage's own 6x6 blocks. Returns the power of the journal forces on the cage [W]
-    (negative: dissipated)."""
+    g[cage_off:cage_off+6]; the `cage_race_journal` row into jres (squeeze: the dynamic
+    film's scratch, N_SQUEEZE_OUT); tangents into Kb, Cb, the cage's own 6x6 blocks. Returns
+    the power of the journal forces on the cage [W] (negative: dissipated). Allocates nothing:
+    the residual of every Newton iteration calls it."""
     vel0, vel1 = cage.v[0] - race.v[0], cage.v[1] - race.v[1]
     w_race_z = race.w[2]
     out = jres

@@ -14,14 +14,13 @@ from __future__ import annotations
 
 import numba
 import numpy as np
-from numba.core import types
-from numba.extending import intrinsic
 
 from bearingsim.dynamics._kernel_options import NO_REFCOUNT
 from bearingsim.dynamics.contact.pocket import (
     P_OUT_APPROACH, P_OUT_DFN_DRATE, P_OUT_FRICTION_POWER, P_OUT_IN_CONTACT,
 )
 from bearingsim.dynamics.lubrication.film import film_central_nvm_batch
+from bearingsim.dynamics.multibody.compiled import as_bool
 from bearingsim.dynamics.multibody.crv import crv_to_matrix_into, skew
 from bearingsim.dynamics.multibody.hinge import add_hinge_force, hinge_energy, hinge_forces
 from bearingsim.dynamics.multibody.joints import prescribe_velocity_residual
@@ -80,23 +79,10 @@ def evaluate_bearing_residual(t, q, v, a, model, want_tangent, ma, g, diag, K, C
     """`evaluate_bearing` without tangents (want_tangent, K and C are not read): the same
     residual bit for bit, compiled without reference counting (`NO_REFCOUNT`), for the
     residual-only calls of every Newton iteration. The tangent branches of `_evaluate` allocate;
-    with want_tangent the constant False here numba prunes them before typing."""
+    with want_tangent the constant False here numba prunes them before typing. `_evaluate`
+    passes the flag on to the kernels it calls through `as_bool`, so that they are compiled
+    once for both force kernels (tests/test_compile_specialisations.py)."""
     return _evaluate(t, q, v, a, model, False, ma, g, diag, K, C)
-
-
-@intrinsic
-def _as_bool(typingctx, flag):
-    """flag typed as bool, not Literal[bool]: the kernels `_evaluate` calls (not inlined) are
-    then compiled once for both force kernels, not once more for the constant False of
-    `evaluate_bearing_residual` (tests/test_compile_specialisations.py). A jitted identity
-    function would not do: it returns the literal type it was given."""
-    if not isinstance(flag, (types.Boolean, types.BooleanLiteral)):
-        return None
-
-    def codegen(context, builder, signature, args):
-        return context.cast(builder, args[0], signature.args[0], types.boolean)
-
-    return types.boolean(flag), codegen
 
 
 @numba.njit(cache=True, inline="always")
@@ -139,7 +125,7 @@ def _evaluate(t, q, v, a, model, want_tangent, ma, g, diag, K, C):
         loads.M_cage[i] = 0.0
     rows = work.rows  # one row per ball-race contact: inner 2k, outer 2k + 1
     pocket_rows = work.pocket_rows
-    _ball_forces(q, v, model, bodies, work.scratch, rows, pocket_rows, g, diag, loads, _as_bool(want_tangent))
+    _ball_forces(q, v, model, bodies, work.scratch, rows, pocket_rows, g, diag, loads, as_bool(want_tangent))
     if want_tangent:
         _ball_tangents(v, model, bodies, rows, pocket_rows, q, K, C)
     return _border(t, v, model, bodies, loads, ma, g, diag, K.B, C.B, want_tangent)
@@ -425,7 +411,7 @@ def _border(t, v, model, bodies, loads, ma, g, diag, Kb, Cb, want_tangent):
             jres = work.journal_row
             cage_block = slice(CAGE_BORDER, CAGE_BORDER + CAGE_DOF)
             power = journal_forces(cage, bodies.outer, model.cage.journal, jres, work.journal_squeeze, g, o_c,
-                                   _as_bool(want_tangent), Kb[cage_block, cage_block], Cb[cage_block, cage_block])
+                                   as_bool(want_tangent), Kb[cage_block, cage_block], Cb[cage_block, cage_block])
             journal_diag(jres, diag)
             diag[DG_P_DISS] -= power
     drive = prescribe_velocity_residual(o_i + 5, v, fp[FP_OMEGA_I], 1.0, ma, g)

@@ -9,7 +9,6 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from bearingsim.dynamics.geometry import BearingGeometry, CageGeometry, Material, effective_modulus
-from bearingsim.dynamics.simd_gather import gather_pays
 from bearingsim.dynamics.traction.fast import TractionRule, unused_traction_rule
 
 from . import layout
@@ -86,8 +85,7 @@ class BearingModelParams:
         model's own; the default float64 residual is the one to difference. Their viscosity
         lookup takes 8-wide gathers where this CPU runs them faster (dynamics/simd_gather.py;
         the same bits either way)."""
-        return replace(self, traction=self.traction._replace(float32_residual=bool(on),
-                                                             gather32=bool(on) and gather_pays()))
+        return replace(self, traction=self.traction.with_float32_residual(on))
 
     def without(self, *parts: str) -> "BearingModelParams":
         """A copy with `parts` switched off (keys of SWITCHES: traction, film, cage, journal,

@@ -226,11 +226,20 @@ def kernel_address(dispatcher, args) -> int:
     return int(cres.library.get_pointer_to_function(cres.fndesc.llvm_func_name))
 
 
-@numba.njit
-def _bool(flag):
-    """flag typed as bool, not Literal[bool]: `call_kernel` then passes the argument types of
-    the overload `kernel_address` took the address of (the one the Python loop calls)."""
-    return flag
+@intrinsic
+def as_bool(typingctx, flag):
+    """flag typed as bool, not Literal[bool]. A constant True or False is a type of its own to
+    numba: passed on to `call_kernel` it would not be the argument type of the overload
+    `kernel_address` took the address of, and passed to a jitted function it compiles that
+    function (and all it links in) once more. A jitted identity function does not do this: it
+    returns the literal type it was given."""
+    if not isinstance(flag, (nbtypes.Boolean, nbtypes.BooleanLiteral)):
+        return None
+
+    def codegen(context, builder, signature, args):
+        return context.cast(builder, args[0], signature.args[0], nbtypes.boolean)
+
+    return nbtypes.boolean(flag), codegen
 
 
 @numba.njit
@@ -246,7 +255,7 @@ def _norm(ls, co, x, y, coef, q_a, q_b):
 @numba.njit(inline="always")
 def _factor(kernels, data, ls, co, w, t1, q, v, a, h):
     """Rebuild S = M + (1 - alpha)(gamma h C_t + beta h^2 K_t) at (t1, q, v, a) and factor it."""
-    call_kernel(kernels[0], (t1, q, v, a, data, _bool(True), w.ma_t, w.g_t, w.diag, w.K, w.C))
+    call_kernel(kernels[0], (t1, q, v, a, data, as_bool(True), w.ma_t, w.g_t, w.diag, w.K, w.C))
     c_v = (1.0 - ls.alpha) * ls.gamma * h
     assemble_iteration_blocks(w.K, w.C, co.mass, 1.0, c_v, (1.0 - ls.alpha) * ls.beta * h * h, w.S)
     for i in co.prescribed_rows:
@@ -270,7 +279,7 @@ def _newton(kernels, data, ls, co, w, t1, h, y, y1, fresh):
     floor = 100.0 * _norm(ls, co, q, w.zeros, 2.2e-16, q, q)
     for k in range(ls.max_newton_iter):
         newmark_kinematics(q, v, a, a1, h, ls.beta, ls.gamma, co.rotation_slots, dq1, q1, v1)
-        call_kernel(kernels[1], (t1, q1, v1, a1, data, _bool(False), w.ma, g1, w.diag, w.K, w.C))
+        call_kernel(kernels[1], (t1, q1, v1, a1, data, as_bool(False), w.ma, g1, w.diag, w.K, w.C))
         w.counters[N_RESIDUALS] += 1
         r_max = hht_residual(w.ma, g1, g, ls.alpha, w.r)
         if r_max == math.inf:

@@ -95,6 +95,12 @@ class TractionRule(NamedTuple):
     float32_residual: bool  # residual-only calls through the float32 passes (module docstring)
     gather32: bool = False  # their viscosity lookup by 8-wide gathers (simd_gather.py; the same bits)
 
+    def with_float32_residual(self, on: bool = True) -> "TractionRule":
+        """A copy whose residual-only calls take the float32 passes (`on`), their viscosity
+        lookup by gathers where this CPU runs them faster (`simd_gather.gather_pays`; the same
+        results either way)."""
+        return self._replace(float32_residual=bool(on), gather32=bool(on) and gather_pays())
+
 
 def unused_traction_rule() -> TractionRule:
     """A placeholder of the right types for a model without Eyring traction."""
@@ -426,18 +432,16 @@ class FastTraction:
         """Fresh float32 scratch (work32, iwork32) of the residual-only passes, one thread."""
         return np.empty((_WORK32_ROWS, self.max_nodes), dtype=np.float32), np.empty(self.max_nodes, dtype=np.int32)
 
-    def traction_rule(self, float32_residual: bool = False, gather32: bool | None = None) -> TractionRule:
+    def traction_rule(self, float32_residual: bool = False) -> TractionRule:
         """The bundle `traction_fast` takes, with a fresh workspace (one per thread).
 
         float32_residual: residual-only calls through the float32 passes (module docstring):
         ~25 % cheaper, but the force then carries rounding steps of ~1e-7 that finite
-        differences amplify, so only for callers with an analytic tangent (the time loop).
-        gather32: their viscosity lookup by gathers; None: where this CPU runs it faster
-        (`simd_gather.gather_pays`). Either way the same results."""
-        if gather32 is None:
-            gather32 = bool(float32_residual) and gather_pays()
-        return TractionRule(self.eta_table, self.p_step, self.tau0, self.rule, *self.workspace(), *self.workspace32(),
-                            self.eta_table.astype(np.float32).ravel(), bool(float32_residual), bool(gather32))
+        differences amplify, so only for callers with an analytic tangent (the time loop)
+        (`TractionRule.with_float32_residual`)."""
+        rule = TractionRule(self.eta_table, self.p_step, self.tau0, self.rule, *self.workspace(), *self.workspace32(),
+                            self.eta_table.astype(np.float32).ravel(), False, False)
+        return rule.with_float32_residual(float32_residual)
 
     def evaluate(self, a, b, p_h, h, du0, dv0, w_s) -> tuple[np.ndarray, np.ndarray, int]:
         """(F = [F_x, F_y, M_z], J[3, 3], flag) on the ball; units as traction_fast."""

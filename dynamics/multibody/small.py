@@ -62,3 +62,12 @@ def mtv_into(A, x, y):
         xl = x[l]
         for i in range(k):
             y[i] += A[l, i] * xl
+
+
+@numba.njit(cache=True, inline="always")
+def mtv3(A, x0, x1, x2):
+    """A^T x as three scalars for a 3x3 A and x = (x0, x1, x2): no array, for kernels that the
+    residual of every Newton iteration calls."""
+    return (A[0, 0] * x0 + A[1, 0] * x1 + A[2, 0] * x2,
+            A[0, 1] * x0 + A[1, 1] * x1 + A[2, 1] * x2,
+            A[0, 2] * x0 + A[1, 2] * x1 + A[2, 2] * x2)

@@ -1,11 +1,12 @@
-"""The gathered table lookup of the float32 traction passes (dynamics/simd_gather.py)."""
+"""The table lookups of the float32 traction passes (dynamics/simd_gather.py): by gathers, one
+node at a time, and by rows picked in a pass of loads (`lerp_rows32`)."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from bearingsim.dynamics.simd_gather import FORCE_ENV, gather_pays, lerp_table32
+from bearingsim.dynamics.simd_gather import FORCE_ENV, gather_pays, lerp_rows32, lerp_table32
 
 from .simd_reference import lerp_fma_reference
 
@@ -30,6 +31,14 @@ def test_both_paths_give_the_exact_fused_interpolation(n):
         assert np.array_equal(out[:n], ref), f"vector={vector}"
         if n == 0:
             assert np.isnan(out[0])  # nothing written past n
+    # rows picked as 8-byte words (the time loop's lookup where gathers do not pay)
+    m = max(n, 1)
+    out = np.full(m, np.nan, dtype=np.float32)
+    scratch = (np.zeros(m, dtype=np.uint32), np.zeros(m, dtype=np.float32), np.zeros(m, dtype=np.int64))
+    lerp_rows32(f_index, n, flat, inv_scale, out, *scratch)
+    assert np.array_equal(out[:n], ref), "rows picked"
+    if n == 0:
+        assert np.isnan(out[0])
 
 
 def test_the_fma_differs_from_a_separate_multiply_and_add():

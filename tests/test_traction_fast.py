@@ -24,9 +24,11 @@ from bearingsim.dynamics.lubrication.lubricant import load_builtin_lubricant
 from bearingsim.dynamics.traction.fast import (
     FLAG_NO_CONTACT, FLAG_OK, FLAG_PRESSURE_CLAMPED, FLAG_SLIP_CLAMPED, FLAG_UNVALIDATED, FastTraction, _accumulate,
     _Nodes, _NodeValues,
-    _accumulate_force, _eyring_argument, _eyring_argument32, _slip_and_table_index, _slip_and_table_index32,
-    _viscosity_lookup, _viscosity_lookup32, traction_fast,
+    SMALL_ARG, _accumulate_force, _accumulate_force_g, _eyring_argument, _eyring_argument32,
+    _lerp_eyring_argument32, _slip_and_table_index, _slip_and_table_index32, _slip_and_table_row32,
+    _stress_factor32, _viscosity_lookup, _viscosity_lookup32, traction_fast,
 )
+from bearingsim.dynamics.simd_gather import pick_rows
 from bearingsim.dynamics.simd_math import log_array, log_array32
 from tests.simd_reference import lerp_fma_reference
 from tests.lubrication_points import (
@@ -303,6 +305,55 @@ def test_passes_equal_their_py_funcs(o156, fast):
         gross = fast.tau0 * np.pi * a * b * ash[:n].max() * np.array([1.0, 1.0, b])
         assert np.all(np.abs(residual32[:3] - full[:3]) <= 1e-6 * gross) and not residual32[3:].any()
         assert np.any(residual32[:3] != full[:3])  # the float32 passes did run
+
+
+def test_row_pick_route_gives_the_bits_of_the_gathered_route(o156, fast):
+    """docs/model.md §6.4: without gathers the float32 residual splits the table position into
+    row and fraction in the slip pass, picks the rows in a pass of loads and interpolates in the
+    Eyring pass; g = asinh(x)/|s| has a pass of its own before the float64 sums. The same
+    operations as the gathered route (which keeps the separate index, lookup and Eyring passes),
+    so every contact must come out with the same bits, pass by pass and in the end."""
+    points = random_operating_points(200, seed=31, lubricant=o156, film=film.film_central_nvm)
+    rule = fast.traction_rule(float32_residual=True)
+    gathered, picked = rule._replace(gather32=True), rule._replace(gather32=False)
+    out_g, out_p = np.empty(12), np.empty(12)
+    for a, b, p_h, h, du0, dv0, w_s in points:
+        traction_fast(a, b, p_h, h, du0, dv0, w_s, gathered, out_g, False)
+        traction_fast(a, b, p_h, h, du0, dv0, w_s, picked, out_p, False)
+        assert np.array_equal(out_g, out_p)
+    # pass by pass on one contact with its pole inside the ellipse (spin, slip)
+    a, b, p_h, h, du0, dv0, w_s = points[0]
+    work, iwork = fast.workspace()
+    X, Y, W = work[0], work[1], work[2]
+    n = traction_nodes.place_nodes(a, b, du0, dv0, w_s, fast.rule, X, Y, W, work[3:8])
+    (fi, r, k, x, z, ash), iw = fast.workspace32()
+    _slip_and_table_index32(X, Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / fast.p_step, fi, r)
+    eta_flat32 = fast.eta_table.astype(np.float32).ravel()
+    last = np.float32(eta_flat32.size // 2 - 1.000001)
+    row, frac, r2 = np.empty(n, dtype=np.uint32), np.empty(n, dtype=np.float32), np.empty(n, dtype=np.float32)
+    _slip_and_table_row32(X, Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / fast.p_step, last, row, frac, r2)
+    f = np.minimum(fi[:n], last)
+    assert np.array_equal(row, f.astype(np.uint32)) and np.array_equal(frac, f - row.astype(np.float32))
+    assert np.array_equal(r2, r[:n])
+    _viscosity_lookup32(fi, n, eta_flat32, 1.0 / (fast.tau0 * h), k, False)
+    _eyring_argument32(k, r, n, x, z)
+    rows = np.empty(n, dtype=np.int64)
+    pick_rows(row, n, eta_flat32.view(np.int64), rows)
+    k2, x2, z2 = (np.empty(n, dtype=np.float32) for _ in range(3))
+    _lerp_eyring_argument32(rows, frac, r2, n, 1.0 / (fast.tau0 * h), k2, x2, z2)
+    assert np.array_equal(k2, k[:n]) and np.array_equal(x2, x[:n]) and np.array_equal(z2, z[:n])
+    log_array32(z, n, fi, iw, ash)
+    force, force_g, g = np.empty(12), np.empty(12), np.empty(n, dtype=np.float32)
+    _accumulate_force(_Nodes(X, Y, W), _NodeValues(k, r, x, z, ash), n, a, b, du0, dv0, w_s, force)
+    _stress_factor32(k, r, x, ash, n, g)
+    _accumulate_force_g(_Nodes(X, Y, W), g, n, a, b, du0, dv0, w_s, force_g)
+    assert np.array_equal(force_g, force) and force[:3].any()
+    # the g pass against its definition: g |s| = asinh(k |s|) to the float32 log's ~1e-7 absolute
+    # (simd_math.log_array32), g = k (1 - x^2/6) below SMALL_ARG
+    big = x[:n] >= SMALL_ARG
+    exact = np.arcsinh(x[:n].astype(float))
+    assert np.all(np.abs(g[big] * r[:n][big] - exact[big]) <= 1e-6 * np.maximum(exact[big], 1.0))
+    assert np.allclose(g[~big], k[:n][~big] * (1.0 - x[:n][~big].astype(float) ** 2 / 6.0), rtol=1e-6)
 
 
 def test_batch_equals_single_calls(o156, fast):

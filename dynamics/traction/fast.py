@@ -8,7 +8,10 @@ evaluated: in short passes over contiguous scratch arrays that LLVM vectorises (
 asinh(x) = log(x + sqrt(1 + x^2)) and a branch-free log of our own (`dynamics.simd_math`)
 because numba's `math.log` is a scalar libm call that blocks vectorisation (no SVML in this
 llvmlite). The viscosity table lookup is a gather that LLVM leaves scalar; the float32 passes
-can read it eight nodes at a time through `dynamics.simd_gather` where the CPU's gathers pay.
+read it eight nodes at a time through `dynamics.simd_gather` where the CPU's gathers pay, and
+elsewhere split the table position into row and fraction in the slip pass, pick the rows in a
+pass of loads (`simd_gather.pick_rows`) and interpolate in the Eyring pass (the same bits either
+way). g = asinh(x)/|s| has a float32 pass of its own, so the float64 sums only multiply and add.
 
 Square roots and divisions share one unit that neither wider vectors nor fast-math speed up;
 they set the cost. Where their rounding is harmless they run in float32, which that unit
@@ -44,7 +47,8 @@ Cost on the 2-core dev box (`python -m benchmarks.traction --quick`, one core, 4
 2026-11-24, this version and the one before back to back): 1.48 us per contact with the
 Jacobian; without it 0.79 us with the node values in float32, against 0.90 us when only the
 roots and the log were float32 (and 1.25 us in float64, 2026-11-23). The AMD box of
-2026-11-21 ran the float64 passes ~2.4x faster.
+2026-11-21 ran the float64 passes ~2.4x faster. On the AMD EPYC of 2026-11-25, without gathers:
+0.76-0.77 us with the rows picked and g in its own pass, against 0.86 us before (the same bits).
 """
 
 from __future__ import annotations

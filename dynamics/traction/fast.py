@@ -143,6 +143,20 @@ def _slip_and_table_index(X, Y, n, a, b, p_h, du0, dv0, w_s, inv_p_step, f_index
         r[m] = math.sqrt(sx * sx + sy * sy)
 
 
+@numba.njit(cache=True, inline="always")
+def _node_index_and_speed32(Xm, Ym, scale, a32, b32, du32, dv32, ws32):
+    """A node's table position p/p_step = scale sqrt(1 - X^2 - Y^2) and sliding speed |s|, in
+    float32 (the float32 passes' shared node arithmetic; scale and the rest already float32)."""
+    # 1 - X^2 - Y^2 cancels at the ellipse edge: formed in float64 (in float32 the index
+    # moved there by up to 2e-3 of a table step)
+    f = scale * math.sqrt(max(np.float32(1.0 - Xm * Xm - Ym * Ym), np.float32(0.0)))
+    x = np.float32(Xm)
+    y = np.float32(Ym)
+    sx = du32 - ws32 * b32 * y
+    sy = dv32 + ws32 * a32 * x
+    return f, math.sqrt(sx * sx + sy * sy)
+
+
 @numba.njit(**VEC)
 def _slip_and_table_index32(X, Y, n, a, b, p_h, du0, dv0, w_s, inv_p_step, f_index, r):
     """`_slip_and_table_index` in float32 into float32 f_index and r: a float32 root costs a
@@ -151,18 +165,10 @@ def _slip_and_table_index32(X, Y, n, a, b, p_h, du0, dv0, w_s, inv_p_step, f_ind
     terms of s (|du0| + |w_s| b), so near the spin pole, where they cancel, |s| is good to
     ~1e-7 (|du0| + |dv0| + |w_s| b) rather than relatively; the force still moves by < 1e-6
     of tau0 pi a b (tests/test_traction_fast.py)."""
-    zero = np.float32(0.0)
     scale = np.float32(p_h * inv_p_step)
     a32, b32, du32, dv32, ws32 = np.float32(a), np.float32(b), np.float32(du0), np.float32(dv0), np.float32(w_s)
     for m in range(n):
-        # 1 - X^2 - Y^2 cancels at the ellipse edge: formed in float64 (in float32 the index
-        # moved there by up to 2e-3 of a table step)
-        f_index[m] = scale * math.sqrt(max(np.float32(1.0 - X[m] * X[m] - Y[m] * Y[m]), zero))
-        x = np.float32(X[m])
-        y = np.float32(Y[m])
-        sx = du32 - ws32 * b32 * y
-        sy = dv32 + ws32 * a32 * x
-        r[m] = math.sqrt(sx * sx + sy * sy)
+        f_index[m], r[m] = _node_index_and_speed32(X[m], Y[m], scale, a32, b32, du32, dv32, ws32)
 
 
 @numba.njit(**VEC)
@@ -229,19 +235,14 @@ def _slip_and_table_row32(X, Y, n, a, b, p_h, du0, dv0, w_s, inv_p_step, last, r
     its row i = floor f (uint32) and the fraction f - i (float32), as `lerp_table32` splits it
     (the same operations, so the same bits). Done here, in a pass that vectorises, the split
     leaves the lookup only its loads (`simd_gather.pick_rows`)."""
-    zero = np.float32(0.0)
     scale = np.float32(p_h * inv_p_step)
     a32, b32, du32, dv32, ws32 = np.float32(a), np.float32(b), np.float32(du0), np.float32(dv0), np.float32(w_s)
     for m in range(n):
-        f = min(scale * math.sqrt(max(np.float32(1.0 - X[m] * X[m] - Y[m] * Y[m]), zero)), last)
+        f, r[m] = _node_index_and_speed32(X[m], Y[m], scale, a32, b32, du32, dv32, ws32)
+        f = min(f, last)
         i = np.uint32(f)
         row[m] = i
         frac[m] = f - np.float32(i)
-        x = np.float32(X[m])
-        y = np.float32(Y[m])
-        sx = du32 - ws32 * b32 * y
-        sy = dv32 + ws32 * a32 * x
-        r[m] = math.sqrt(sx * sx + sy * sy)
 
 
 @numba.njit(**VEC)

@@ -229,6 +229,25 @@ def _node_slip(X, Y, m, a, b, du0, dv0, w_s):
     return xp, yp, du0 - w_s * yp, dv0 + w_s * xp
 
 
+@numba.njit(cache=True, inline="always")
+def _node_force(X, Y, W, m, g, a, b, du0, dv0, w_s):
+    """Node m's share of (F_x, F_y, M_z) with the sign left to the sum: W g s and its moment
+    (tau0 = 1; tau = g s, g = asinh(x)/|s|)."""
+    xp, yp, sx, sy = _node_slip(X, Y, m, a, b, du0, dv0, w_s)
+    wgt = W[m] * g
+    return wgt * sx, wgt * sy, wgt * (xp * sy - yp * sx)
+
+
+@numba.njit(cache=True, inline="always")
+def _store_force(out, Fx, Fy, Mz):
+    """out[0:3] = (F_x, F_y, M_z), out[3:12] = 0 (a residual-only evaluation has no Jacobian)."""
+    out[0] = Fx
+    out[1] = Fy
+    out[2] = Mz
+    for m in range(3, 12):
+        out[m] = 0.0
+
+
 @numba.njit(**VEC)
 def _slip_and_table_row32(X, Y, n, a, b, p_h, du0, dv0, w_s, inv_p_step, last, row, frac, r):
     """`_slip_and_table_index32` with the table position f = min(index, last) split at once into
@@ -282,16 +301,11 @@ def _accumulate_force_g(nodes, g, n, a, b, du0, dv0, w_s, out):
     X, Y, W = nodes.X, nodes.Y, nodes.W
     Fx = Fy = Mz = 0.0
     for m in range(n):
-        xp, yp, sx, sy = _node_slip(X, Y, m, a, b, du0, dv0, w_s)
-        wgt = W[m] * g[m]
-        Fx -= wgt * sx
-        Fy -= wgt * sy
-        Mz -= wgt * (xp * sy - yp * sx)
-    out[0] = Fx
-    out[1] = Fy
-    out[2] = Mz
-    for m in range(3, 12):
-        out[m] = 0.0
+        fx, fy, mz = _node_force(X, Y, W, m, g[m], a, b, du0, dv0, w_s)
+        Fx -= fx
+        Fy -= fy
+        Mz -= mz
+    _store_force(out, Fx, Fy, Mz)
 
 
 @numba.njit(**VEC)
@@ -360,19 +374,14 @@ def _accumulate_force(nodes, values, n, a, b, du0, dv0, w_s, out):
     small_arg, one, sixth = x.dtype.type(SMALL_ARG), x.dtype.type(1.0), x.dtype.type(1.0 / 6.0)
     Fx = Fy = Mz = 0.0
     for m in range(n):
-        xp, yp, sx, sy = _node_slip(X, Y, m, a, b, du0, dv0, w_s)
         xm = x[m]
         small = xm < small_arg
         g = k[m] * (one - xm * xm * sixth) if small else ash[m] / (one if small else r[m])
-        wgt = W[m] * g
-        Fx -= wgt * sx
-        Fy -= wgt * sy
-        Mz -= wgt * (xp * sy - yp * sx)
-    out[0] = Fx
-    out[1] = Fy
-    out[2] = Mz
-    for m in range(3, 12):
-        out[m] = 0.0
+        fx, fy, mz = _node_force(X, Y, W, m, g, a, b, du0, dv0, w_s)
+        Fx -= fx
+        Fy -= fy
+        Mz -= mz
+    _store_force(out, Fx, Fy, Mz)
 
 
 @numba.njit(**NO_REFCOUNT)

@@ -127,9 +127,9 @@ def lerp_table32(f_index, n, flat, inv_scale, out, vector):
 def pick_rows(row, n, rows, picked):
     """picked[m] = rows[row[m]] for m < n: the table's rows (v_i, v_(i+1) - v_i) read as one
     8-byte word each (`flat.view(np.int64)`), row uint32, picked int64. LLVM leaves this loop
-    scalar too, but a pass of nothing but loads and stores runs at about one node per cycle where
-    the one-node-at-a-time lookup, with its index arithmetic, took three (2026-11-25, AMD EPYC,
-    240-node contacts: 0.79 against 1.12 ns a node for the whole lookup, `lerp_rows32`)."""
+    scalar too, but with the index arithmetic moved into vectorised passes around it the whole
+    lookup costs less than the one-node-at-a-time loop (2026-11-25, AMD EPYC, 240-node contacts:
+    0.79 against 1.12 ns a node, `lerp_rows32`)."""
     for m in range(n):
         picked[m] = rows[np.uint64(row[m])]
 

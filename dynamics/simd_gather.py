@@ -115,12 +115,35 @@ def lerp_gather32(typingctx, f_index, n, flat, last, scale, out, vector):
     return sig, codegen
 
 
+@numba.njit(cache=True, inline="always")
+def last_position32(flat):
+    """The largest table position a lookup takes, in float32: just short of the last row of
+    flat (rows (v_i, v_(i+1) - v_i) flattened), so that its row is the last full interval.
+    Every lookup route clamps at this one value: the same bits need the same clamp."""
+    return np.float32(flat.size // 2 - 1.000001)
+
+
+@numba.njit(cache=True, inline="always")
+def split_position32(f_index, last):
+    """(i, f - i) of f = min(f_index, last): the row (uint32) and the fraction within it
+    (float32), as `lerp_gather32` splits them (fptoui, uitofp, fsub)."""
+    f = min(f_index, last)
+    i = np.uint32(f)
+    return i, f - np.float32(i)
+
+
+@numba.njit(cache=True, inline="always")
+def lerp_picked32(pair, m, frac, scale):
+    """fma(frac, v_(i+1) - v_i, v_i) * scale from node m's picked row, `pair` being the picked
+    rows viewed as float32 (v_i, v_(i+1) - v_i) pairs; LLVM contracts the multiply and add as
+    `lerp_gather32` fuses them explicitly."""
+    return (pair[2 * m] + frac * pair[2 * m + 1]) * scale
+
+
 @numba.njit(**NO_REFCOUNT)
 def lerp_table32(f_index, n, flat, inv_scale, out, vector):
-    """`lerp_gather32` with last = the table's last full interval (flat holds rows
-    (v_i, v_(i+1) - v_i) flattened) and scale = inv_scale as float32."""
-    last = np.float32(flat.size // 2 - 1.000001)
-    lerp_gather32(f_index, np.int64(n), flat, last, np.float32(inv_scale), out, vector)
+    """`lerp_gather32` with last = `last_position32(flat)` and scale = inv_scale as float32."""
+    lerp_gather32(f_index, np.int64(n), flat, last_position32(flat), np.float32(inv_scale), out, vector)
 
 
 @numba.njit(**VEC)
@@ -141,17 +164,14 @@ def lerp_rows32(f_index, n, flat, inv_scale, out, row, frac, picked):
     v_i) * scale (vectorised) -- with the same operations, so the same bits on a CPU with FMA.
     row (uint32), frac (float32), picked (int64): scratch of length >= n. The float32 traction
     passes fuse the first and last pass into their neighbours (`traction.fast`)."""
-    last = np.float32(flat.size // 2 - 1.000001)
+    last = last_position32(flat)
     scale = np.float32(inv_scale)
     for m in range(n):
-        f = min(f_index[m], last)
-        i = np.uint32(f)
-        row[m] = i
-        frac[m] = f - np.float32(i)
+        row[m], frac[m] = split_position32(f_index[m], last)
     pick_rows(row, n, flat.view(np.int64), picked)
     pair = picked.view(np.float32)
     for m in range(n):
-        out[m] = (pair[2 * m] + frac[m] * pair[2 * m + 1]) * scale
+        out[m] = lerp_picked32(pair, m, frac[m], scale)
 
 
 @numba.njit(**NO_REFCOUNT)

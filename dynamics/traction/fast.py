@@ -62,7 +62,9 @@ import numpy as np
 
 from bearingsim.dynamics.lubrication import rheology
 from bearingsim.dynamics._kernel_options import NO_REFCOUNT, VEC
-from bearingsim.dynamics.simd_gather import gather_pays, lerp_table32, pick_rows
+from bearingsim.dynamics.simd_gather import (
+    gather_pays, last_position32, lerp_picked32, lerp_table32, pick_rows, split_position32,
+)
 from bearingsim.dynamics.simd_math import log_array, log_array32
 from bearingsim.dynamics.traction.nodes import max_nodes, pack_rule, place_nodes
 
@@ -251,17 +253,14 @@ def _store_force(out, Fx, Fy, Mz):
 @numba.njit(**VEC)
 def _slip_and_table_row32(X, Y, n, a, b, p_h, du0, dv0, w_s, inv_p_step, last, row, frac, r):
     """`_slip_and_table_index32` with the table position f = min(index, last) split at once into
-    its row i = floor f (uint32) and the fraction f - i (float32), as `lerp_table32` splits it
-    (the same operations, so the same bits). Done here, in a pass that vectorises, the split
-    leaves the lookup only its loads (`simd_gather.pick_rows`)."""
+    its row i = floor f (uint32) and the fraction f - i (float32) by `simd_gather.split_position32`,
+    as `lerp_table32` splits it (the same operations, so the same bits). Done here, in a pass
+    that vectorises, the split leaves the lookup only its loads (`simd_gather.pick_rows`)."""
     scale = np.float32(p_h * inv_p_step)
     a32, b32, du32, dv32, ws32 = np.float32(a), np.float32(b), np.float32(du0), np.float32(dv0), np.float32(w_s)
     for m in range(n):
         f, r[m] = _node_index_and_speed32(X[m], Y[m], scale, a32, b32, du32, dv32, ws32)
-        f = min(f, last)
-        i = np.uint32(f)
-        row[m] = i
-        frac[m] = f - np.float32(i)
+        row[m], frac[m] = split_position32(f, last)
 
 
 @numba.njit(**VEC)
@@ -274,7 +273,7 @@ def _lerp_eyring_argument32(picked, frac, r, n, inv_tau0_h, k, x, z):
     one = np.float32(1.0)
     arg_max = np.float32(EYRING_ARG_MAX)
     for m in range(n):
-        km = (pair[2 * m] + frac[m] * pair[2 * m + 1]) * scale
+        km = lerp_picked32(pair, m, frac[m], scale)
         k[m] = km
         xm = min(km * r[m], arg_max)
         x[m] = xm
@@ -425,7 +424,7 @@ def traction_fast(a, b, p_h, h, du0, dv0, w_s, tr, out, jacobian=True):
         else:  # row and fraction at once, the rows picked in a pass of their own (the same bits)
             row = tr.iwork32.view(np.uint32)
             _slip_and_table_row32(nodes.X, nodes.Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / p_step,
-                                  np.float32(tr.eta_flat32.size // 2 - 1.000001), row, w32[0], values32.r)
+                                  last_position32(tr.eta_flat32), row, w32[0], values32.r)
             picked = tr.iwork  # the float64 path's int64 scratch, free here
             pick_rows(row, n, tr.eta_flat32.view(np.int64), picked)
             _lerp_eyring_argument32(picked, w32[0], values32.r, n, 1.0 / (tau0 * h), values32.k, values32.x,

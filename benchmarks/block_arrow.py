@@ -1,6 +1,7 @@
-"""Benchmark: block-arrow Schur solver vs dense LU, and the integrator's per-step overhead.
+"""Benchmark: block-arrow Schur solver vs dense LU, the solve with and without the block size
+known to the compiler, and the integrator's per-step overhead.
 
-Run: python -m benchmarks.block_arrow
+Run: taskset -c 1 python -m benchmarks.block_arrow
 """
 
 from __future__ import annotations
@@ -59,6 +60,40 @@ def solver_table(m: int = 6, nb: int = 12) -> None:
               f"{t_sp * 1e6:10.1f} {err:13.2e}")
 
 
+def solve_paths(Z: int = 22, m: int = 6, nb: int = 12, rounds: int = 3) -> None:
+    """One solve of the reference bearing's size (22 balls of 6 unknowns, a border of 12) by
+    `block_arrow_solve`, whose rigid-body blocks (m = 6) run loops compiled with m known, and by
+    the same loops with m read at run time (the route of any other m), alternated; and whether
+    the two give the same bits."""
+    import numba
+
+    from bearingsim.dynamics.multibody.linear_solvers import _block_arrow_solve_m, block_arrow_solve
+
+    @numba.njit
+    def known(Dinv_T, F_T, DinvE_T, S, piv_S, rhs, x, reps):
+        for _ in range(reps):
+            block_arrow_solve(Dinv_T, F_T, DinvE_T, S, piv_S, rhs, x)
+
+    @numba.njit
+    def at_run_time(Dinv_T, F_T, DinvE_T, S, piv_S, rhs, x, reps):
+        for _ in range(reps):
+            _block_arrow_solve_m(Dinv_T, F_T, DinvE_T, S, piv_S, rhs, x, Dinv_T.shape[1])
+
+    rng = np.random.default_rng(1)
+    blk = BlockArrowSolver(Z, m, nb)
+    blk.factor(random_arrow(Z, m, nb, rng))
+    args = (blk._Dinv_T, blk._F_T, blk._DinvE_T, blk._S, blk._piv_S, rng.normal(size=Z * m + nb))
+    x_known, x_run = np.empty(Z * m + nb), np.empty(Z * m + nb)
+    known(*args, x_known, 1)
+    at_run_time(*args, x_run, 1)
+    print(f"\nsolve, Z = {Z}, m = {m}, nb = {nb} [us]; same bits: {np.array_equal(x_known, x_run)}")
+    reps = 20000
+    for _ in range(rounds):
+        t = {name: best_time(lambda f=f, x=x: f(*args, x, reps), repeat=5, number=1) / reps * 1e6
+             for name, f, x in (("m known", known, x_known), ("m at run time", at_run_time, x_run))}
+        print("  " + "   ".join(f"{k} {v:.3f}" for k, v in t.items()))
+
+
 def overhead_table() -> None:
     print("\nintegrator cost per accepted step (Python loop + numba kernels) [us]")
     print(f"{'problem':>28} {'n':>4} {'steps':>7} {'Newton/step':>12} {'us/step':>9} "
@@ -87,4 +122,5 @@ def overhead_table() -> None:
 
 if __name__ == "__main__":
     solver_table()
+    solve_paths()
     overhead_table()

@@ -1,6 +1,6 @@
 """Name numba's compiled functions in a `perf` profile of the compiled time loop.
 
-    perf record -F 4000 -D 3000 -o loop.data python -m benchmarks.perf_map [SCENE] [--window 0.3]
+    perf record -F 4000 -D 3000 -o loop.data python -m benchmarks.perf_map [SCENE] [--window 0.3] [--set KEY=VALUE ...]
     perf report -i loop.data --no-children --sort sym
 
 perf names JIT code through /tmp/perf-<pid>.map, and numba writes none: without it every
@@ -60,13 +60,15 @@ def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("scene", nargs="?", default="helicopter-b-given-hinge")
     ap.add_argument("--window", type=float, default=0.3, help="simulated seconds to profile")
+    ap.add_argument("--set", action="append", default=[], dest="overrides", metavar="KEY=VALUE",
+                    help="a scene override, e.g. solver.rtol=1e-7 (repeatable)")
     args = ap.parse_args(argv)
 
     from benchmarks.step_cost import loop_ready
     from bearingsim.dynamics.bearing import BearingModel
     from bearingsim.dynamics.multibody.compiled import integrate_compiled
 
-    scene, params, q0, v0 = loop_ready(args.scene)
+    scene, params, q0, v0 = loop_ready(args.scene, args.overrides)
     t0 = time.perf_counter()
     sol, _ = integrate_compiled(BearingModel(params), 0.0, args.window, q0, v0, scene.solver)
     wall = time.perf_counter() - t0

@@ -18,7 +18,7 @@ its multiply and add into one). Without gathers the time loop now takes neither 
 `lerp_gather32` but `lerp_rows32`: the row and fraction split in a vectorised pass, the rows
 picked as 8-byte words in a scalar pass of nothing but loads and stores (`pick_rows`), the
 fma in a vectorised pass -- the same operations, the same bits, and on the AMD EPYC of
-2026-11-25 0.79 instead of 1.12 ns a node. Which is faster depends on the CPU's gather;
+2026-11-24 (afternoon) 0.79 instead of 1.12 ns a node. Which is faster depends on the CPU's gather;
 `gather_pays` times both once per process and the time loop takes the faster (the choice
 changes no result).
 
@@ -151,7 +151,7 @@ def pick_rows(row, n, rows, picked):
     """picked[m] = rows[row[m]] for m < n: the table's rows (v_i, v_(i+1) - v_i) read as one
     8-byte word each (`flat.view(np.int64)`), row uint32, picked int64. LLVM leaves this loop
     scalar too, but with the index arithmetic moved into vectorised passes around it the whole
-    lookup costs less than the one-node-at-a-time loop (2026-11-25, AMD EPYC, 240-node contacts:
+    lookup costs less than the one-node-at-a-time loop (2026-11-24, AMD EPYC, 240-node contacts:
     0.79 against 1.12 ns a node, `lerp_rows32`)."""
     for m in range(n):
         picked[m] = rows[np.uint64(row[m])]

@@ -429,3 +429,35 @@ def test_the_loops_residual_kernel_is_evaluate_bearing_bit_for_bit(case, lubrica
     for _ in range(50):
         evaluate_bearing_residual(0.0, q, v, a, model.arrays, False, ma, g, diag, K, C)
     assert [sys.getrefcount(x) for x in watched] == before
+
+
+def test_a_residual_call_clears_every_slot_it_reads_and_no_tangent_value_leaks_into_it(lubricated):
+    """A residual-only call clears only `RC_RESIDUAL_SPANS` of each contact row: those must be
+    exactly the slots outside the tangent-only fields, and a residual after a tangent call at
+    another state must be the residual from freshly zeroed rows, to the bit."""
+    from bearingsim.dynamics.bearing.assembly import evaluate_bearing, evaluate_bearing_residual
+    from bearingsim.dynamics.bearing.race_forces import RACE_ROW, RC_RESIDUAL_SPANS
+
+    tangent_only = {s for c in RACE_ROW if c.description.endswith("tangent only")
+                    for s in range(c.slot, c.slot + c.width)}
+    cleared = {s for lo, hi in RC_RESIDUAL_SPANS for s in range(lo, hi)}
+    assert cleared == set(range(RACE_ROW.size)) - tangent_only and len(tangent_only) == 49
+
+    params, _, _, q, v = lubricated
+    p = params.with_float32_residual()
+    q_b, v_b = q.copy(), v.copy()
+    v_b[: 6 * p.ball_count: 6] += 0.05  # every contact slips: the tangent slots fill
+    a = np.random.default_rng(3).normal(scale=10.0, size=q.size)
+    out = []
+    for tangent_first in (False, True):
+        model = BearingModel(p)
+        K, C = model.K.blocks(), model.C.blocks()
+        ma, g, diag = np.zeros(q.size), np.zeros(q.size), np.zeros(model.diag.size)
+        if tangent_first:
+            evaluate_bearing(0.0, q_b, v_b, a, model.arrays, True, ma, g, diag, K, C)
+            assert np.abs(model.arrays.work.rows[:, sorted(tangent_only)]).max() > 0.0
+        drive = evaluate_bearing_residual(0.0, q, v, a, model.arrays, False, ma, g, diag, K, C)
+        out.append((drive, ma.copy(), g.copy(), diag.copy(), model.arrays.work.rows[:, sorted(cleared)].copy()))
+    assert out[0][0] == out[1][0]
+    for x, y in zip(out[0][1:], out[1][1:]):
+        assert np.array_equal(x, y)

@@ -356,6 +356,38 @@ def test_row_pick_route_gives_the_bits_of_the_gathered_route(o156, fast):
     assert np.allclose(g[~big], k[:n][~big] * (1.0 - x[:n][~big].astype(float) ** 2 / 6.0), rtol=1e-6)
 
 
+def test_scratch_on_a_cache_line_and_the_same_bits_at_any_offset(o156, fast):
+    """dynamics/aligned.py: the workspaces start every row on a cache line, and where a row
+    starts changes no bit of the traction (the vectorised passes do not peel for alignment),
+    float32 residual and float64 with the Jacobian alike."""
+    from bearingsim.dynamics.aligned import CACHE_LINE
+
+    rule = fast.traction_rule(float32_residual=True)
+    for scratch in (rule.work, rule.iwork, rule.work32, rule.iwork32):
+        rows = scratch.reshape(-1, scratch.shape[-1])
+        assert all(row.ctypes.data % CACHE_LINE == 0 for row in rows) and scratch.shape[-1] >= fast.max_nodes
+
+    def shifted(a, offset):
+        raw = np.empty(a.nbytes + 2 * CACHE_LINE, dtype=np.uint8)
+        start = (-raw.ctypes.data) % CACHE_LINE + offset
+        return raw[start:start + a.nbytes].view(a.dtype).reshape(a.shape)
+
+    points = random_operating_points(60, seed=41, lubricant=o156, film=film.film_central_nvm)
+    reference = [np.empty((len(points), 12)) for _ in range(2)]
+    for offset in (0, 8, 16, 32, 48):
+        moved = rule._replace(**{name: shifted(getattr(rule, name), offset)
+                                 for name in ("work", "iwork", "work32", "iwork32")})
+        assert moved.work.ctypes.data % CACHE_LINE == offset
+        for i, point in enumerate(points):
+            for path, (tr, jacobian) in enumerate(((moved, False), (moved.with_float32_residual(False), True))):
+                out = np.empty(12)
+                traction_fast(*point, tr, out, jacobian)
+                if offset == 0:
+                    reference[path][i] = out
+                else:
+                    assert np.array_equal(out, reference[path][i]), (offset, i, path)
+
+
 def test_batch_equals_single_calls(o156, fast):
     points = np.array(random_operating_points(12, seed=9, lubricant=o156, film=film.film_central_nvm))
     F, J, flags = fast.evaluate_batch(*points.T)

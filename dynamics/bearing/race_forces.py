@@ -75,6 +75,11 @@ RC_LOAD_SLOPE = RACE_ROW.slot("load_slope")
 RC_WTB, RC_WTR = RACE_ROW.slot("traction_wrench_ball"), RACE_ROW.slot("traction_wrench_race")
 RC_DN = RACE_ROW.slot("normal_turn")
 N_RC = RACE_ROW.size
+# A residual-only call clears only the slots it writes or reads: the two runs of slots between
+# the tangent-only fields (their descriptions end in "tangent only"), which the tangent pass
+# alone reads and a tangent call clears with the rest (the row's 87 slots for 44 contacts
+# were a memset of ~1 % of the time loop's samples, 2026-11-24)
+RC_RESIDUAL_SPANS = ((0, RC_KP), (RC_PB, RC_LOAD_SLOPE))
 # |T| grows like F_n (Coulomb) or roughly like the contact area, F_n^(2/3) (Eyring plateau)
 LOAD_EXPONENT_COULOMB, LOAD_EXPONENT_EYRING = 1.0, 2.0 / 3.0
 N_CONTACT_SCRATCH = 27
@@ -165,7 +170,13 @@ def race_contact_normal(ball, race, is_outer, fp, ip, table, cbuf, carry, res, w
     Returns True when in contact."""
     x_b, v_b, w_b = ball.x, ball.v, ball.w
     x_r, R_r, v_r, w_r = race.x, race.R, race.v, race.w
-    res[:] = 0.0
+    if want_tangent:
+        res[:] = 0.0
+    else:  # RC_RESIDUAL_SPANS: the tangent-only slots are the tangent pass's alone
+        for i in range(RC_RESIDUAL_SPANS[0][0], RC_RESIDUAL_SPANS[0][1]):
+            res[i] = 0.0
+        for i in range(RC_RESIDUAL_SPANS[1][0], RC_RESIDUAL_SPANS[1][1]):
+            res[i] = 0.0
     d_g = fp[FP_DO] if is_outer else fp[FP_DI]
     r_g = fp[FP_RO] if is_outer else fp[FP_RI]
     ball_race_contact_kernel(x_b, v_b, w_b, x_r, R_r, v_r, w_r, d_g, r_g, fp[FP_D], is_outer, cbuf)

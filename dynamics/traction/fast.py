@@ -47,7 +47,7 @@ Cost on the 2-core dev box (`python -m benchmarks.traction --quick`, one core, 4
 2026-11-24, this version and the one before back to back): 1.48 us per contact with the
 Jacobian; without it 0.79 us with the node values in float32, against 0.90 us when only the
 roots and the log were float32 (and 1.25 us in float64, 2026-11-23). The AMD box of
-2026-11-21 ran the float64 passes ~2.4x faster. On the AMD EPYC of 2026-11-25, without gathers:
+2026-11-21 ran the float64 passes ~2.4x faster. On the AMD EPYC of 2026-11-24 (afternoon), without gathers:
 0.76-0.77 us with the rows picked and g in its own pass, against 0.86 us before (the same bits).
 """
 
@@ -62,6 +62,7 @@ import numpy as np
 
 from bearingsim.dynamics.lubrication import rheology
 from bearingsim.dynamics._kernel_options import NO_REFCOUNT, VEC
+from bearingsim.dynamics.aligned import CACHE_LINE, empty_aligned
 from bearingsim.dynamics.simd_gather import (
     gather_pays, last_position32, lerp_picked32, lerp_table32, pick_rows, split_position32,
 )
@@ -284,7 +285,7 @@ def _lerp_eyring_argument32(picked, frac, r, n, inv_tau0_h, k, x, z):
 def _stress_factor32(k, r, x, ash, n, g):
     """g = asinh(x)/|s| per node in float32 (tau/tau0 = g s), k (1 - x^2/6) below SMALL_ARG:
     the float32 part of `_accumulate_force`, in a pass of its own, so that the sums' float64
-    loop carries no division, selection or conversions of four arrays (2026-11-25: the node
+    loop carries no division, selection or conversions of four arrays (2026-11-24, AMD EPYC: the node
     chain of a contact 0.84 of its time with the row pick)."""
     small_arg, one, sixth = np.float32(SMALL_ARG), np.float32(1.0), np.float32(1.0 / 6.0)
     for m in range(n):
@@ -517,13 +518,21 @@ class FastTraction:
         """Largest node count of the three rules (workspace length)."""
         return max_nodes(self.rule)
 
+    @property
+    def _row_length(self) -> int:
+        """max_nodes rounded up to whole cache lines of float32: every scratch row then starts on
+        a line when the array does (`aligned.py`)."""
+        lanes = CACHE_LINE // 4
+        return -(-self.max_nodes // lanes) * lanes
+
     def workspace(self) -> tuple[np.ndarray, np.ndarray]:
-        """Fresh scratch (work, iwork) for one thread."""
-        return np.empty((_WORK_ROWS, self.max_nodes)), np.empty(self.max_nodes, dtype=np.int64)
+        """Fresh scratch (work, iwork) for one thread, each row on a cache line (`aligned.py`)."""
+        return empty_aligned((_WORK_ROWS, self._row_length)), empty_aligned(self._row_length, np.int64)
 
     def workspace32(self) -> tuple[np.ndarray, np.ndarray]:
-        """Fresh float32 scratch (work32, iwork32) of the residual-only passes, one thread."""
-        return np.empty((_WORK32_ROWS, self.max_nodes), dtype=np.float32), np.empty(self.max_nodes, dtype=np.int32)
+        """Fresh float32 scratch (work32, iwork32) of the residual-only passes, one thread, each
+        row on a cache line."""
+        return empty_aligned((_WORK32_ROWS, self._row_length), np.float32), empty_aligned(self._row_length, np.int32)
 
     def traction_rule(self, float32_residual: bool = False) -> TractionRule:
         """The bundle `traction_fast` takes, with a fresh workspace (one per thread).

@@ -159,7 +159,7 @@ def nodes_inside(a, b, PU, PV, rule, n_angle, o_angle, X, Y, W, ray):
     X0 = PU * inv_A
     # one output array per loop nest, indexed flat: LLVM vectorises each with one store stream
     # (one loop writing X, Y and W through row slices took 0.75-0.99 ns a node, these three
-    # 0.64-0.66; 2026-11-25, AMD EPYC, 151 contacts of `benchmarks/traction.py`'s sample)
+    # 0.64-0.66; 2026-11-24, AMD EPYC, 151 contacts of `benchmarks/traction.py`'s sample)
     for i in range(n_r):
         o = i * n_angle
         Si = S[i]

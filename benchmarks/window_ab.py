@@ -9,8 +9,11 @@ as the package `bearingsim_ab_base` (`residual_ab.export_revision`) and the two 
 alternation, each first in every other round, after one warm-up window each. Prints each side's
 minimum and median wall time, steps and residuals (equal steps mean the same bits), the median of
 the per-round ratios and the load average. Nothing is written outside the temporary directory.
-Both sides take the same offset as in `residual_ab` (code placement): run it against HEAD with
-an unchanged tree to see it.
+
+Its resolution is poor on a VM: against HEAD with an unchanged tree it gave 1.06 (2026-11-24,
+AMD EPYC), and two runs against the previous commit gave 1.09 and 0.98 for the same change, so
+where a process's code and data land moves the window by more than most changes do. Read it
+over several runs, or time full runs alternated from separate installs.
 """
 
 from __future__ import annotations

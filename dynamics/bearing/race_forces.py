@@ -173,10 +173,9 @@ def race_contact_normal(ball, race, is_outer, fp, ip, table, cbuf, carry, res, w
     if want_tangent:
         res[:] = 0.0
     else:  # RC_RESIDUAL_SPANS: the tangent-only slots are the tangent pass's alone
-        for i in range(RC_RESIDUAL_SPANS[0][0], RC_RESIDUAL_SPANS[0][1]):
-            res[i] = 0.0
-        for i in range(RC_RESIDUAL_SPANS[1][0], RC_RESIDUAL_SPANS[1][1]):
-            res[i] = 0.0
+        for lo, hi in RC_RESIDUAL_SPANS:
+            for i in range(lo, hi):
+                res[i] = 0.0
     d_g = fp[FP_DO] if is_outer else fp[FP_DI]
     r_g = fp[FP_RO] if is_outer else fp[FP_RI]
     ball_race_contact_kernel(x_b, v_b, w_b, x_r, R_r, v_r, w_r, d_g, r_g, fp[FP_D], is_outer, cbuf)

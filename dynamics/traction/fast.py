@@ -216,12 +216,25 @@ def _eyring_argument32(k, r, n, x, z):
     """`_eyring_argument` in float32 for a residual-only evaluation (k, r, x, z all float32; asinh x
     = ln z then to ~1e-7 absolute). Not for the Jacobian, whose (x/sqrt(1 + x^2) - asinh x)
     cancels to x^3/3 for small x."""
-    one = np.float32(1.0)
-    arg_max = np.float32(EYRING_ARG_MAX)
     for m in range(n):
-        xm = min(k[m] * r[m], arg_max)
-        x[m] = xm
-        z[m] = xm + math.sqrt(one + xm * xm)
+        x[m], z[m] = _eyring_node32(k[m], r[m])
+
+
+@numba.njit(cache=True, inline="always")
+def _eyring_node32(km, rm):
+    """A node's Eyring argument x = min(k |s|, EYRING_ARG_MAX) and z = x + sqrt(1 + x^2)
+    (asinh x = ln z), in float32: the float32 passes' one definition of them."""
+    xm = min(km * rm, np.float32(EYRING_ARG_MAX))
+    return xm, xm + math.sqrt(np.float32(1.0) + xm * xm)
+
+
+@numba.njit(cache=True, inline="always")
+def _stress_factor(km, rm, xm, ash_m, small_arg, one, sixth):
+    """g = asinh(x)/|s| (tau/tau0 = g s), k (1 - x^2/6) below small_arg, in the width of its
+    arguments; the division's operand is 1 where the series is taken, so a vectorised select
+    never divides by a zero |s|."""
+    small = xm < small_arg
+    return km * (one - xm * xm * sixth) if small else ash_m / (one if small else rm)
 
 
 @numba.njit(cache=True, inline="always")
@@ -271,14 +284,10 @@ def _lerp_eyring_argument32(picked, frac, r, n, inv_tau0_h, k, x, z):
     `_eyring_argument32`, in one pass."""
     pair = picked.view(np.float32)  # (eta_i, eta_(i+1) - eta_i) per node
     scale = np.float32(inv_tau0_h)
-    one = np.float32(1.0)
-    arg_max = np.float32(EYRING_ARG_MAX)
     for m in range(n):
         km = lerp_picked32(pair, m, frac[m], scale)
         k[m] = km
-        xm = min(km * r[m], arg_max)
-        x[m] = xm
-        z[m] = xm + math.sqrt(one + xm * xm)
+        x[m], z[m] = _eyring_node32(km, r[m])
 
 
 @numba.njit(**VEC)
@@ -289,9 +298,7 @@ def _stress_factor32(k, r, x, ash, n, g):
     chain of a contact 0.84 of its time with the row pick)."""
     small_arg, one, sixth = np.float32(SMALL_ARG), np.float32(1.0), np.float32(1.0 / 6.0)
     for m in range(n):
-        xm = x[m]
-        small = xm < small_arg
-        g[m] = k[m] * (one - xm * xm * sixth) if small else ash[m] / (one if small else r[m])
+        g[m] = _stress_factor(k[m], r[m], x[m], ash[m], small_arg, one, sixth)
 
 
 @numba.njit(**VEC)
@@ -374,9 +381,7 @@ def _accumulate_force(nodes, values, n, a, b, du0, dv0, w_s, out):
     small_arg, one, sixth = x.dtype.type(SMALL_ARG), x.dtype.type(1.0), x.dtype.type(1.0 / 6.0)
     Fx = Fy = Mz = 0.0
     for m in range(n):
-        xm = x[m]
-        small = xm < small_arg
-        g = k[m] * (one - xm * xm * sixth) if small else ash[m] / (one if small else r[m])
+        g = _stress_factor(k[m], r[m], x[m], ash[m], small_arg, one, sixth)
         fx, fy, mz = _node_force(X, Y, W, m, g, a, b, du0, dv0, w_s)
         Fx -= fx
         Fy -= fy

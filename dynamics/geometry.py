@@ -18,6 +18,10 @@ class Material:
     youngs_modulus: float = field(metadata={"unit": "Pa", "gt": 0.0, "doc": "Young's modulus E"})
     poisson_ratio: float = field(metadata={"unit": "-", "gt": -1.0, "lt": 0.5, "doc": "Poisson's ratio"})
     density: float = field(metadata={"unit": "kg/m^3", "gt": 0.0, "doc": "mass density"})
+    thermal_expansion: float | None = field(default=None, metadata={
+        "unit": "1/K", "ge": 0.0, "lt": 1e-4,
+        "doc": "linear expansion coefficient alpha (operating geometry, docs/model.md §2.1); default by role: "
+               "11.9e-6 for ball and race (AISI 52100), 18.0e-6 for the cage (silicon bronze)"})
 
     @property
     def plane_strain_modulus(self) -> float:
@@ -204,7 +208,23 @@ class CageGeometry:
         "doc": "composite RMS roughness sigma = sqrt(Rq_rim^2 + Rq_land^2) of cage rim and guide land: "
                "the film-thickness ratio h_min/sigma of the verdict (ground land ~0.25 um, bronze rim ~1 um)"})
 
+    pocket_circle_eccentricity: float = field(default=0.0, metadata={
+        "unit": "m", "ge": 0.0, "lt": 1e-3,
+        "doc": "cage run-out: offset of the pocket circle's centre from the centre of the cage's guiding surface, "
+               "towards pocket 0 (0: none; the reference gives no value)"})
+    pocket_index_errors: tuple[float, ...] | None = field(default=None, metadata={
+        "unit": "m",
+        "doc": "pocket pitch errors: each pocket's position along the pitch circle minus its nominal one, "
+               "one value a pocket (ball_count values; none: evenly spaced)"})
+    land_length: float | None = field(default=None, metadata={
+        "unit": "m", "gt": 0.0,
+        "doc": "journal length L of the guide lands (both lands together); default: the cage's axial overlap "
+               "with the lands (docs/model.md §8)"})
+
     def __post_init__(self) -> None:
+        if self.pocket_index_errors is not None and any(abs(x) >= 1e-3 for x in self.pocket_index_errors):
+            raise ValueError(f"pocket_index_errors = {list(self.pocket_index_errors)} m: each must be smaller "
+                             "than 1e-3 m in magnitude (pitch errors of machined cages are micrometres)")
         if self.radial_thickness >= self.mean_diameter:
             raise ValueError(
                 f"radial_thickness = {self.radial_thickness:g} m must be smaller than "
@@ -214,6 +234,10 @@ class CageGeometry:
     def check_fits(self, bearing: BearingGeometry) -> None:
         """Cross-checks against the bearing; messages name the scene keys."""
         D = bearing.ball_diameter
+        if self.pocket_index_errors is not None and len(self.pocket_index_errors) != bearing.ball_count:
+            raise ValueError(
+                f"cage.pocket_index_errors has {len(self.pocket_index_errors)} values; give one per pocket "
+                f"(bearing.ball_count = {bearing.ball_count}) [m]")
         if self.pocket_diameter <= D:
             raise ValueError(
                 f"cage.pocket_diameter = {self.pocket_diameter:g} m must exceed the ball "
@@ -258,6 +282,26 @@ class CageGeometry:
             )
         return d
 
+    def pocket_index_range(self) -> float:
+        """Spread of the pocket pitch errors, max - min [m] (0 without them)."""
+        e = self.pocket_index_errors
+        return 0.0 if not e else max(e) - min(e)
+
+    def non_guiding_land_diameter(self, bearing: BearingGeometry) -> float | None:
+        """Diameter of the other ring's land, which faces the cage across the non-guiding gap [m]."""
+        return bearing.inner_shoulder_diameter if self.guidance == "outer" else bearing.outer_shoulder_diameter
+
+    def non_guiding_clearance(self, bearing: BearingGeometry) -> float | None:
+        """Radial gap between the cage and the non-guiding land, parts centred [m]: cage bore
+        against the inner-ring land for an outer-guided cage, cage outside against the outer-ring
+        land for an inner-guided one (None without that land's diameter)."""
+        land = self.non_guiding_land_diameter(bearing)
+        if land is None:
+            return None
+        if self.guidance == "outer":
+            return 0.5 * (self.bore_diameter - land)
+        return 0.5 * (land - self.outside_diameter)
+
     def guide_clearance(self, bearing: BearingGeometry) -> float:
         """Radial guide clearance C [m] between cage and guiding land."""
         land = self.guide_land_diameter(bearing)
@@ -270,8 +314,11 @@ class CageGeometry:
 
         The groove (radius r about the curvature centre, at radius d/2 from the axis)
         meets the land cylinder at axial distance z_l from the groove plane; the cage
-        (width w_c, centred) overlaps each land by w_c/2 - z_l.
+        (width w_c, centred) overlaps each land by w_c/2 - z_l. `land_length`, when given,
+        replaces it.
         """
+        if self.land_length is not None:
+            return self.land_length
         land_r = 0.5 * self.guide_land_diameter(bearing)
         if self.guidance == "outer":
             rc, r = 0.5 * bearing.outer_groove_center_diameter, bearing.outer_groove_radius

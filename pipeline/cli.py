@@ -262,6 +262,41 @@ def quasistatic(scene: SceneArg, json_: Annotated[bool, typer.Option("--json", h
 
 
 @app.command()
+def tolerances(scene: SceneArg,
+               tolerance_file: Annotated[Optional[Path], typer.Option(
+                   "--tolerances", metavar="FILE",
+                   help=_literal("TOML file whose [tolerances] table replaces the scene's (docs/scenes.md)."))] = None,
+               samples: Annotated[Optional[int], typer.Option("--samples", help="Stacks to sample (100 to 1 000 000).")] = None,
+               seed: Annotated[Optional[int], typer.Option("--seed", help="Seed of the sampling (reproducible).")] = None,
+               json_: Annotated[bool, typer.Option("--json", help="Print the analysis as one JSON object on stdout.")] = False,
+               out: OutOpt = None, force: ForceOpt = False, set_: SetOpt = None) -> None:
+    """Crush probability over tolerance stacks: P(free/pressed/crushed), margin distribution, drivers."""
+    from .stages.quasistatic import RESULT_FILE, SAMPLES_FILE, TOLERANCE_FIGURE
+    from .tolerance_report import print_tolerances, tolerance_overrides
+
+    try:
+        overrides = list(set_ or []) + tolerance_overrides(tolerance_file, samples, seed)
+        if _load(scene, overrides).tolerances is None:
+            raise SceneError("tolerances", "the scene has no [tolerances] table: give one in the scene or with "
+                                           "--tolerances FILE (docs/scenes.md, section [tolerances])")
+    except SceneError as exc:
+        _fail(EXIT_SCENE, f"scene: {explain(exc)}")
+    _, run_dir, _ = _pipeline(scene, overrides, out, ["quasistatic"], {"quasistatic"} if force else set(), quiet=json_)
+    try:
+        result = json.loads((run_dir / "quasistatic" / RESULT_FILE).read_text(encoding="utf-8"))
+    except (OSError, ValueError) as exc:
+        _fail(EXIT_FAILED, f"cannot read {run_dir / 'quasistatic' / RESULT_FILE}: {exc}; run again with --force")
+    if json_:
+        from .artefacts import dumps_json
+
+        sys.stdout.write(dumps_json(result["crush_probability"]) + "\n")
+        return
+    print_tolerances(result, out_console)
+    err_console.print(f"written: {escape(str(run_dir / 'quasistatic' / SAMPLES_FILE))}, "
+                      f"{escape(str(run_dir / 'quasistatic' / TOLERANCE_FIGURE))}", highlight=False)
+
+
+@app.command()
 def stiffness(scene: SceneArg,
               speeds: Annotated[Optional[str], typer.Option(
                   "--speeds", metavar="RPM,...",

@@ -15,6 +15,7 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
+from bearingsim.dynamics import thermal as th
 from bearingsim.dynamics.geometry import BearingGeometry, CageGeometry, Material
 
 from .scene_sections import (
@@ -26,6 +27,7 @@ from .scene_sections import (
     Physics,
     SolverSettings,
     Speed,
+    Thermal,
 )
 from .schema import SceneError, build, convert
 
@@ -33,11 +35,24 @@ FORM1_KEYS = ("inner_groove_center_diameter", "outer_groove_center_diameter",
               "inner_groove_radius", "outer_groove_radius")
 FORM2_KEYS = ("pitch_diameter", "inner_conformity", "outer_conformity", "diametral_clearance")
 TOP_LEVEL = ("name", "description", "bearing", "cage", "materials", "lubricant", "load",
-             "speed", "hinge", "fe", "solver", "physics", "output", "sweep")
+             "speed", "hinge", "fe", "solver", "physics", "output", "sweep", "thermal", "tolerances")
+
+
+@dataclass(frozen=True)
+class Parts:
+    """Bearing, cage and materials at one temperature state."""
+
+    bearing: BearingGeometry
+    cage: CageGeometry | None
+    materials: Materials
 
 
 @dataclass(frozen=True)
 class Scene:
+    """`bearing`, `cage` and `materials` are the operating parts (each grown to its temperature,
+    docs/model.md §2.1): what every stage computes with. `nominal` holds them as the scene gives
+    them, at `temperatures.reference`; the FE identification meshes those."""
+
     name: str
     description: str
     bearing: BearingGeometry
@@ -52,6 +67,10 @@ class Scene:
     physics: Physics
     output: Output
     raw: dict  # the validated TOML table after overrides (for saving and hashing)
+    nominal: Parts | None = None  # as given, at the reference temperature
+    temperatures: th.PartTemperatures = th.PartTemperatures()
+    expansion: th.ExpansionCoefficients = th.ExpansionCoefficients()
+    tolerances: Any | None = None  # pipeline.tolerances.ToleranceSpec when [tolerances] is given
 
 
 # --- built-in scenes -------------------------------------------------------------------
@@ -251,12 +270,19 @@ def resolve(table: dict, origin: str = "<table>") -> Scene:
     if physics.cage_race in ("hybrid", "hydrodynamic") and cage is not None and lubricant is None:
         raise SceneError("physics.cage_race", f"{physics.cage_race!r} needs a [lubricant] table "
                                               "(film viscosity); give one or set it to 'dry'")
+    materials = resolve_materials(table["materials"], need_cage=cage is not None)
+    temperatures = resolve_temperatures(table.get("thermal", {}), lubricant)
+    expansion = th.ExpansionCoefficients(
+        race=_alpha(materials.race, th.BEARING_STEEL_EXPANSION), ball=_alpha(materials.ball, th.BEARING_STEEL_EXPANSION),
+        cage=_alpha(materials.cage, th.CAGE_BRONZE_EXPANSION))
+    nominal = Parts(bearing, cage, materials)
+    operating = operating_parts(nominal, temperatures, expansion)
     scene = Scene(
         name=name,
         description=convert("description", table.get("description", ""), str, {}),
-        bearing=bearing,
-        cage=cage,
-        materials=resolve_materials(table["materials"], need_cage=cage is not None),
+        bearing=operating.bearing,
+        cage=operating.cage,
+        materials=operating.materials,
         lubricant=lubricant,
         load=build(Load, table["load"], "load"),
         speed=build(Speed, table["speed"], "speed"),
@@ -266,12 +292,56 @@ def resolve(table: dict, origin: str = "<table>") -> Scene:
         physics=physics,
         output=build(Output, table.get("output", {}), "output"),
         raw=table,
+        nominal=nominal,
+        temperatures=temperatures,
+        expansion=expansion,
     )
+    if "tolerances" in table:
+        from .tolerances import build_tolerance_spec
+
+        scene = dataclasses.replace(scene, tolerances=build_tolerance_spec(table["tolerances"], scene))
     # geometry the model cannot represent, resources a run cannot have (pipeline.validity)
     from .validity import raise_errors, scene_findings
 
     raise_errors(scene_findings(scene))
     return scene
+
+
+def _alpha(material: Material | None, default: float) -> float:
+    return default if material is None or material.thermal_expansion is None else material.thermal_expansion
+
+
+def resolve_temperatures(table: Any, lubricant) -> th.PartTemperatures:
+    """`[thermal]` with its defaults filled in (docs/scenes.md)."""
+    thermal = build(Thermal, table, "thermal")
+    oil = lubricant.temperature_degC if lubricant is not None else thermal.reference_degC
+    parts = thermal.parts_degC if thermal.parts_degC is not None else oil
+
+    def part(value):
+        return parts if value is None else value
+
+    return th.PartTemperatures(reference=thermal.reference_degC, inner_ring=part(thermal.inner_ring_degC),
+                               outer_ring=part(thermal.outer_ring_degC), ball=part(thermal.ball_degC),
+                               cage=part(thermal.cage_degC))
+
+
+def operating_parts(nominal: Parts, temperatures: th.PartTemperatures,
+                    expansion: th.ExpansionCoefficients) -> Parts:
+    """The parts grown to their temperatures (M.120); the race material's density follows the
+    inner ring, the ring that moves."""
+    m = nominal.materials
+    try:
+        bearing = th.operating_bearing(nominal.bearing, temperatures, expansion)
+        cage = th.operating_cage(nominal.cage, temperatures, expansion) if nominal.cage is not None else None
+        if cage is not None:
+            cage.check_fits(bearing)
+    except ValueError as exc:
+        raise SceneError("thermal", f"at the operating temperatures: {exc}") from exc
+    materials = Materials(
+        ball=th.operating_material(m.ball, expansion.ball, temperatures.rise("ball")),
+        race=th.operating_material(m.race, expansion.race, temperatures.rise("inner_ring")),
+        cage=None if m.cage is None else th.operating_material(m.cage, expansion.cage, temperatures.rise("cage")))
+    return Parts(bearing, cage, materials)
 
 
 NAME_MAX = 100

@@ -34,7 +34,7 @@ def _sections():
     from bearingsim.dynamics.geometry import BearingGeometry, CageGeometry, Material
     from bearingsim.dynamics.lubrication.lubricant import Lubricant
 
-    from .scene_sections import CatalogueBearing, Hinge, Load, Output, Physics, SolverSettings, Speed
+    from .scene_sections import CatalogueBearing, Hinge, Load, Output, Physics, SolverSettings, Speed, Thermal
     from .sweep.classify import CageClassThresholds
     from .sweep.spec import SweepSection
 
@@ -57,6 +57,12 @@ def _sections():
          "`name = \"nato-o156\"` loads the built-in set (docs/model.md §6.4); any key given beside it "
          "refines that set (e.g. `temperature_degC`, `eyring_stress`). Without a built-in name every "
          "key without a default is required."),
+        ("[thermal]", Thermal,
+         "Operating geometry (docs/model.md §2.1): every length of a part grows by its material's "
+         "`thermal_expansion` times its temperature rise over `reference_degC`; the screen, the quasi-static "
+         "solve and the dynamics use the grown parts, the FE identification the drawing. "
+         "`bearingsim check` prints the clearances cold and operating side by side. With every part at "
+         "`thermal.parts_degC = 20` the scene's dimensions are used as drawn."),
         ("[load]", Load, ""),
         ("[speed]", Speed, ""),
         ("[hinge]", Hinge, "The viscoelastic hinge tying the inner race to its static frame (docs/model.md §5)."),
@@ -128,6 +134,21 @@ def section_table(cls) -> str:
     return "\n".join(rows)
 
 
+def tolerance_section() -> str:
+    """`[tolerances]`: not a dataclass but a table of quantities (pipeline/tolerances.py)."""
+    from .tolerances import MAX_SAMPLES, QUANTITIES
+
+    rows = ["## [tolerances]\n",
+            "Tolerance stacks for the crush probability (docs/model.md §10.2; `bearingsim tolerances`; also "
+            "computed by the quasi-static stage when the table is given, and repeated in the verdict). "
+            f"`samples` (100 to {MAX_SAMPLES}, default 10000) and `seed` (default 0) set the sampling; every "
+            "other key names a quantity and gives its deviation from the scene's value as "
+            "`{ lower = …, upper = … }` (uniform) or `{ sd = … }` (normal, mean 0). None is given by default.\n",
+            "| quantity | unit | meaning |", "| --- | --- | --- |"]
+    rows += [f"| `{name}` | {unit} | {_cell(doc)} |" for name, (unit, doc) in QUANTITIES.items()]
+    return "\n".join(rows) + "\n"
+
+
 def render() -> str:
     sections, fe = _sections()
     parts = [INTRO]
@@ -136,6 +157,7 @@ def render() -> str:
         if note:
             parts.append(note + "\n")
         parts.append(section_table(cls if cls is not None else fe()) + "\n")
+    parts.append(tolerance_section())
     return "\n".join(parts)
 
 

@@ -35,8 +35,10 @@ def _section(table: Table, title: str, obj) -> None:
 
 
 def derived_geometry(scene: Scene) -> list[tuple[str, float, str]]:
-    """Derived quantities of docs/model.md §2 in engineering units (mm, deg, g, kg)."""
-    b, m = scene.bearing, scene.materials
+    """Derived quantities of docs/model.md §2 in engineering units (mm, deg, g, kg), from the
+    dimensions as drawn (the operating ones are in the clearance table)."""
+    parts = scene.nominal or scene
+    b, m = parts.bearing, parts.materials
     rows = [
         ("pitch diameter d_m", b.pitch_diameter * 1e3, "mm"),
         ("inner groove bottom diameter d_i - 2 r_i", b.inner_groove_bottom_diameter * 1e3, "mm"),
@@ -49,7 +51,7 @@ def derived_geometry(scene: Scene) -> list[tuple[str, float, str]]:
         ("outer conformity f_o = r_o/D", b.outer_conformity, ""),
         ("ball mass", b.ball_mass(m.ball) * 1e3, "g"),
     ]
-    c = scene.cage
+    c = parts.cage
     if c is not None and m.cage is not None:
         rows.append(("cage mass (pockets removed)", c.mass(m.cage, b), "kg"))
         try:
@@ -72,7 +74,8 @@ def print_scene(scene: Scene, console: Console) -> None:
     console.print(f"[bold]{scene.name}[/] — {scene.description}")
     table = Table("key", "value", "unit", box=None, pad_edge=False)
     for name in ("bearing", "cage", "materials", "load", "speed", "hinge", "solver", "physics", "output"):
-        obj = getattr(scene, name)
+        # the scene's own values (as drawn); the operating ones follow in the clearance table
+        obj = getattr(scene.nominal, name, None) if name in ("bearing", "cage", "materials") else getattr(scene, name)
         if obj is not None:
             _section(table, name, obj)
     if scene.lubricant is not None:
@@ -80,10 +83,19 @@ def print_scene(scene: Scene, console: Console) -> None:
     if scene.fe is not None:
         _section(table, "fe", scene.fe)
     console.print(table)
-    derived = Table("derived geometry", "value", "unit", box=None, pad_edge=False)
+    derived = Table("derived geometry (as drawn)", "value", "unit", box=None, pad_edge=False)
     for label, value, unit in derived_geometry(scene):
         derived.add_row(label, f"{value:.6g}", unit)
     console.print(derived)
+    from .clearances import clearance_rows
+
+    t = scene.temperatures
+    temps = Table("clearances", f"at {t.reference:g} °C (as drawn)", "operating", "unit", box=None, pad_edge=False,
+                  title=(f"operating temperatures: inner ring {t.inner_ring:g} °C, outer ring {t.outer_ring:g} °C, "
+                         f"balls {t.ball:g} °C, cage {t.cage:g} °C (docs/model.md §2.1)"), title_justify="left")
+    for row in clearance_rows(scene):
+        temps.add_row(*row)
+    console.print(temps)
     skipped = []
     if scene.hinge.source != "fe":
         skipped.append("FE identification (hinge not identified)")
@@ -129,4 +141,15 @@ def cage_screen_text(s: dict) -> str:
         text += (f"\n  push towards {round(s['push_azimuth_deg']) % 360}°; required cage offset "
                  f"{s['required_eccentricity'] * um:.0f} µm = {s['required_eccentricity_ratio']:.2f} of the "
                  f"guide clearance (crush margin {s['crush_margin']:.2f})")
+    if s.get("crush_margin_at_reference_temperature") is not None:
+        text += (f"\n  at operating temperatures (docs/model.md §2.1); with the clearances as drawn the margin "
+                 f"would be {s['crush_margin_at_reference_temperature']:.2f} ({s['regime_at_reference_temperature']})")
+    if s.get("pocket_circle_eccentricity"):
+        text += (f"\n  cage run-out {s['pocket_circle_eccentricity'] * um:.0f} µm: the required offset swings "
+                 f"{s['required_eccentricity_min'] * um:.0f}–{s['required_eccentricity'] * um:.0f} µm over a cage "
+                 f"revolution (the margin is taken at the worst)")
+    if s.get("non_guiding_gap") is not None:
+        gap = s["non_guiding_gap"]
+        text += (f"\n  gap left to the non-guiding land {gap * um:.0f} µm of {s['non_guiding_clearance'] * um:.0f} µm"
+                 + (" — the cage TOUCHES the other ring's land (the model applies no force there)" if gap < 0 else ""))
     return text

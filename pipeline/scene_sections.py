@@ -146,6 +146,29 @@ class SolverSettings(HHTSettings):
 
 
 @dataclass(frozen=True)
+class Thermal:
+    """`[thermal]`: part temperatures for the operating geometry (docs/model.md §2.1). Scene
+    dimensions hold at `reference_degC`; each part grows with its own temperature. A part whose
+    temperature is not given takes `parts_degC`, whose default is the lubricant's operating
+    temperature (parts and oil in equilibrium; without a lubricant, the reference temperature)."""
+
+    reference_degC: float = field(default=20.0, metadata={
+        "unit": "degC", "ge": -100.0, "le": 350.0,
+        "doc": "temperature at which the scene's dimensions hold (ISO 1: 20 °C)"})
+    parts_degC: float | None = field(default=None, metadata={
+        "unit": "degC", "ge": -100.0, "le": 350.0,
+        "doc": "temperature of every part not given below; default lubricant.temperature_degC"})
+    inner_ring_degC: float | None = field(default=None, metadata={
+        "unit": "degC", "ge": -100.0, "le": 350.0, "doc": "inner-ring temperature; default parts_degC"})
+    outer_ring_degC: float | None = field(default=None, metadata={
+        "unit": "degC", "ge": -100.0, "le": 350.0, "doc": "outer-ring temperature; default parts_degC"})
+    ball_degC: float | None = field(default=None, metadata={
+        "unit": "degC", "ge": -100.0, "le": 350.0, "doc": "ball temperature; default parts_degC"})
+    cage_degC: float | None = field(default=None, metadata={
+        "unit": "degC", "ge": -100.0, "le": 350.0, "doc": "cage temperature; default parts_degC"})
+
+
+@dataclass(frozen=True)
 class Output:
     sample_interval: float = field(default=1e-5, metadata={"unit": "s", "gt": 0.0, "doc": "interval of the saved time series"})
     figures: bool = field(default=True, metadata={"doc": "draw the PNG figures of the quasistatic and simulate stages; false skips them (results are the same; sweeps: [sweep] figures = false)"})

@@ -8,12 +8,25 @@ import math
 import numpy as np
 import pytest
 
-from bearingsim.dynamics.quasistatic.crush_screen import crush_screen, orbital_excursion
+from bearingsim.dynamics.quasistatic.crush_screen import (
+    CageClearances,
+    LandFilm,
+    crush_screen as _screen,
+    excursion_of,
+    orbital_excursion,
+    required_offset,
+)
 
 Z = 22
 PSI = 2 * math.pi * np.arange(Z) / Z
-KW = dict(pitch_radius=0.079, pocket_clearance=1.18e-3, guide_clearance=0.29e-3, land_radius=0.083,
-          land_length=0.0076, lands=2, eps0=0.05, viscosity=0.005)
+RP = 0.079
+CLEAR = CageClearances(pocket=1.18e-3, guide=0.29e-3)
+KW = dict(pitch_radius=RP, pocket_clearance=CLEAR.pocket, guide_clearance=CLEAR.guide)
+FILM = LandFilm(radius=0.083, length=0.0076, lands=2, eps0=0.05, viscosity=0.005)
+
+
+def crush_screen(azimuth, speeds, cage_speed, clearances=CLEAR, **_):
+    return _screen(excursion_of(azimuth, speeds, RP), cage_speed, clearances, FILM)
 
 
 def _speeds(amplitude, phase=0.0):
@@ -68,7 +81,8 @@ def test_reference_bearing_regimes_against_the_outer_race_control_formula(moment
     from bearingsim.pipeline.scene import load_scene
     from bearingsim.pipeline.stages.quasistatic import cage_screen, solve
 
-    scene = load_scene("helicopter-b-given-hinge", [f"load.moment={moment}"])
+    # at the reference temperature: the clearances are Table 1's as drawn
+    scene = load_scene("helicopter-b-given-hinge", [f"load.moment={moment}", "thermal.parts_degC=20"])
     result = solve(scene)
     D, dm = scene.bearing.ball_diameter, scene.cage.mean_diameter
     ai, ao = result.inner_contact_angle, result.outer_contact_angle

@@ -163,7 +163,7 @@ def build_model_params(
         pocket, journal, clearance = _cage_params(bearing, cage, ball, race, cage_material, lubricant, options, fp, ip)
         from bearingsim.dynamics.contact.pocket import pocket_azimuths
 
-        psi = pocket_azimuths(Z)
+        psi = pocket_azimuths(Z, cage.pocket_index_errors, 0.5 * cage.mean_diameter)
     if hinge is not None:
         H_u, H_psi, c_G = np.asarray(hinge[0], float), np.asarray(hinge[1], float), float(hinge[2])
         ip[IP_HINGE] = 1

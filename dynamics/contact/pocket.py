@@ -52,7 +52,8 @@ P_DAMPING = 5  # hysteresis factor c_d [-]
 P_IMPACT_SPEED_REF = 6  # floor / default of the impact speed v_0 [m/s]
 P_MU = 7  # friction coefficient [-]
 P_V_REG = 8  # friction regularisation speed [m/s]
-N_POCKET_PARAMS = 9
+P_ECCENTRICITY = 9  # run-out: pocket-circle centre off the cage centre along the cage frame's +x [m]
+N_POCKET_PARAMS = 10
 
 # --- output vector layout ----------------------------------------------------------------
 P_OUT_DELTA = 0  # penetration delta [m] (negative: gap)
@@ -131,7 +132,9 @@ def _pocket_contact_into(out, x_ball, v_ball, w_ball, x_cage, rot_cage, v_cage, 
     c, s: cosine and sine of the pocket azimuth psi (fixed per pocket: the residual reads
     them from `CageArrays` instead of calling sin and cos for every pocket in every call)."""
     r_b, r_p = params[P_BALL_RADIUS], params[P_POCKET_RADIUS]
-    lx, ly, lz = params[P_PITCH_RADIUS] * c, params[P_PITCH_RADIUS] * s, params[P_POCKET_Z]
+    # pocket centre in the cage frame: on the pocket circle, whose centre the run-out moves off
+    # the cage centre (the centre of the guiding surface, docs/model.md §7)
+    lx, ly, lz = params[P_PITCH_RADIUS] * c + params[P_ECCENTRICITY], params[P_PITCH_RADIUS] * s, params[P_POCKET_Z]
     ax, ay, az = _column_mix(rot_cage, c, s, 0.0)  # pocket axis, global
     ox, oy, oz = _column_mix(rot_cage, lx, ly, lz)  # pocket centre - cage centre, global
     dx, dy, dz = x_ball[0] - x_cage[0] - ox, x_ball[1] - x_cage[1] - oy, x_ball[2] - x_cage[2] - oz
@@ -276,10 +279,13 @@ def hysteresis_factor(restitution: float, model: str = "flores") -> float:
 def pocket_parameters(*, ball_diameter: float, pocket_diameter: float, pitch_radius: float,
                       effective_modulus: float, restitution: float, friction_coefficient: float,
                       reference_impact_speed: float = 0.1, regularisation_speed: float = 1e-3,
-                      damping_model: str = "flores", pocket_axial_offset: float = 0.0) -> np.ndarray:
+                      damping_model: str = "flores", pocket_axial_offset: float = 0.0,
+                      pocket_circle_eccentricity: float = 0.0) -> np.ndarray:
     """Pack and check the pocket parameters (SI) for `pocket_contact` / `pocket_contacts`.
 
     pitch_radius [m]: radius of the pocket-centre circle (cage mean radius);
+    pocket_circle_eccentricity [m]: run-out, the pocket circle's centre off the cage centre
+    towards pocket 0 (the cage frame's +x);
     reference_impact_speed [m/s]: floor and default of v_0; regularisation_speed [m/s].
     """
     _, k_h = pocket_hertz_constant(ball_diameter, pocket_diameter, effective_modulus)
@@ -295,22 +301,28 @@ def pocket_parameters(*, ball_diameter: float, pocket_diameter: float, pitch_rad
     params[P_DAMPING] = hysteresis_factor(restitution, damping_model)
     params[P_IMPACT_SPEED_REF], params[P_MU], params[P_V_REG] = (
         reference_impact_speed, friction_coefficient, regularisation_speed)
+    params[P_ECCENTRICITY] = pocket_circle_eccentricity
     return params
 
 
 def pocket_parameters_for_cage(bearing, cage, ball_material, cage_material, *, restitution: float,
                                friction_coefficient: float, **options) -> np.ndarray:
-    """`pocket_parameters` from dynamics.geometry objects (D, d_p, d_c/2, E' ball–cage)."""
+    """`pocket_parameters` from dynamics.geometry objects (D, d_p, d_c/2, run-out, E' ball–cage)."""
     from bearingsim.dynamics.geometry import effective_modulus
 
     return pocket_parameters(
         ball_diameter=bearing.ball_diameter, pocket_diameter=cage.pocket_diameter,
-        pitch_radius=0.5 * cage.mean_diameter,
+        pitch_radius=0.5 * cage.mean_diameter, pocket_circle_eccentricity=cage.pocket_circle_eccentricity,
         effective_modulus=effective_modulus(ball_material, cage_material),
         restitution=restitution, friction_coefficient=friction_coefficient, **options,
     )
 
 
-def pocket_azimuths(ball_count: int) -> np.ndarray:
-    """psi_k = 2 pi k / Z [rad], the pocket azimuths in the cage frame (docs/model.md §1)."""
-    return 2.0 * np.pi * np.arange(ball_count) / ball_count
+def pocket_azimuths(ball_count: int, index_errors=None, pitch_radius: float = 1.0) -> np.ndarray:
+    """psi_k = 2 pi k / Z [rad], the pocket azimuths in the cage frame (docs/model.md §1),
+    each moved by its pitch error along the pitch circle (index_errors [m], one a pocket, on
+    a pitch circle of radius pitch_radius [m])."""
+    psi = 2.0 * np.pi * np.arange(ball_count) / ball_count
+    if index_errors is not None:
+        psi = psi + np.asarray(index_errors, float) / pitch_radius
+    return psi

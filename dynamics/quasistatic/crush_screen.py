@@ -1,5 +1,5 @@
 """Cage crush screen: from the quasi-static load distribution, where the balls must push the
-cage and whether its guide clearance can absorb them (docs/model.md §10.1, M.115–M.118).
+cage and whether its guide clearance can absorb them (docs/model.md §10.1, M.115–M.118, M.123–M.124).
 
 Under a moment the contact angles vary round the bearing, so each ball's pure-rolling orbital
 speed omega_m(psi) varies with its orbital position psi. Against a rigid cage turning at the
@@ -37,6 +37,33 @@ from bearingsim.dynamics.journal.hybrid import ocvirk_force
 
 
 @dataclass(frozen=True)
+class CageClearances:
+    """The clearances the screen weighs (SI, at the scene's operating temperatures)."""
+
+    pocket: float  # c_p = d_p - D [m]
+    guide: float  # C [m]
+    pocket_circle_eccentricity: float = 0.0  # e_r, cage run-out [m]
+    pocket_index_range: float = 0.0  # spread of the pocket pitch errors [m]
+    non_guiding: float | None = None  # C_n, gap to the other ring's land, parts centred [m]
+
+    @property
+    def effective_pocket(self) -> float:
+        """c_p less the pocket pitch-error spread [m]."""
+        return self.pocket - self.pocket_index_range
+
+
+@dataclass(frozen=True)
+class LandFilm:
+    """The guide lands as a short journal bearing (docs/model.md §8), for the film push."""
+
+    radius: float  # land radius R [m]
+    length: float  # L, both lands together [m]
+    lands: int  # the number of lands L is split into
+    eps0: float  # boundary-layer width of the hybrid law / C [-]
+    viscosity: float  # land film viscosity [Pa s]
+
+
+@dataclass(frozen=True)
 class CageScreen:
     """Result of `crush_screen` (SI units; azimuths in rad from +x towards +y)."""
 
@@ -44,32 +71,47 @@ class CageScreen:
     excursion: np.ndarray  # s(psi_k) per ball [m], + ahead of a rigid cage at the mean speed
     excursion_peak_to_peak: float  # s_pp [m]
     first_harmonic: float  # s1 [m]
-    pocket_clearance: float  # c_p = d_p - D [m]
-    guide_clearance: float  # C [m]
-    required_eccentricity: float  # e_req = max(0, s1 - c_p / 2) [m]
+    clearances: CageClearances
+    required_eccentricity: float  # e_req at the cage's worst orientation (M.116, M.123) [m]
+    required_eccentricity_min: float  # at its best orientation (differs with run-out) [m]
     push_azimuth: float  # direction the balls push the cage [rad]
     front_wall_azimuth: float  # orbital position where balls lead the cage most [rad]
     rear_wall_azimuth: float  # where they lag most [rad]
     film_push: float  # land film force at e_req (pressed) or at e = C (crushed) [N]
     crush_margin: float  # (C - e_req) / C: 1 free room, 0 at the crush threshold, < 0 crushed
+    non_guiding_gap: float | None  # C_n - e_req - inner-ring offset [m] (< 0: the cage touches it)
+
+    @property
+    def pocket_clearance(self) -> float:
+        return self.clearances.pocket
+
+    @property
+    def guide_clearance(self) -> float:
+        return self.clearances.guide
 
     def to_json_dict(self) -> dict:
         deg = math.degrees
+        c = self.clearances
         return {
             "regime": self.regime,
             "excursion_peak_to_peak": self.excursion_peak_to_peak,
             "excursion_first_harmonic": self.first_harmonic,
-            "pocket_clearance": self.pocket_clearance,
-            "guide_clearance": self.guide_clearance,
+            "pocket_clearance": c.pocket,
+            "guide_clearance": c.guide,
+            "pocket_circle_eccentricity": c.pocket_circle_eccentricity,
+            "pocket_index_range": c.pocket_index_range,
+            "non_guiding_clearance": c.non_guiding,
             "required_eccentricity": self.required_eccentricity,
-            "required_eccentricity_ratio": self.required_eccentricity / self.guide_clearance,
+            "required_eccentricity_min": self.required_eccentricity_min,
+            "required_eccentricity_ratio": self.required_eccentricity / c.guide,
             "crush_margin": self.crush_margin,
+            "non_guiding_gap": self.non_guiding_gap,
             "push_azimuth_deg": deg(self.push_azimuth) % 360.0,
             "front_wall_azimuth_deg": deg(self.front_wall_azimuth) % 360.0,
             "rear_wall_azimuth_deg": deg(self.rear_wall_azimuth) % 360.0,
             "film_push": self.film_push,
             "excursion_per_ball": [float(x) for x in self.excursion],
-            "units": {"lengths": "m", "film_push": "N", "azimuths": "deg"},
+            "units": {"lengths": "m", "film_push": "N", "azimuths": "deg", "crush_margin": "-"},
         }
 
 
@@ -101,31 +143,83 @@ def orbital_excursion(azimuth: np.ndarray, orbital_speed: np.ndarray, pitch_radi
     return at_balls, grid, s(grid)
 
 
-def crush_screen(azimuth, orbital_speed, cage_speed: float, *, pitch_radius: float, pocket_clearance: float,
-                 guide_clearance: float, land_radius: float, land_length: float, lands: int,
-                 eps0: float, viscosity: float) -> CageScreen:
-    """The screen of M.115–M.118 (module docstring). `orbital_speed` [rad/s] per ball at its
-    `azimuth` [rad]; lengths [m], viscosity [Pa s], cage_speed [rad/s]. Film force at e_req: the static short
-    bearing with clearance C (1 + eps0) (the hybrid law of docs/model.md §8) and omega the
-    cage speed (outer race fixed)."""
+def required_offset(first_harmonic, peak_to_peak, clearances: CageClearances, cage_angle=None):
+    """e_req of M.116/M.123 [m] and whether the balls press the cage (numpy, broadcasts).
+
+    With `cage_angle` [rad] (array), e_req at those cage orientations; without it, the pair
+    (best, worst) over a cage revolution. `pressed` is True where the balls reach both pocket
+    walls at some orientation: s_pp + 2 e_r > c_p - pitch-error spread."""
+    s1, s_pp = np.asarray(first_harmonic, float), np.asarray(peak_to_peak, float)
+    e_r, c_eff = clearances.pocket_circle_eccentricity, clearances.effective_pocket
+    e_r, c_eff = np.asarray(e_r, float), np.asarray(c_eff, float)
+    pressed = s_pp + 2.0 * e_r > c_eff
+    if cage_angle is not None:
+        th = np.asarray(cage_angle, float)
+        dist = np.hypot(s1 - e_r * np.cos(th), e_r * np.sin(th))  # d* along +x in the push frame
+        return np.where(pressed, np.maximum(0.0, dist - 0.5 * c_eff), 0.0), pressed
+    worst = np.where(pressed, np.maximum(0.0, s1 + e_r - 0.5 * c_eff), 0.0)
+    best = np.where(pressed, np.maximum(0.0, np.abs(s1 - e_r) - 0.5 * c_eff), 0.0)
+    return (best, worst), pressed
+
+
+def crush_margin(first_harmonic, peak_to_peak, clearances: CageClearances):
+    """(C - e_req) / C at the worst cage orientation, and the regime code (0 free, 1 pressed,
+    2 crushed); numpy, broadcasts over arrays of clearances (the tolerance analysis)."""
+    (_, worst), pressed = required_offset(first_harmonic, peak_to_peak, clearances)
+    C = np.asarray(clearances.guide, float)
+    margin = (C - worst) / C
+    return margin, np.where(pressed, np.where(worst > C, 2, 1), 0)
+
+
+REGIMES = ("free", "pressed", "crushed")
+
+
+@dataclass(frozen=True)
+class Excursion:
+    """The balls' excursion against a rigid cage (M.115) and its first harmonic."""
+
+    at_balls: np.ndarray  # s(psi_k) [m]
+    peak_to_peak: float  # s_pp [m]
+    first_harmonic: float  # s1 [m]
+    push_azimuth: float  # [rad]
+    front_wall_azimuth: float  # [rad]
+    rear_wall_azimuth: float  # [rad]
+
+
+def excursion_of(azimuth, orbital_speed, pitch_radius: float) -> Excursion:
+    """s_pp, s1 and the push direction of M.115–M.117 from the balls' orbital speeds."""
     s_balls, grid, s = orbital_excursion(azimuth, orbital_speed, pitch_radius)
-    s_pp = float(s.max() - s.min())
     # first harmonic s ~ a1 cos psi + b1 sin psi; a cage shift d moves pocket psi by d . e_t(psi)
     a1 = 2.0 * np.mean(s * np.cos(grid))
     b1 = 2.0 * np.mean(s * np.sin(grid))
-    s1 = math.hypot(a1, b1)
-    front = float(grid[np.argmax(s)])
-    rear = float(grid[np.argmin(s)])
     # -dx sin psi + dy cos psi = a1 cos psi + b1 sin psi  ->  d along (-b1, a1)
-    push = math.atan2(a1, -b1)
-    e_req = max(0.0, s1 - 0.5 * pocket_clearance) if s_pp > pocket_clearance else 0.0
-    C = guide_clearance
-    regime = "free" if s_pp <= pocket_clearance else ("pressed" if e_req <= C else "crushed")
-    c_film = C * (1.0 + eps0)
+    return Excursion(at_balls=s_balls, peak_to_peak=float(s.max() - s.min()), first_harmonic=math.hypot(a1, b1),
+                     push_azimuth=math.atan2(a1, -b1), front_wall_azimuth=float(grid[np.argmax(s)]),
+                     rear_wall_azimuth=float(grid[np.argmin(s)]))
+
+
+def crush_screen(excursion: Excursion, cage_speed: float, clearances: CageClearances, film: LandFilm,
+                 inner_ring_offset: float = 0.0) -> CageScreen:
+    """The screen of M.115–M.124 (module docstring). `cage_speed` [rad/s]; `inner_ring_offset`
+    [m]: how far the inner ring's land moves towards the cage on the far side (radial
+    displacement plus tilt times the cage's half width). Film force at e_req: the static short
+    bearing with clearance C (1 + eps0) (the hybrid law of docs/model.md §8) and omega the cage
+    speed (outer race fixed)."""
+    x = excursion
+    (best, worst), pressed = required_offset(x.first_harmonic, x.peak_to_peak, clearances)
+    margin, code = crush_margin(x.first_harmonic, x.peak_to_peak, clearances)
+    regime = REGIMES[int(code)]
+    C = clearances.guide
+    c_film = C * (1.0 + film.eps0)
+    e_req = float(worst)
     eps_h = min(e_req, C) / c_film
-    f_n, f_t, _, _ = ocvirk_force(eps_h, viscosity, cage_speed, land_radius, land_length / lands, c_film)
-    film_push = lands * math.hypot(f_n, f_t) if regime != "free" else 0.0
-    return CageScreen(regime=regime, excursion=s_balls, excursion_peak_to_peak=s_pp, first_harmonic=s1,
-                      pocket_clearance=pocket_clearance, guide_clearance=C, required_eccentricity=e_req,
-                      push_azimuth=push, front_wall_azimuth=front, rear_wall_azimuth=rear,
-                      film_push=film_push, crush_margin=(C - e_req) / C)
+    f_n, f_t, _, _ = ocvirk_force(eps_h, film.viscosity, cage_speed, film.radius, film.length / film.lands, c_film)
+    gap = None
+    if clearances.non_guiding is not None:
+        gap = clearances.non_guiding - min(e_req, C) - inner_ring_offset
+    return CageScreen(regime=regime, excursion=x.at_balls, excursion_peak_to_peak=x.peak_to_peak,
+                      first_harmonic=x.first_harmonic, clearances=clearances, required_eccentricity=e_req,
+                      required_eccentricity_min=float(best), push_azimuth=x.push_azimuth,
+                      front_wall_azimuth=x.front_wall_azimuth, rear_wall_azimuth=x.rear_wall_azimuth,
+                      film_push=film.lands * math.hypot(f_n, f_t) if regime != "free" else 0.0,
+                      crush_margin=float(margin), non_guiding_gap=gap)

@@ -22,8 +22,9 @@ from pathlib import Path
 
 def _figures() -> dict:
     from .quasistatic import plot_load_distribution
+    from .tolerances import plot_crush_probability
 
-    return {"load_distribution": plot_load_distribution}
+    return {"load_distribution": plot_load_distribution, "crush_probability": plot_crush_probability}
 
 
 class FigureWorkerError(RuntimeError):

@@ -123,7 +123,7 @@ def verdict_section(summary: dict | None, burn: dict | None, out_dir: Path, sim_
                     evidence: dict | None = None) -> str:
     """The sentence, the verdict's numbers with names and units, the warnings, and the
     evidence figures (cage orbit, burn zone)."""
-    from ..results.verdict import verdict_rows
+    from ..results.verdict import screen_sentence, verdict_rows
 
     if summary is None:
         return _not_run("No dynamic run in this directory (stage simulate did not run): no verdict.")
@@ -132,8 +132,11 @@ def verdict_section(summary: dict | None, burn: dict | None, out_dir: Path, sim_
         reason = ("the scene has no cage" if "cage_speed_mean" not in summary
                   else "this summary.json predates the verdict; rerun `bearingsim simulate SCENE --force`")
         return _not_run(f"No verdict: {reason}.")
-    parts = [f'<p class="verdict"><b>{html.escape(verdict["text"])}</b></p>',
-             table(["quantity", "value", "unit"], [list(r) for r in verdict_rows(verdict)])]
+    parts = [f'<p class="verdict"><b>{html.escape(verdict["text"])}</b></p>']
+    screen = screen_sentence(verdict.get("screen"))
+    if screen:
+        parts.append(f'<p class="verdict">{html.escape(screen[0].upper() + screen[1:])}.</p>')
+    parts.append(table(["quantity", "value", "unit"], [list(r) for r in verdict_rows(verdict)]))
     for w in summary.get("warnings") or []:
         parts.append(_not_run(f"warning: {w}"))
     parts.append(f'<p class="note">{html.escape(LIMITATION)}</p>')

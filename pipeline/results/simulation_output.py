@@ -53,8 +53,10 @@ def guide_land_speed(scene) -> float:
     return float(scene.speed.inner) if getattr(scene.cage, "guidance", "outer") == "inner" else 0.0
 
 
-def write_simulation_results(out_dir: Path, scene, params, start, run, wall_time: float) -> dict:
-    """Write all files of the simulate stage; return the summary dict."""
+def write_simulation_results(out_dir: Path, scene, params, start, run, wall_time: float,
+                             quasistatic: dict | None = None) -> dict:
+    """Write all files of the simulate stage; return the summary dict. `quasistatic`: the
+    quasi-static stage's result, whose crush screen the summary repeats."""
     from ..provenance import package_version
 
     series = collect_series(run, params)
@@ -65,13 +67,50 @@ def write_simulation_results(out_dir: Path, scene, params, start, run, wall_time
         written = pool.submit(write_timeseries, out_dir / "timeseries.h5", series,
                               {"scene": scene.name, "bearingsim": package_version(),
                                "ball_count": params.ball_count, "guide_clearance_m": params.guide_clearance})
-        summary = _summary_and_figures(out_dir, scene, params, start, run, series, wall_time)
+        summary = _summary_and_figures(out_dir, scene, params, start, run, series, wall_time,
+                                       screen_summary(quasistatic))
         written.result()
     return summary
 
 
+def _non_guiding(t, series: dict[str, Series], scene) -> dict:
+    """The gap to the non-guiding land along the run (pipeline.results.non_guiding)."""
+    from .non_guiding import non_guiding_gap, non_guiding_summary
+
+    clearance = scene.cage.non_guiding_clearance(scene.bearing)
+    if clearance is None:
+        return {}
+    outer = scene.cage.guidance == "outer"
+    gap = non_guiding_gap(series["cage/position"].data, series["inner_race/position"].data if outer else None,
+                          series["inner_race/axis"].data if outer else None, clearance, 0.5 * scene.cage.width)
+    return non_guiding_summary(t, gap, clearance)
+
+
+def screen_summary(quasistatic: dict | None) -> dict | None:
+    """The crush screen's verdict at the clearances the run used (docs/model.md §10.1–§10.2):
+    regime, margin, the operating clearances and, with tolerances, the crush probability."""
+    screen = (quasistatic or {}).get("cage_screen")
+    if not screen:
+        return None
+    clear = screen.get("clearances", {})
+    out = {"regime": screen["regime"], "crush_margin": screen["crush_margin"],
+           "crush_margin_at_reference_temperature": screen.get("crush_margin_at_reference_temperature"),
+           "guide_clearance": screen["guide_clearance"], "pocket_clearance": screen["pocket_clearance"],
+           "non_guiding_gap": screen.get("non_guiding_gap"),
+           "guide_clearance_at_reference_temperature": clear.get("guide_clearance", {}).get("reference"),
+           "pocket_clearance_at_reference_temperature": clear.get("pocket_clearance", {}).get("reference"),
+           "temperatures_degC": clear.get("temperatures_degC")}
+    tol = (quasistatic or {}).get("crush_probability")
+    if tol:
+        out["crush_probability"] = tol["crush_probability"]
+        out["crush_probability_standard_error"] = tol["regime_probability"]["crushed"]["standard_error"]
+        out["tolerance_samples"] = tol["samples"]
+        out["margin_p5"] = tol["margin_percentiles"]["p5"]
+    return out
+
+
 def _summary_and_figures(out_dir: Path, scene, params, start, run, series: dict[str, Series],
-                         wall_time: float) -> dict:
+                         wall_time: float, screen: dict | None = None) -> dict:
     """`impacts.csv`, the figures and the summary dict of `write_simulation_results`."""
     write_impacts_csv(out_dir / "impacts.csv", run.impacts, run.impact_fields)
     stats = dict(run.stats)
@@ -91,6 +130,13 @@ def _summary_and_figures(out_dir: Path, scene, params, start, run, series: dict[
             guide_clearance=params.guide_clearance, land_boundary=land_boundary(scene),
             land_roughness=land_roughness(scene), land_film=scene.physics.cage_race in ("hybrid", "hydrodynamic"),
             land_speed=guide_land_speed(scene)))
+        summary.update(_non_guiding(run.t, series, scene))
+        if summary["non_guiding_gap_min"] < 0.0:
+            summary["warnings"].append(
+                f"the cage touches the non-guiding land ({100 * summary['non_guiding_contact_fraction']:.2g} % of the "
+                f"run, gap down to {summary['non_guiding_gap_min'] * 1e6:.0f} µm): the model applies no force there")
+        if screen is not None:
+            summary["crush_screen"] = screen
         summary["verdict"] = cage_verdict(summary, guidance=getattr(scene.cage, "guidance", "outer"))
     else:
         summary["inner_race_axial_mean"] = float(np.mean(series["inner_race/position"].data[:, 2]))

@@ -104,6 +104,7 @@ def cage_verdict(summary: dict, limits: CageClassThresholds = CageClassThreshold
         "pocket_impact_regions_deg": None if regions is None else [_arc_deg(r[:2]) for r in regions],
         "settled_from_s": window[0],
         "settled_revolutions": summary.get("settled_revolutions"),
+        "screen": summary.get("crush_screen"),
     }
     verdict["text"] = verdict_sentence(verdict, summary.get("warnings") or [],
                                        LAND_NAMES.get(guidance, "guide land"))
@@ -140,6 +141,34 @@ def verdict_sentence(v: dict, warnings: list[str] = (), land: str = "outer-race 
     return f"{head}: {v['risk']} risk; {contact}{tail}."
 
 
+def _temperature_text(t: dict | None) -> str:
+    if not t:
+        return ""
+    parts = {t.get(k) for k in ("inner_ring", "outer_ring", "ball", "cage")}
+    if len(parts) == 1:
+        return f"parts at {parts.pop():g} °C"
+    return (f"inner ring {t['inner_ring']:g} °C, outer ring {t['outer_ring']:g} °C, balls {t['ball']:g} °C, "
+            f"cage {t['cage']:g} °C")
+
+
+def screen_sentence(screen: dict | None) -> str | None:
+    """The crush screen in one line: regime and margin at the operating clearances, the margin
+    as drawn, and the crush probability over tolerances when the scene gives them."""
+    if not screen:
+        return None
+    um = 1e6
+    text = (f"crush screen at operating clearances (guide {screen['guide_clearance'] * um:.0f} µm, pocket "
+            f"{screen['pocket_clearance'] * um:.0f} µm; {_temperature_text(screen.get('temperatures_degC'))}): "
+            f"{screen['regime']}, crush margin {screen['crush_margin']:.2f}")
+    if screen.get("crush_margin_at_reference_temperature") is not None:
+        text += f" ({screen['crush_margin_at_reference_temperature']:.2f} with the clearances as drawn)"
+    if screen.get("crush_probability") is not None:
+        text += (f"; P(crushed) {100 * screen['crush_probability']:.3g} % ± "
+                 f"{100 * screen['crush_probability_standard_error']:.2g} % over {screen['tolerance_samples']} "
+                 f"tolerance stacks (5th-percentile margin {screen['margin_p5']:.2f})")
+    return text
+
+
 def verdict_rows(v: dict) -> list[tuple[str, str, str]]:
     """(quantity, value, unit) rows of a verdict for people: the report's table and the
     command line."""
@@ -169,6 +198,29 @@ def verdict_rows(v: dict) -> list[tuple[str, str, str]]:
         ("settled window from", num(v.get("settled_from_s"), "{:.4g}"), "s"),
         ("  cage revolutions in it", num(v.get("settled_revolutions"), "{:.1f}"), "count"),
     ]
+    screen = v.get("screen")
+    if screen:
+        def um(key):
+            value = screen.get(key)
+            return "—" if value is None else f"{value * 1e6:.0f}"
+
+        drawn = screen.get("crush_margin_at_reference_temperature")
+        rows += [
+            ("crush screen (quasi-static, docs/model.md §10.1)", screen["regime"], ""),
+            ("  crush margin at operating clearances", f"{screen['crush_margin']:.2f}", "-"),
+            ("  crush margin with the clearances as drawn", "—" if drawn is None else f"{drawn:.2f}", "-"),
+            ("  operating temperatures", _temperature_text(screen.get("temperatures_degC")) or "—", ""),
+            ("  guide clearance C, operating (as drawn)",
+             f"{um('guide_clearance')} ({um('guide_clearance_at_reference_temperature')})", "µm"),
+            ("  pocket clearance c_p, operating (as drawn)",
+             f"{um('pocket_clearance')} ({um('pocket_clearance_at_reference_temperature')})", "µm"),
+            ("  gap left to the non-guiding land", um("non_guiding_gap"), "µm"),
+        ]
+        if screen.get("crush_probability") is not None:
+            rows += [("  P(crushed) over tolerance stacks",
+                      f"{100 * screen['crush_probability']:.3g} ± {100 * screen['crush_probability_standard_error']:.2g} "
+                      f"({screen['tolerance_samples']} stacks)", "%"),
+                     ("  crush margin, 5th percentile over the stacks", f"{screen['margin_p5']:.2f}", "-")]
     return rows
 
 
@@ -197,5 +249,8 @@ def verdict_lines(summary: dict | None) -> list[str]:
              f"  class {v['class']}, risk {v['risk']}; loaded sector {format_arc(v.get('sector_deg'))}; {film}"
              f"metal contact {format_percent(v.get('metal_contact_fraction') or 0.0)} %; whirl ratio "
              f"{(v.get('whirl_ratio') or 0.0):.2g}; {impacts}"]
+    screen_line = screen_sentence(v.get("screen"))
+    if screen_line:
+        lines.append(f"  {screen_line}")
     lines += [f"  warning: {w}" for w in summary.get("warnings") or []]
     return lines

@@ -17,10 +17,12 @@ RING_KEYS = ("inner_bore_diameter", "inner_shoulder_diameter", "outer_outside_di
 
 
 def ring_seat(scene: Scene):
-    """The bearing dimensions the FE geometry needs, as fe_model's plain-number type."""
+    """The bearing dimensions the FE geometry needs, as fe_model's plain-number type: the
+    drawing dimensions (the housing's own thermal growth is not modelled, so neither is the
+    rings')."""
     from bearingsim.fe_model import RingSeat
 
-    b = scene.bearing
+    b = scene.nominal.bearing
     missing = [k for k in RING_KEYS if getattr(b, k) is None]
     if missing:
         raise SceneError(f"bearing.{missing[0]}",
@@ -35,7 +37,7 @@ def ring_seat(scene: Scene):
 
 
 def identify_inputs(scene: Scene) -> dict:
-    b = scene.bearing
+    b = scene.nominal.bearing
     return {"fe": dataclasses.asdict(scene.fe) if scene.fe is not None else None,
             "ring": {k: getattr(b, k) for k in RING_KEYS},
             "pitch_diameter": b.pitch_diameter}

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import math
 
 from ..artefacts import atomic_write_json
 from ..runner import Stage, StageContext
@@ -10,6 +11,8 @@ from ..scene import Scene
 
 RESULT_FILE = "quasistatic.json"
 FIGURE_FILE = "load_distribution.png"
+SAMPLES_FILE = "tolerance_samples.csv"
+TOLERANCE_FIGURE = "crush_probability.png"
 
 
 def quasistatic_inputs(scene: Scene) -> dict:
@@ -25,6 +28,10 @@ def quasistatic_inputs(scene: Scene) -> dict:
         "cage": dataclasses.asdict(scene.cage) if scene.cage is not None else None,
         "land_viscosity": scene.lubricant.eta0 if scene.lubricant is not None and scene.cage is not None else None,
         "land": (scene.physics.cage_race_boundary, scene.physics.cage_race_lands) if scene.cage is not None else None,
+        # the operating parts above follow from these; the margin at reference temperature needs them too
+        "temperatures": dataclasses.asdict(scene.temperatures),
+        "expansion": dataclasses.asdict(scene.expansion),
+        **({"tolerances": scene.raw["tolerances"]} if "tolerances" in scene.raw else {}),
         # only when off, so the keys of existing runs (figures on) stay valid
         **({"figures": False} if not scene.output.figures else {}),
     }
@@ -42,20 +49,45 @@ def solve(scene: Scene):
     )
 
 
-def cage_screen(scene: Scene, result):
-    """The crush screen (docs/model.md §10.1) of a scene with a cage, else None."""
+def inner_ring_offset(scene: Scene, result) -> float:
+    """How far the inner ring's land comes towards the cage [m]: its radial displacement plus
+    its tilt times the cage's half width (where the cage edge meets the land)."""
+    dx, dy, _ = result.inner_displacement
+    return math.hypot(dx, dy) + math.hypot(*result.inner_tilt) * 0.5 * scene.cage.width
+
+
+def cage_screen(scene: Scene, result, parts=None):
+    """The crush screen (docs/model.md §10.1) of a scene with a cage, else None; `parts`
+    (default: the operating parts) gives the clearances."""
     if scene.cage is None:
         return None
-    from bearingsim.dynamics.quasistatic.crush_screen import crush_screen
+    from bearingsim.dynamics.quasistatic.crush_screen import crush_screen, excursion_of
 
-    b, c = scene.bearing, scene.cage
-    return crush_screen(
-        result.azimuth, result.ball_orbital_speed, result.cage_speed,
-        pitch_radius=0.5 * c.mean_diameter, pocket_clearance=c.pocket_diameter - b.ball_diameter,
-        guide_clearance=c.guide_clearance(b), land_radius=0.5 * c.guide_land_diameter(b),
-        land_length=c.guide_land_length(b), lands=scene.physics.cage_race_lands,
-        eps0=scene.physics.cage_race_boundary,
-        viscosity=scene.lubricant.eta0 if scene.lubricant is not None else 0.0)
+    from ..clearances import cage_clearances, land_film
+    from ..scene import Parts
+
+    parts = parts or Parts(scene.bearing, scene.cage, scene.materials)
+    excursion = excursion_of(result.azimuth, result.ball_orbital_speed, 0.5 * scene.cage.mean_diameter)
+    return crush_screen(excursion, result.cage_speed, cage_clearances(parts), land_film(scene),
+                        inner_ring_offset(scene, result))
+
+
+def screen_payload(scene: Scene, result) -> dict | None:
+    """`cage_screen` of quasistatic.json: the screen at operating clearances, the margin the
+    drawing's (reference-temperature) clearances would give with the same ball excursion, and
+    the clearance table."""
+    screen = cage_screen(scene, result)
+    if screen is None:
+        return None
+    from ..clearances import clearance_table
+
+    payload = screen.to_json_dict()
+    if scene.nominal is not None:
+        cold = cage_screen(scene, result, parts=scene.nominal)
+        payload["crush_margin_at_reference_temperature"] = cold.crush_margin
+        payload["regime_at_reference_temperature"] = cold.regime
+    payload["clearances"] = clearance_table(scene)
+    return payload
 
 
 def compute(ctx: StageContext) -> dict:
@@ -64,14 +96,26 @@ def compute(ctx: StageContext) -> dict:
     ctx.progress("solving equilibrium", 0.0)
     result = solve(ctx.scene)
     payload = result.to_json_dict()
-    screen = cage_screen(ctx.scene, result)
+    screen = screen_payload(ctx.scene, result)
     if screen is not None:
-        payload["cage_screen"] = screen.to_json_dict()
+        payload["cage_screen"] = screen
+    tolerance = None
+    if ctx.scene.tolerances is not None and screen is not None:
+        from ..tolerances import analyse, summary, write_samples_csv
+
+        ctx.progress(f"crush probability over {ctx.scene.tolerances.samples} tolerance stacks", 0.4)
+        tolerance = analyse(ctx.scene)
+        payload["crush_probability"] = summary(tolerance, ctx.scene)
+        write_samples_csv(ctx.out_dir / SAMPLES_FILE, tolerance)
     atomic_write_json(ctx.out_dir / RESULT_FILE, payload)
     if ctx.scene.output.figures:
         ctx.progress("drawing load distribution", 0.7)
         # in the worker `bearingsim quasistatic` prestarted, if any (see figures.worker)
         draw("load_distribution", payload, ctx.out_dir / FIGURE_FILE, title=ctx.scene.name)
+        if tolerance is not None:
+            draw("crush_probability", {"margin": tolerance.margin.tolist(), "regime": tolerance.regime.tolist(),
+                                       "summary": payload["crush_probability"]},
+                 ctx.out_dir / TOLERANCE_FIGURE, title=ctx.scene.name)
     return {"converged": bool(payload.get("converged")),
             "max_inner_load_N": max(b["inner_load"] for b in payload["balls"])}
 

@@ -72,6 +72,20 @@ def build_model(scene: Scene, identify_dir=None):
     return params, start
 
 
+def _quasistatic_result(stage_dir) -> dict | None:
+    """The quasi-static stage's result file, for the crush screen the summary repeats."""
+    import json
+
+    from .quasistatic import RESULT_FILE
+
+    if stage_dir is None:
+        return None
+    try:
+        return json.loads((stage_dir / RESULT_FILE).read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+
+
 def compute(ctx: StageContext) -> dict:
     from bearingsim.dynamics.bearing import simulate_bearing
 
@@ -90,7 +104,8 @@ def compute(ctx: StageContext) -> dict:
                            scene.output.sample_interval, progress=progress)
     ctx.progress("writing results", 1.0)
     summary = write_simulation_results(ctx.out_dir, scene, params, start, run,
-                                       wall_time=time.perf_counter() - wall0)
+                                       wall_time=time.perf_counter() - wall0,
+                                       quasistatic=_quasistatic_result(ctx.upstream.get("quasistatic")))
     atomic_write_json(ctx.out_dir / SUMMARY_FILE, summary)
     return {k: summary[k] for k in ("steps", "wall_time", "integration_wall_time", "kernel_load_time",
                                     "cage_speed_mean", "cage_metal_contact_fraction")}

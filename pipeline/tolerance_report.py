@@ -1,0 +1,66 @@
+"""The tolerance analysis for people (`bearingsim tolerances`) and its command-line inputs."""
+
+from __future__ import annotations
+
+import tomllib
+from pathlib import Path
+
+from rich.console import Console
+from rich.table import Table
+
+from .schema import SceneError
+
+
+def tolerance_overrides(path: Path | None, samples: int | None, seed: int | None) -> list[str]:
+    """`--set` overrides for a tolerance file's [tolerances] table, --samples and --seed."""
+    out = []
+    if path is not None:
+        try:
+            if not Path(path).is_file():
+                raise SceneError("--tolerances", f"{path} is not a file; give a TOML file with a [tolerances] table")
+            if Path(path).stat().st_size > 1_000_000:
+                raise SceneError("--tolerances", f"{path} is larger than 1 MB; a tolerance table is a few lines")
+            table = tomllib.loads(Path(path).read_text(encoding="utf-8"))
+        except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
+            raise SceneError("--tolerances", f"cannot read {path}: {exc}") from None
+        if not isinstance(table.get("tolerances"), dict):
+            raise SceneError("--tolerances", f"{path} has no [tolerances] table")
+        for key, value in table["tolerances"].items():
+            if isinstance(value, dict):
+                inner = ", ".join(f"{k} = {v!r}" for k, v in value.items())
+                out.append(f"tolerances.{key}={{{inner}}}")
+            else:
+                out.append(f"tolerances.{key}={value!r}")
+    if samples is not None:
+        out.append(f"tolerances.samples={samples}")
+    if seed is not None:
+        out.append(f"tolerances.seed={seed}")
+    return out
+
+
+def print_tolerances(result: dict, console: Console) -> None:
+    """Probabilities, the margin's percentiles, the drivers and the 5th-percentile stack."""
+    t = result["crush_probability"]
+    screen = result.get("cage_screen", {})
+    probs = t["regime_probability"]
+    console.print(f"[bold]crush probability over {t['samples']} tolerance stacks[/] (seed {t['seed']}, operating "
+                  "temperatures; docs/model.md §10.2)")
+    for name in ("free", "pressed", "crushed"):
+        p = probs[name]
+        console.print(f"  P({name:<7}) = {100 * p['probability']:6.2f} % ± {100 * p['standard_error']:.2f} %")
+    if screen:
+        console.print(f"  nominal stack: {screen['regime']}, margin {screen['crush_margin']:.2f}")
+    q = t["margin_percentiles"]
+    console.print("  crush margin percentiles: " + ", ".join(f"{k} {v:.2f}" for k, v in q.items()))
+    if t["non_guiding_touch_probability"] > 0:
+        console.print(f"  P(cage touches the non-guiding land) = {100 * t['non_guiding_touch_probability']:.2f} % "
+                      "(the model applies no force there)")
+    table = Table("what drives the margin", "varied as", "share of variance", "rank correlation", box=None,
+                  title="drivers (ranked)", title_justify="left")
+    for row in t["drivers"]:
+        table.add_row(row["quantity"], t["tolerances"][row["quantity"]], f"{100 * row['variance_share']:.1f} %",
+                      f"{row['spearman']:+.2f}")
+    console.print(table)
+    console.print(f"  stack at the 5th percentile of margin ({t['stack_at_p5']['margin']:.2f}), to confirm "
+                  "with a dynamic run:\n    " + " ".join(f"--set {o}" for o in t["stack_at_p5_overrides"]),
+                  highlight=False, soft_wrap=True, markup=False)

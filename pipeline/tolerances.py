@@ -1,0 +1,367 @@
+"""Crush probability over manufacturing tolerances and operating conditions (docs/model.md §10.2).
+
+The crush screen (docs/model.md §10.1) needs only the balls' excursion, which depends on the
+loads, and the clearances, which depend on the dimensions and temperatures of the parts. So a
+stack of tolerances costs a few array operations once the excursion is known:
+
+- the excursion (s1, s_pp) comes from the quasi-static solution of the scene at its operating
+  geometry; when the loads or the internal clearance vary, from solutions on a grid over their
+  sampled ranges, interpolated linearly;
+- each stack's clearances follow from its dimensions and temperatures by M.120–M.122;
+- the margin and regime from M.116 and M.123 (`crush_screen.crush_margin`).
+
+Ring and ball temperatures move the load distribution through the operating diametral
+clearance (a 10 K difference between the rings changes it by ~17 µm of 118 µm, and the
+excursion by several per cent), so the grid spans it; the other effects of the rings'
+dimensions (pitch diameter, conformity) are left at the nominal operating stack, and the test
+`test_tolerances.py::test_surrogate_against_full_screen` bounds the difference. What drives the margin is ranked by the squared standardised regression
+coefficient of each input (its share of the margin's variance for a near-linear response),
+with the Spearman rank correlation beside it.
+
+`[tolerances]` in a scene: `samples`, `seed`, and one table per varied quantity, as deviations
+from the scene's value: `{ lower = ..., upper = ... }` (uniform) or `{ sd = ... }` (normal,
+mean 0), in the quantity's unit (QUANTITIES).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from .schema import SceneError
+
+# name -> (unit, description); a deviation is added to the scene's value
+QUANTITIES: dict[str, tuple[str, str]] = {
+    "pocket_diameter": ("m", "cage pocket diameter d_p"),
+    "cage_outside_diameter": ("m", "cage outside diameter (mean_diameter + radial_thickness)"),
+    "cage_bore_diameter": ("m", "cage bore (mean_diameter - radial_thickness)"),
+    "outer_land_diameter": ("m", "outer-ring land diameter (bearing.outer_shoulder_diameter)"),
+    "inner_land_diameter": ("m", "inner-ring land diameter (bearing.inner_shoulder_diameter)"),
+    "ball_diameter": ("m", "ball diameter D (clearances only; the load distribution keeps the nominal D)"),
+    "pocket_circle_eccentricity": ("m", "cage run-out e_r (sampled value = scene value + deviation, floored at 0)"),
+    "inner_ring_temperature": ("K", "inner-ring temperature"),
+    "outer_ring_temperature": ("K", "outer-ring temperature"),
+    "ball_temperature": ("K", "ball temperature"),
+    "cage_temperature": ("K", "cage temperature"),
+    "moment": ("N.m", "moment about +y"),
+    "axial": ("N", "thrust along +z"),
+}
+MAX_SAMPLES = 1_000_000
+
+
+@dataclass(frozen=True)
+class Deviation:
+    """One varied quantity: uniform on [lower, upper] or normal with standard deviation sd."""
+
+    name: str
+    kind: str  # "uniform" | "normal"
+    lower: float = 0.0
+    upper: float = 0.0
+    sd: float = 0.0
+
+    def sample(self, rng: np.random.Generator, n: int) -> np.ndarray:
+        if self.kind == "uniform":
+            return rng.uniform(self.lower, self.upper, n)
+        return rng.normal(0.0, self.sd, n)
+
+    def describe(self) -> str:
+        unit = QUANTITIES[self.name][0]
+        if self.kind == "uniform":
+            return f"uniform {self.lower:+.4g} … {self.upper:+.4g} {unit}"
+        return f"normal, sd {self.sd:.4g} {unit}"
+
+
+@dataclass(frozen=True)
+class ToleranceSpec:
+    samples: int
+    seed: int
+    deviations: tuple[Deviation, ...]
+
+
+def _number(key: str, value: Any, unit: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise SceneError(key, f"expected a finite number [{unit}], got {value!r}")
+    return float(value)
+
+
+def build_tolerance_spec(table: Any, scene=None) -> ToleranceSpec:
+    """Validate `[tolerances]` (module docstring); errors name the key, value, range and unit."""
+    if not isinstance(table, dict):
+        raise SceneError("tolerances", f"expected a table, got {table!r}")
+    samples = table.get("samples", 10_000)
+    if isinstance(samples, bool) or not isinstance(samples, int) or not 100 <= samples <= MAX_SAMPLES:
+        raise SceneError("tolerances.samples", f"{samples!r} is out of range: allowed an integer from 100 to "
+                                               f"{MAX_SAMPLES} [-]")
+    seed = table.get("seed", 0)
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise SceneError("tolerances.seed", f"{seed!r}: expected a whole number >= 0 [-]")
+    out = []
+    for name, spec in table.items():
+        if name in ("samples", "seed"):
+            continue
+        key = f"tolerances.{name}"
+        if name not in QUANTITIES:
+            raise SceneError(key, f"unknown quantity; allowed: samples, seed, {', '.join(QUANTITIES)}")
+        unit = QUANTITIES[name][0]
+        if not isinstance(spec, dict) or not spec:
+            raise SceneError(key, f"expected a table {{ lower = …, upper = … }} (uniform) or {{ sd = … }} (normal) "
+                                  f"of deviations from the scene's value [{unit}], got {spec!r}")
+        keys = set(spec)
+        if keys == {"lower", "upper"}:
+            lo, hi = _number(f"{key}.lower", spec["lower"], unit), _number(f"{key}.upper", spec["upper"], unit)
+            if not lo < hi:
+                raise SceneError(key, f"lower = {lo:g} must be smaller than upper = {hi:g} [{unit}]")
+            out.append(Deviation(name, "uniform", lower=lo, upper=hi))
+        elif keys == {"sd"}:
+            sd = _number(f"{key}.sd", spec["sd"], unit)
+            if not sd > 0.0:
+                raise SceneError(f"{key}.sd", f"{sd!r} is out of range: allowed > 0 [{unit}]")
+            out.append(Deviation(name, "normal", sd=sd))
+        else:
+            raise SceneError(key, f"keys {sorted(keys)}: give lower and upper (uniform) or sd alone (normal) [{unit}]")
+    if not out:
+        raise SceneError("tolerances", f"no quantity to vary; give at least one of {', '.join(QUANTITIES)}")
+    if scene is not None and scene.cage is None:
+        raise SceneError("tolerances", "the crush probability needs a [cage]")
+    return ToleranceSpec(samples=samples, seed=seed, deviations=tuple(out))
+
+
+# --- the stacks ------------------------------------------------------------------------------
+def sample_deviations(spec: ToleranceSpec, samples: int | None = None, seed: int | None = None) -> dict[str, np.ndarray]:
+    """{quantity: deviations (n,)}, reproducible from the seed (each quantity its own stream)."""
+    n = spec.samples if samples is None else samples
+    root = np.random.SeedSequence(spec.seed if seed is None else seed)
+    streams = root.spawn(len(QUANTITIES))
+    index = {name: i for i, name in enumerate(QUANTITIES)}
+    return {d.name: d.sample(np.random.default_rng(streams[index[d.name]]), n) for d in spec.deviations}
+
+
+def stack_clearances(scene, dev: dict[str, np.ndarray], n: int):
+    """CageClearances (arrays of n) of the stacks: the scene's drawing dimensions plus the
+    deviations, each part grown to its (deviated) temperature (M.120)."""
+    from bearingsim.dynamics.quasistatic.crush_screen import CageClearances
+
+    b, c = scene.nominal.bearing, scene.nominal.cage
+    t, a = scene.temperatures, scene.expansion
+
+    def d(name):
+        return dev.get(name, np.zeros(n))
+
+    def grow(alpha, part, name):
+        return 1.0 + alpha * (t.rise(part) + d(name))
+
+    f_i, f_o = grow(a.race, "inner_ring", "inner_ring_temperature"), grow(a.race, "outer_ring", "outer_ring_temperature")
+    f_b, f_c = grow(a.ball, "ball", "ball_temperature"), grow(a.cage, "cage", "cage_temperature")
+    outside = (c.outside_diameter + d("cage_outside_diameter")) * f_c
+    bore = (c.bore_diameter + d("cage_bore_diameter")) * f_c
+    outer_land = (b.outer_shoulder_diameter + d("outer_land_diameter")) * f_o
+    inner_land = (b.inner_shoulder_diameter + d("inner_land_diameter")) * f_i
+    if c.guidance == "outer":
+        guide, non_guiding = 0.5 * (outer_land - outside), 0.5 * (bore - inner_land)
+    else:
+        guide, non_guiding = 0.5 * (bore - inner_land), 0.5 * (outer_land - outside)
+    pocket = (c.pocket_diameter + d("pocket_diameter")) * f_c - (b.ball_diameter + d("ball_diameter")) * f_b
+    ecc = np.maximum(0.0, c.pocket_circle_eccentricity + d("pocket_circle_eccentricity")) * f_c
+    return CageClearances(pocket=pocket, guide=guide, pocket_circle_eccentricity=ecc,
+                          pocket_index_range=c.pocket_index_range() * f_c, non_guiding=non_guiding)
+
+
+def _excursion_at(scene, moment: float, axial: float, diametral_clearance: float | None):
+    """(s1, s_pp, inner-ring offset) of the scene at these loads, its inner ring grown or shrunk
+    to give the operating diametral clearance P_d (None: the scene's)."""
+    from bearingsim.dynamics import thermal as th
+    from bearingsim.dynamics.quasistatic.crush_screen import excursion_of
+
+    from .stages.quasistatic import inner_ring_offset, solve
+
+    b = scene.bearing
+    if diametral_clearance is not None:
+        factor = 1.0 + (b.diametral_clearance - diametral_clearance) / b.inner_groove_bottom_diameter
+        b = th.scaled(b, factor, th.INNER_RING_LENGTHS)
+    s = dataclasses.replace(scene, bearing=b, load=dataclasses.replace(scene.load, moment=moment, axial=axial))
+    r = solve(s)
+    x = excursion_of(r.azimuth, r.ball_orbital_speed, 0.5 * scene.cage.mean_diameter)
+    return x.first_harmonic, x.peak_to_peak, inner_ring_offset(scene, r)
+
+
+RING_QUANTITIES = ("inner_ring_temperature", "outer_ring_temperature", "ball_temperature", "ball_diameter")
+NODES_BY_DIMENSION = {1: 9, 2: 7, 3: 5}
+
+
+def stack_diametral_clearance(scene, dev: dict[str, np.ndarray], n: int) -> np.ndarray:
+    """Operating diametral clearance P_d of each stack [m]: groove bottoms and balls grown to
+    their (deviated) temperatures (M.120)."""
+    b, t, a = scene.nominal.bearing, scene.temperatures, scene.expansion
+
+    def d(name):
+        return dev.get(name, np.zeros(n))
+
+    f_i = 1.0 + a.race * (t.rise("inner_ring") + d("inner_ring_temperature"))
+    f_o = 1.0 + a.race * (t.rise("outer_ring") + d("outer_ring_temperature"))
+    f_b = 1.0 + a.ball * (t.rise("ball") + d("ball_temperature"))
+    return (b.outer_groove_bottom_diameter * f_o - b.inner_groove_bottom_diameter * f_i
+            - 2.0 * (b.ball_diameter + d("ball_diameter")) * f_b)
+
+
+def excursion_surrogate(scene, dev: dict[str, np.ndarray]):
+    """s1, s_pp and the inner ring's offset at each stack [m] (arrays): one quasi-static
+    solution, or linear interpolation on a grid over what moves the load distribution — the
+    moment, the thrust and the operating diametral clearance (ring and ball temperatures, ball
+    diameter) — NODES_BY_DIMENSION nodes per varied variable."""
+    from scipy.interpolate import RegularGridInterpolator
+
+    n = len(next(iter(dev.values())))
+    at_stack = {"moment": scene.load.moment + dev.get("moment", np.zeros(n)),
+                "axial": scene.load.axial + dev.get("axial", np.zeros(n))}
+    if any(q in dev for q in RING_QUANTITIES):
+        at_stack["diametral_clearance"] = stack_diametral_clearance(scene, dev, n)
+    varied = [k for k, v in at_stack.items() if v.max() > v.min()]
+    nominal = {"moment": scene.load.moment, "axial": scene.load.axial, "diametral_clearance": None}
+    if not varied:
+        s1, s_pp, offset = _excursion_at(scene, nominal["moment"], nominal["axial"], None)
+        return np.full(n, s1), np.full(n, s_pp), np.full(n, offset)
+    nodes = NODES_BY_DIMENSION[len(varied)]
+    axes = [np.linspace(at_stack[k].min(), at_stack[k].max(), nodes) for k in varied]
+    grids = np.meshgrid(*axes, indexing="ij")
+    values = np.empty(grids[0].shape + (3,))
+    for idx in np.ndindex(grids[0].shape):
+        point = nominal | {k: float(g[idx]) for k, g in zip(varied, grids)}
+        values[idx] = _excursion_at(scene, point["moment"], point["axial"], point["diametral_clearance"])
+    out = RegularGridInterpolator(tuple(axes), values)(np.column_stack([at_stack[k] for k in varied]))
+    return out[:, 0], out[:, 1], out[:, 2]
+
+
+# --- the analysis ------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class ToleranceResult:
+    deviations: dict[str, np.ndarray]
+    margin: np.ndarray  # (C - e_req)/C at the worst cage orientation [-]
+    regime: np.ndarray  # 0 free, 1 pressed, 2 crushed
+    guide_clearance: np.ndarray  # [m]
+    pocket_clearance: np.ndarray  # [m]
+    non_guiding_gap: np.ndarray  # [m] (< 0: touching)
+    spec: ToleranceSpec
+
+
+def analyse(scene, spec: ToleranceSpec | None = None, samples: int | None = None,
+            seed: int | None = None) -> ToleranceResult:
+    """Sample the stacks of `spec` (default: the scene's [tolerances]) and screen each."""
+    from bearingsim.dynamics.quasistatic.crush_screen import crush_margin, required_offset
+
+    spec = spec or scene.tolerances
+    if spec is None:
+        raise SceneError("tolerances", "the scene has no [tolerances] table; see docs/scenes.md")
+    if scene.cage is None:
+        raise SceneError("tolerances", "the crush probability needs a [cage]")
+    dev = sample_deviations(spec, samples, seed)
+    n = len(next(iter(dev.values())))
+    s1, s_pp, offset = excursion_surrogate(scene, dev)
+    clear = stack_clearances(scene, dev, n)
+    margin, code = crush_margin(s1, s_pp, clear)
+    (_, worst), _ = required_offset(s1, s_pp, clear)
+    gap = clear.non_guiding - np.minimum(worst, clear.guide) - offset
+    return ToleranceResult(deviations=dev, margin=margin, regime=code, guide_clearance=np.asarray(clear.guide),
+                           pocket_clearance=np.asarray(clear.pocket), non_guiding_gap=gap, spec=spec)
+
+
+def drivers(result: ToleranceResult) -> list[dict]:
+    """Inputs ranked by their share of the margin's variance (squared standardised regression
+    coefficient), with the Spearman rank correlation."""
+    from scipy.stats import spearmanr
+
+    names = list(result.deviations)
+    X = np.column_stack([result.deviations[k] for k in names])
+    y = result.margin
+    sx, sy = X.std(axis=0), y.std()
+    rows = []
+    if sy > 0.0:
+        Z = (X - X.mean(axis=0)) / np.where(sx > 0, sx, 1.0)
+        coef, *_ = np.linalg.lstsq(np.column_stack([Z, np.ones(len(y))]), (y - y.mean()) / sy, rcond=None)
+        for i, name in enumerate(names):
+            rho = float(spearmanr(X[:, i], y).statistic) if sx[i] > 0 else 0.0
+            rows.append({"quantity": name, "unit": QUANTITIES[name][0], "src": float(coef[i]),
+                         "variance_share": float(coef[i] ** 2), "spearman": rho})
+    return sorted(rows, key=lambda r: -r["variance_share"])
+
+
+def percentile_stack(result: ToleranceResult, q: float = 5.0) -> dict[str, float]:
+    """The deviations of the stack whose margin sits at the q-th percentile."""
+    target = np.percentile(result.margin, q)
+    i = int(np.argmin(np.abs(result.margin - target)))
+    return {name: float(v[i]) for name, v in result.deviations.items()} | {"margin": float(result.margin[i])}
+
+
+def stack_overrides(scene, stack: dict[str, float]) -> list[str]:
+    """`--set` overrides that put one stack into the scene (dimensions as drawn, temperatures
+    in °C), so a dynamic run can confirm its regime."""
+    b, c, t = scene.nominal.bearing, scene.nominal.cage, scene.temperatures
+    out = []
+    od = c.outside_diameter + stack.get("cage_outside_diameter", 0.0)
+    bore = c.bore_diameter + stack.get("cage_bore_diameter", 0.0)
+    if "cage_outside_diameter" in stack or "cage_bore_diameter" in stack:
+        out += [f"cage.mean_diameter={0.5 * (od + bore)!r}", f"cage.radial_thickness={0.5 * (od - bore)!r}"]
+    simple = {"pocket_diameter": ("cage.pocket_diameter", c.pocket_diameter),
+              "outer_land_diameter": ("bearing.outer_shoulder_diameter", b.outer_shoulder_diameter),
+              "inner_land_diameter": ("bearing.inner_shoulder_diameter", b.inner_shoulder_diameter),
+              "ball_diameter": ("bearing.ball_diameter", b.ball_diameter),
+              "moment": ("load.moment", scene.load.moment), "axial": ("load.axial", scene.load.axial)}
+    for name, (key, nominal) in simple.items():
+        if name in stack:
+            out.append(f"{key}={nominal + stack[name]!r}")
+    if "pocket_circle_eccentricity" in stack:
+        out.append(f"cage.pocket_circle_eccentricity={max(0.0, c.pocket_circle_eccentricity + stack['pocket_circle_eccentricity'])!r}")
+    for part in ("inner_ring", "outer_ring", "ball", "cage"):
+        name = f"{part}_temperature"
+        if name in stack:
+            out.append(f"thermal.{part}_degC={getattr(t, part) + stack[name]!r}")
+    return out
+
+
+def summary(result: ToleranceResult, scene) -> dict:
+    """The JSON of the analysis: probabilities with their standard errors, the margin's
+    distribution, the drivers and the 5th-percentile stack."""
+    n = result.margin.size
+    probs = {}
+    for code, name in enumerate(("free", "pressed", "crushed")):
+        p = float(np.mean(result.regime == code))
+        probs[name] = {"probability": p, "standard_error": math.sqrt(max(p * (1 - p), 1.0 / n) / n)}
+    q = (1, 5, 25, 50, 75, 95, 99)
+    stack5 = percentile_stack(result, 5.0)
+    return {
+        "samples": n, "seed": result.spec.seed,
+        "tolerances": {d.name: d.describe() for d in result.spec.deviations},
+        "regime_probability": probs,
+        "crush_probability": probs["crushed"]["probability"],
+        "margin_percentiles": {f"p{k}": float(np.percentile(result.margin, k)) for k in q},
+        "margin_mean": float(result.margin.mean()),
+        "non_guiding_touch_probability": float(np.mean(result.non_guiding_gap < 0.0)),
+        "guide_clearance_percentiles_m": {f"p{k}": float(np.percentile(result.guide_clearance, k)) for k in (5, 50, 95)},
+        "pocket_clearance_percentiles_m": {f"p{k}": float(np.percentile(result.pocket_clearance, k)) for k in (5, 50, 95)},
+        "drivers": drivers(result),
+        "stack_at_p5": stack5,
+        "stack_at_p5_overrides": stack_overrides(scene, stack5),
+        "units": {"margin": "-", "probability": "-", "deviations": {k: QUANTITIES[k][0] for k in result.deviations}},
+    }
+
+
+def write_samples_csv(path, result: ToleranceResult) -> None:
+    """Every stack: its deviations, clearances, margin and regime; units in the headers."""
+    import io
+
+    from .artefacts import atomic_write_bytes
+
+    names = list(result.deviations)
+    header = [f"{n}_deviation [{QUANTITIES[n][0]}]" for n in names] + [
+        "guide_clearance [m]", "pocket_clearance [m]", "non_guiding_gap [m]", "crush_margin [-]", "regime"]
+    cols = [result.deviations[n] for n in names] + [result.guide_clearance, result.pocket_clearance,
+                                                     result.non_guiding_gap, result.margin]
+    buf = io.StringIO()
+    buf.write(",".join(header) + "\n")
+    regimes = ("free", "pressed", "crushed")
+    for i in range(result.margin.size):
+        buf.write(",".join(f"{c[i]:.9g}" for c in cols) + f",{regimes[int(result.regime[i])]}\n")
+    atomic_write_bytes(path, buf.getvalue().encode())

@@ -171,12 +171,13 @@ def stack_clearances(scene, dev: dict[str, np.ndarray], n: int):
 
 
 def _excursion_at(scene, moment: float, axial: float, diametral_clearance: float | None):
-    """(s1, s_pp, inner-ring offset) of the scene at these loads, its inner ring grown or shrunk
-    to give the operating diametral clearance P_d (None: the scene's)."""
+    """(s1, s_pp, cos and sin of the push azimuth, the land shift of M.124 flattened (4)) of the scene at these
+    loads, its inner ring grown or shrunk to give the operating diametral clearance P_d (None:
+    the scene's)."""
     from bearingsim.dynamics import thermal as th
     from bearingsim.dynamics.quasistatic.crush_screen import excursion_of
 
-    from .stages.quasistatic import inner_ring_offset, solve
+    from .stages.quasistatic import land_shift, solve
 
     b = scene.bearing
     if diametral_clearance is not None:
@@ -185,7 +186,8 @@ def _excursion_at(scene, moment: float, axial: float, diametral_clearance: float
     s = dataclasses.replace(scene, bearing=b, load=dataclasses.replace(scene.load, moment=moment, axial=axial))
     r = solve(s)
     x = excursion_of(r.azimuth, r.ball_orbital_speed, 0.5 * scene.cage.mean_diameter)
-    return x.first_harmonic, x.peak_to_peak, inner_ring_offset(scene, r)
+    return np.concatenate([[x.first_harmonic, x.peak_to_peak, math.cos(x.push_azimuth), math.sin(x.push_azimuth)],
+                           land_shift(scene, r).ravel()])
 
 
 RING_QUANTITIES = ("inner_ring_temperature", "outer_ring_temperature", "ball_temperature", "ball_diameter")
@@ -208,8 +210,8 @@ def stack_diametral_clearance(scene, dev: dict[str, np.ndarray], n: int) -> np.n
 
 
 def excursion_surrogate(scene, dev: dict[str, np.ndarray]):
-    """s1, s_pp and the inner ring's offset at each stack [m] (arrays): one quasi-static
-    solution, or linear interpolation on a grid over what moves the load distribution — the
+    """(n, 8): s1, s_pp [m], cos and sin of the push azimuth and the land shift of M.124 [m] at each stack: one
+    quasi-static solution, or linear interpolation on a grid over what moves the load distribution — the
     moment, the thrust and the operating diametral clearance (ring and ball temperatures, ball
     diameter) — NODES_BY_DIMENSION nodes per varied variable."""
     from scipy.interpolate import RegularGridInterpolator
@@ -222,17 +224,15 @@ def excursion_surrogate(scene, dev: dict[str, np.ndarray]):
     varied = [k for k, v in at_stack.items() if v.max() > v.min()]
     nominal = {"moment": scene.load.moment, "axial": scene.load.axial, "diametral_clearance": None}
     if not varied:
-        s1, s_pp, offset = _excursion_at(scene, nominal["moment"], nominal["axial"], None)
-        return np.full(n, s1), np.full(n, s_pp), np.full(n, offset)
+        return np.tile(_excursion_at(scene, nominal["moment"], nominal["axial"], None), (n, 1))
     nodes = NODES_BY_DIMENSION[len(varied)]
     axes = [np.linspace(at_stack[k].min(), at_stack[k].max(), nodes) for k in varied]
     grids = np.meshgrid(*axes, indexing="ij")
-    values = np.empty(grids[0].shape + (3,))
+    values = np.empty(grids[0].shape + (8,))
     for idx in np.ndindex(grids[0].shape):
         point = nominal | {k: float(g[idx]) for k, g in zip(varied, grids)}
         values[idx] = _excursion_at(scene, point["moment"], point["axial"], point["diametral_clearance"])
-    out = RegularGridInterpolator(tuple(axes), values)(np.column_stack([at_stack[k] for k in varied]))
-    return out[:, 0], out[:, 1], out[:, 2]
+    return RegularGridInterpolator(tuple(axes), values)(np.column_stack([at_stack[k] for k in varied]))
 
 
 # --- the analysis ------------------------------------------------------------------------------
@@ -259,11 +259,15 @@ def analyse(scene, spec: ToleranceSpec | None = None, samples: int | None = None
         raise SceneError("tolerances", "the crush probability needs a [cage]")
     dev = sample_deviations(spec, samples, seed)
     n = len(next(iter(dev.values())))
-    s1, s_pp, offset = excursion_surrogate(scene, dev)
+    x = excursion_surrogate(scene, dev)
+    s1, s_pp, shift = x[:, 0], x[:, 1], x[:, 4:].reshape(n, 2, 2)
+    push = np.arctan2(x[:, 3], x[:, 2])
     clear = stack_clearances(scene, dev, n)
     margin, code = crush_margin(s1, s_pp, clear)
     (_, worst), _ = required_offset(s1, s_pp, clear)
-    gap = clear.non_guiding - np.minimum(worst, clear.guide) - offset
+    e = np.minimum(worst, clear.guide)
+    p = np.stack([np.cos(push), np.sin(push)], axis=-1)[:, None, :]
+    gap = clear.non_guiding - np.linalg.norm(e[:, None, None] * p + shift, axis=-1).max(axis=-1)
     return ToleranceResult(deviations=dev, margin=margin, regime=code, guide_clearance=np.asarray(clear.guide),
                            pocket_clearance=np.asarray(clear.pocket), non_guiding_gap=gap, spec=spec)
 

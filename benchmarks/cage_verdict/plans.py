@@ -7,8 +7,47 @@ NO_HINGE = "benchmarks/cage_verdict/scenes/helicopter-b-no-hinge.toml"  # run fr
 MOMENTS = (0, 100, 200, 300, 430, 500, 550, 600, 700)
 
 
+COLD = ["thermal.parts_degC=20"]  # every part at the drawing's reference temperature
+
+
 def moment_sweep():
+    """At operating temperatures (the default: every part at the oil's 100 °C)."""
     return [(f"m{m:03d}", B, [f"load.moment={m}"]) for m in MOMENTS]
+
+
+def moment_sweep_cold():
+    """The same sweep with Table 1's clearances as drawn (parts at 20 °C)."""
+    return [(f"cold-m{m:03d}", B, [f"load.moment={m}"] + COLD) for m in MOMENTS]
+
+
+def paper_land():
+    """The paper's land law (one journal, static film) at L = 7.6 mm (the cage-land overlap) and
+    L = w_c = 25.4 mm (the length the paper's L/D remark suggests), beside the defaults."""
+    out = []
+    for m, tag in ((100, "a"), (430, "b")):
+        out.append((f"{tag}-default", B, [f"load.moment={m}"]))
+        for length, name in ((0.0076, "L7.6"), (0.0254, "L25.4")):
+            out.append((f"{tag}-paper-{name}", B, [f"load.moment={m}", "physics.cage_race_film=static",
+                                                    "physics.cage_race_lands=1", f"cage.land_length={length}"]))
+    return out
+
+
+def run_out():
+    """Case b with a cage run-out (pocket-circle eccentricity) of 50 and 100 µm, and pitch errors."""
+    pitch = [0.0] * 22
+    pitch[5], pitch[16] = 20e-6, -20e-6
+    return [(f"b-runout-{e}um", B, ["load.moment=430", f"cage.pocket_circle_eccentricity={e * 1e-6}"])
+            for e in (50, 100)] + [("b-pitch-40um", B, ["load.moment=430", f"cage.pocket_index_errors={pitch}"])]
+
+
+def confirm():
+    """Dynamic confirmation of the tolerance analysis (docs/validation/tolerances_b.json): the
+    nominal operating stack of case b and its stack at the 5th percentile of margin."""
+    import json
+    from pathlib import Path
+
+    found = json.loads(Path("docs/validation/tolerances_b.json").read_text())
+    return [("b-nominal", B, ["load.moment=430"]), ("b-p5", B, ["load.moment=430"] + found["stack_at_p5_overrides"])]
 
 
 def moment_sweep_static():
@@ -73,6 +112,7 @@ def repeat():
     return out
 
 
-PLANS = {"moment_sweep": moment_sweep, "moment_sweep_static": moment_sweep_static,
+PLANS = {"moment_sweep": moment_sweep, "moment_sweep_cold": moment_sweep_cold, "paper_land": paper_land,
+         "run_out": run_out, "confirm": confirm, "moment_sweep_static": moment_sweep_static,
          "sensitivity_a": sensitivity_a, "sensitivity_b": sensitivity_b, "ablations": ablations,
          "repeat": repeat}

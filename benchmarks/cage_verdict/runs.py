@@ -98,6 +98,8 @@ def measure(run_dir: Path, settle: float) -> dict:
            "startup_metal_energy": float(np.sum(np.gradient(t[t < settle]) * fpow[t < settle])) if (t < settle).sum() > 1 else 0.0,
            "duration": end, "settle": settle,
            "newton_failures": summary.get("newton_failures"), "steps": summary.get("steps"),
+           "non_guiding_gap_min_um": (1e6 * summary["non_guiding_gap_min"]) if "non_guiding_gap_min" in summary else None,
+           "screen": summary.get("crush_screen"), "verdict_class": (summary.get("verdict") or {}).get("class"),
            "integration_wall_time": summary.get("integration_wall_time")}
     return out
 

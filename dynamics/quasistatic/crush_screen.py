@@ -198,13 +198,23 @@ def excursion_of(azimuth, orbital_speed, pitch_radius: float) -> Excursion:
                      rear_wall_azimuth=float(grid[np.argmin(s)]))
 
 
+def non_guiding_gap(clearance, offset, push_azimuth: float, land_shift=None):
+    """g of M.124 [m] (numpy, broadcasts over `offset` and `clearance`): the cage `offset` [m]
+    along `push_azimuth` [rad]; `land_shift` (k, 2) [m] the guiding-land centre minus the
+    non-guiding land centre at the cage's ends (None: both centred)."""
+    offset = np.asarray(offset, float)
+    shift = np.zeros((1, 2)) if land_shift is None else np.asarray(land_shift, float).reshape(-1, 2)
+    px, py = math.cos(push_azimuth), math.sin(push_azimuth)
+    dist = np.hypot(offset[..., None] * px + shift[:, 0], offset[..., None] * py + shift[:, 1])
+    return np.asarray(clearance, float) - dist.max(axis=-1)
+
+
 def crush_screen(excursion: Excursion, cage_speed: float, clearances: CageClearances, film: LandFilm,
-                 inner_ring_offset: float = 0.0) -> CageScreen:
-    """The screen of M.115–M.124 (module docstring). `cage_speed` [rad/s]; `inner_ring_offset`
-    [m]: how far the inner ring's land moves towards the cage on the far side (radial
-    displacement plus tilt times the cage's half width). Film force at e_req: the static short
-    bearing with clearance C (1 + eps0) (the hybrid law of docs/model.md §8) and omega the cage
-    speed (outer race fixed)."""
+                 land_shift=None) -> CageScreen:
+    """The screen of M.115–M.124 (module docstring). `cage_speed` [rad/s]; `land_shift` as in
+    `non_guiding_gap`. Film force at e_req: the static short bearing with clearance
+    C (1 + eps0) (the hybrid law of docs/model.md §8) and omega the cage speed (outer race
+    fixed)."""
     x = excursion
     (best, worst), pressed = required_offset(x.first_harmonic, x.peak_to_peak, clearances)
     margin, code = crush_margin(x.first_harmonic, x.peak_to_peak, clearances)
@@ -216,7 +226,7 @@ def crush_screen(excursion: Excursion, cage_speed: float, clearances: CageCleara
     f_n, f_t, _, _ = ocvirk_force(eps_h, film.viscosity, cage_speed, film.radius, film.length / film.lands, c_film)
     gap = None
     if clearances.non_guiding is not None:
-        gap = clearances.non_guiding - min(e_req, C) - inner_ring_offset
+        gap = float(non_guiding_gap(clearances.non_guiding, min(e_req, C), x.push_azimuth, land_shift))
     return CageScreen(regime=regime, excursion=x.at_balls, excursion_peak_to_peak=x.peak_to_peak,
                       first_harmonic=x.first_harmonic, clearances=clearances, required_eccentricity=e_req,
                       required_eccentricity_min=float(best), push_azimuth=x.push_azimuth,

@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import dataclasses
-import math
+
+import numpy as np
 
 from ..artefacts import atomic_write_json
 from ..runner import Stage, StageContext
@@ -49,11 +50,16 @@ def solve(scene: Scene):
     )
 
 
-def inner_ring_offset(scene: Scene, result) -> float:
-    """How far the inner ring's land comes towards the cage [m]: its radial displacement plus
-    its tilt times the cage's half width (where the cage edge meets the land)."""
-    dx, dy, _ = result.inner_displacement
-    return math.hypot(dx, dy) + math.hypot(*result.inner_tilt) * 0.5 * scene.cage.width
+def land_shift(scene: Scene, result) -> np.ndarray:
+    """(2, 2) [m]: the guiding land's centre minus the non-guiding land's, in x and y, at the
+    cage's two ends (z = -+w_c/2 from the inner ring's centre), from the inner ring's
+    displacement and tilt (M.124)."""
+    from bearingsim.dynamics.quasistatic.result import tilt_rotation_matrix
+
+    axis = tilt_rotation_matrix(np.asarray(result.inner_tilt, float))[:, 2]
+    half = 0.5 * scene.cage.width
+    centres = np.array([result.inner_displacement[:2] + axis[:2] * z / axis[2] for z in (-half, half)])
+    return -centres if scene.cage.guidance == "outer" else centres
 
 
 def cage_screen(scene: Scene, result, parts=None):
@@ -69,7 +75,7 @@ def cage_screen(scene: Scene, result, parts=None):
     parts = parts or Parts(scene.bearing, scene.cage, scene.materials)
     excursion = excursion_of(result.azimuth, result.ball_orbital_speed, 0.5 * scene.cage.mean_diameter)
     return crush_screen(excursion, result.cage_speed, cage_clearances(parts), land_film(scene),
-                        inner_ring_offset(scene, result))
+                        land_shift(scene, result))
 
 
 def screen_payload(scene: Scene, result) -> dict | None:

@@ -276,13 +276,12 @@ def resolve(table: dict, origin: str = "<table>") -> Scene:
         race=_alpha(materials.race, th.BEARING_STEEL_EXPANSION), ball=_alpha(materials.ball, th.BEARING_STEEL_EXPANSION),
         cage=_alpha(materials.cage, th.CAGE_BRONZE_EXPANSION))
     nominal = Parts(bearing, cage, materials)
-    operating = operating_parts(nominal, temperatures, expansion)
     scene = Scene(
         name=name,
         description=convert("description", table.get("description", ""), str, {}),
-        bearing=operating.bearing,
-        cage=operating.cage,
-        materials=operating.materials,
+        bearing=bearing,
+        cage=cage,
+        materials=materials,
         lubricant=lubricant,
         load=build(Load, table["load"], "load"),
         speed=build(Speed, table["speed"], "speed"),
@@ -296,14 +295,17 @@ def resolve(table: dict, origin: str = "<table>") -> Scene:
         temperatures=temperatures,
         expansion=expansion,
     )
+    # geometry the model cannot represent, resources a run cannot have (pipeline.validity),
+    # checked on the parts as drawn; then the parts grown to their operating temperatures
+    from .validity import raise_errors, scene_findings
+
+    raise_errors(scene_findings(scene))
+    operating = operating_parts(nominal, temperatures, expansion)
+    scene = dataclasses.replace(scene, bearing=operating.bearing, cage=operating.cage, materials=operating.materials)
     if "tolerances" in table:
         from .tolerances import build_tolerance_spec
 
         scene = dataclasses.replace(scene, tolerances=build_tolerance_spec(table["tolerances"], scene))
-    # geometry the model cannot represent, resources a run cannot have (pipeline.validity)
-    from .validity import raise_errors, scene_findings
-
-    raise_errors(scene_findings(scene))
     return scene
 
 

@@ -41,7 +41,8 @@ QUANTITIES: dict[str, tuple[str, str]] = {
     "cage_bore_diameter": ("m", "cage bore (mean_diameter - radial_thickness)"),
     "outer_land_diameter": ("m", "outer-ring land diameter (bearing.outer_shoulder_diameter)"),
     "inner_land_diameter": ("m", "inner-ring land diameter (bearing.inner_shoulder_diameter)"),
-    "ball_diameter": ("m", "ball diameter D (clearances only; the load distribution keeps the nominal D)"),
+    "ball_diameter": ("m", "ball diameter D (pocket clearance and internal clearance)"),
+    "diametral_clearance": ("m", "diametral (internal) clearance P_d, through the outer groove's curvature-centre diameter"),
     "pocket_circle_eccentricity": ("m", "cage run-out e_r (sampled value = scene value + deviation, floored at 0)"),
     "inner_ring_temperature": ("K", "inner-ring temperature"),
     "outer_ring_temperature": ("K", "outer-ring temperature"),
@@ -190,7 +191,8 @@ def _excursion_at(scene, moment: float, axial: float, diametral_clearance: float
                            land_shift(scene, r).ravel()])
 
 
-RING_QUANTITIES = ("inner_ring_temperature", "outer_ring_temperature", "ball_temperature", "ball_diameter")
+RING_QUANTITIES = ("inner_ring_temperature", "outer_ring_temperature", "ball_temperature", "ball_diameter",
+                   "diametral_clearance")
 NODES_BY_DIMENSION = {1: 9, 2: 7, 3: 5}
 
 
@@ -205,7 +207,7 @@ def stack_diametral_clearance(scene, dev: dict[str, np.ndarray], n: int) -> np.n
     f_i = 1.0 + a.race * (t.rise("inner_ring") + d("inner_ring_temperature"))
     f_o = 1.0 + a.race * (t.rise("outer_ring") + d("outer_ring_temperature"))
     f_b = 1.0 + a.ball * (t.rise("ball") + d("ball_temperature"))
-    return (b.outer_groove_bottom_diameter * f_o - b.inner_groove_bottom_diameter * f_i
+    return ((b.outer_groove_bottom_diameter + d("diametral_clearance")) * f_o - b.inner_groove_bottom_diameter * f_i
             - 2.0 * (b.ball_diameter + d("ball_diameter")) * f_b)
 
 
@@ -312,7 +314,10 @@ def stack_overrides(scene, stack: dict[str, float]) -> list[str]:
               "outer_land_diameter": ("bearing.outer_shoulder_diameter", b.outer_shoulder_diameter),
               "inner_land_diameter": ("bearing.inner_shoulder_diameter", b.inner_shoulder_diameter),
               "ball_diameter": ("bearing.ball_diameter", b.ball_diameter),
+              "diametral_clearance": ("bearing.outer_groove_center_diameter", b.outer_groove_center_diameter),
               "moment": ("load.moment", scene.load.moment), "axial": ("load.axial", scene.load.axial)}
+    if "pitch_diameter" in scene.raw.get("bearing", {}):  # catalogue form: P_d is a key of its own
+        simple["diametral_clearance"] = ("bearing.diametral_clearance", b.diametral_clearance)
     for name, (key, nominal) in simple.items():
         if name in stack:
             out.append(f"{key}={nominal + stack[name]!r}")

@@ -22,6 +22,8 @@ The limits are this project's choices, with their reasons next to each constant.
 
 from __future__ import annotations
 
+import dataclasses
+
 import math
 import os
 from dataclasses import dataclass
@@ -100,14 +102,24 @@ def _g(x: float) -> str:
 
 # --- before anything runs ----------------------------------------------------------------
 def scene_findings(scene) -> list[Finding]:
-    """Checks of a resolved scene that need no solve: geometry, resources, units."""
+    """Checks of a resolved scene that need no solve: geometry, resources, units. Geometry is
+    checked as the scene gives it (the drawing): messages quote the user's own values; the
+    operating parts are checked where they are grown (pipeline.scene.operating_parts)."""
+    drawn = _as_drawn(scene)
     out: list[Finding] = []
-    out += _clearance(scene)
-    out += _lands(scene)
-    out += _cage_fit(scene)
+    out += _clearance(drawn)
+    out += _lands(drawn)
+    out += _cage_fit(drawn)
     out += _resources(scene)
-    out += _plausibility(scene)
+    out += _plausibility(drawn)
     return out
+
+
+def _as_drawn(scene):
+    nominal = getattr(scene, "nominal", None)
+    if nominal is None:
+        return scene
+    return dataclasses.replace(scene, bearing=nominal.bearing, cage=nominal.cage, materials=nominal.materials)
 
 
 def _form2(scene) -> bool:

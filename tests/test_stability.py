@@ -22,8 +22,8 @@ def test_every_case_has_a_valid_scene_outside_the_builtin_list():
     # each case changes what its name says (docs/model.md §2 values for case b)
     assert scenes["high-moment"].load.moment == 4 * base.load.moment
     assert scenes["high-speed"].speed.inner_rpm == 5 * base.speed.inner_rpm
-    assert scenes["zero-clearance"].bearing.diametral_clearance == pytest.approx(0.0, abs=1e-12)
-    assert scenes["preload"].bearing.diametral_clearance == pytest.approx(-2e-5, rel=1e-6)
+    assert scenes["zero-clearance"].nominal.bearing.diametral_clearance == pytest.approx(0.0, abs=1e-12)
+    assert scenes["preload"].nominal.bearing.diametral_clearance == pytest.approx(-2e-5, rel=1e-6)
     assert scenes["stiff-hinge"].hinge.translational == (1e12,) * 3
     assert scenes["soft-hinge"].hinge.translational == (1e6,) * 3
     assert scenes["dry-contact"].lubricant is None and scenes["dry-contact"].physics.traction == "coulomb"

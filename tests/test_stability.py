@@ -29,7 +29,7 @@ def test_every_case_has_a_valid_scene_outside_the_builtin_list():
     assert scenes["dry-contact"].lubricant is None and scenes["dry-contact"].physics.traction == "coulomb"
     tiny = scenes["tiny-guide-clearance"]
     assert tiny.cage.guide_clearance(tiny.bearing) == pytest.approx(1e-5, rel=1e-6)
-    assert scenes["light-cage"].materials.cage.density == base.materials.cage.density / 100
+    assert scenes["light-cage"].nominal.materials.cage.density == base.nominal.materials.cage.density / 100
     assert scenes["load-step"].load.load_step == (0.002, 430.0)
 
 

@@ -193,7 +193,7 @@ def _excursion_at(scene, moment: float, axial: float, diametral_clearance: float
 
 RING_QUANTITIES = ("inner_ring_temperature", "outer_ring_temperature", "ball_temperature", "ball_diameter",
                    "diametral_clearance")
-NODES_BY_DIMENSION = {1: 9, 2: 7, 3: 5}
+NODES_BY_DIMENSION = {1: 17, 2: 7, 3: 5}
 
 
 def stack_diametral_clearance(scene, dev: dict[str, np.ndarray], n: int) -> np.ndarray:

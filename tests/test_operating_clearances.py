@@ -183,3 +183,26 @@ def test_dynamic_gap_detects_a_cage_forced_across_its_clearance():
     tilted = np.tile([math.sin(tilt), 0.0, math.cos(tilt)], (n, 1))
     gap_t = non_guiding_gap(np.zeros((n, 3)), inner, tilted, 0.29e-3, 0.0127)
     assert gap_t == pytest.approx(0.29e-3 - math.tan(tilt) * 0.0127, rel=1e-9)
+
+
+def test_a_run_reports_the_cage_touching_the_inner_land(tmp_path):
+    """A cage bore 10 µm over the inner land (parts at 20 °C, radial gap 5 µm): the inner ring's
+    static offset and tilt under case b's moment close the gap at once, and the run says so."""
+    import json
+
+    from typer.testing import CliRunner
+
+    from bearingsim.pipeline.cli import app
+
+    bore, od = 0.150 + 10e-6, 0.16542
+    args = ["simulate", "helicopter-b-given-hinge", "--out", str(tmp_path / "run")]
+    for o in ("thermal.parts_degC=20", "solver.duration=0.002", f"cage.mean_diameter={(od + bore) / 2}",
+              f"cage.radial_thickness={(od - bore) / 2}"):
+        args += ["--set", o]
+    result = CliRunner().invoke(app, args)
+    assert result.exit_code == 0, result.output
+    summary = json.loads((tmp_path / "run" / "simulate" / "summary.json").read_text())
+    assert summary["non_guiding_clearance"] == pytest.approx(5e-6, rel=1e-6)
+    assert summary["non_guiding_gap_min"] < 0.0 and summary["non_guiding_contact_fraction"] > 0.5
+    assert any("touches the non-guiding land" in w for w in summary["warnings"])
+    assert "touches the non-guiding land" in result.output

@@ -82,6 +82,51 @@ def moment_sweep_figure(study: Path, out: Path, screen: dict | None) -> Path:
     return path
 
 
+def operating_sweep_figure(study: Path, out: Path, screen: dict | None) -> Path:
+    """The moment sweep at operating temperatures against the same sweep with the clearances as
+    drawn (docs/validation.md §9), the crush screen of each as a step curve of its margin."""
+    plt = _plt()
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.4))
+    for plan, style, label, colour, state in (("moment_sweep", "o-", "parts at 100 °C (default)", "C3", "operating"),
+                                              ("moment_sweep_cold", "s--", "clearances as drawn (20 °C)", "C0", "cold")):
+        d = _load(study, plan)
+        rows = sorted((float(v["overrides"][0].split("=")[1]), v["settled"]) for v in d.values() if "settled" in v)
+        if not rows:
+            continue
+        m = np.array([r[0] for r in rows])
+        axes[0].plot(m, [r[1]["eps_mean"] for r in rows], style, color=colour, label=label)
+        axes[1].plot(m, [r[1]["metal_fraction"] for r in rows], style, color=colour, label=label)
+        axes[2].plot(m, [r[1]["land_force_mean"] for r in rows], style, color=colour, label=label)
+        if screen and state in screen:
+            ms = sorted(float(k) for k in screen[state] if k.isdigit())
+            axes[0].plot(ms, [1.0 - screen[state][str(int(x))]["crush_margin"] for x in ms], ":", color=colour,
+                         label=f"screen, {label}: required offset e_req/C")
+            thr = screen[state].get("crush_threshold_moment")
+            if thr:
+                for ax in axes:
+                    ax.axvline(thr, color=colour, lw=0.8, ls="-.")
+    axes[0].axhline(1.0, color="k", lw=0.8)
+    axes[0].set_ylim(0, 1.6)
+    axes[0].set_ylabel("cage eccentricity e / C [-] (dynamics: settled mean)")
+    axes[1].set_ylabel("metal-contact fraction, settled window [-]")
+    axes[2].set_ylabel("mean land force [N]")
+    axes[2].set_yscale("symlog", linthresh=1.0)
+    axes[2].set_ylim(bottom=0.0)
+    for ax in axes:
+        ax.set_xlabel("moment [N m]")
+        ax.axvline(430, color="k", lw=1, ls=":")
+        ax.grid(alpha=0.3)
+    axes[0].legend(fontsize=7, loc="upper left")
+    axes[1].legend(fontsize=8, loc="upper left")
+    fig.suptitle("Reference bearing, 3060 rev/min, settled window 0.1–0.4 s; dotted vertical: case b (430 N m); "
+                 "dash-dot: the screen's crush threshold of each state", fontsize=9)
+    fig.tight_layout()
+    path = out / "operating_sweep.png"
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
 def tornado_figure(study: Path, out: Path, case: str, metric: str, label: str) -> Path:
     plt = _plt()
     d = _load(study, f"sensitivity_{case}")
@@ -225,10 +270,18 @@ def main(argv=None) -> None:
     ap.add_argument("study", type=Path)
     ap.add_argument("--out", type=Path, default=Path("docs/validation"))
     ap.add_argument("--screen", type=Path, help="JSON of the crush screen per moment (screen.py)")
+    ap.add_argument("--operating", action="store_true",
+                    help="only the operating-temperature study: operating_sweep.png and the tables of its plans")
     a = ap.parse_args(argv)
     a.out.mkdir(parents=True, exist_ok=True)
     screen = json.loads(a.screen.read_text()) if a.screen else None
-    print(moment_sweep_figure(a.study, a.out, screen))
+    if a.operating:
+        print(operating_sweep_figure(a.study, a.out, screen))
+        for plan in ("moment_sweep", "moment_sweep_cold", "paper_land", "run_out", "confirm"):
+            if _load(a.study, plan):
+                (a.out / f"{plan}.md").write_text(markdown_table(a.study, plan) + "\n")
+        return
+    print(moment_sweep_figure(a.study, a.out, (screen or {}).get("operating", screen)))
     for case in ("a", "b"):
         for metric, label in (("eps_mean", "mean eccentricity ratio"), ("land_force_mean", "mean land force [N]"),
                               ("whirl_ratio", "whirl ratio"), ("metal_fraction", "metal-contact fraction")):

@@ -18,7 +18,7 @@ import tomllib
 from pathlib import Path
 
 SETS = {
-    "validation set (internal clearance grid, 9 solutions)": {},
+    "validation set (internal clearance grid, 17 solutions)": {},
     "validation set + moment sd 20 N m (7 x 7 grid, 49 solutions)": {"moment": {"sd": 20.0}},
 }
 

@@ -113,10 +113,12 @@ LIMITATION = (
     "How far to trust this verdict: on the reference bearing this model reproduces the regimes "
     "and the loaded sector, but it under-predicts the severity of a crush. The reference case b "
     "(430 N·m), whose cage was crushed and whose race burnt on a test rig, comes out 'pressed, "
-    "elevated risk' here: the model crushes that cage only from about 525 N·m, because the "
-    "crush depends on 0.3 mm of pocket and guide clearance that the reference data do not pin "
-    "down. Read 'pressed' as a warning, and check the crush margin of `bearingsim quasistatic`. "
-    "Details: docs/validation.md.")
+    "elevated risk' here, at its operating clearances: the model crushes that cage only from about "
+    "500–512 N·m at 100 °C. The crush depends on 0.2 mm of pocket and guide clearance and on the "
+    "bearing's internal clearance, which the reference data do not pin down (with the uncertainty "
+    "of its internal clearance, P(crushed) is about 9 %). Read 'pressed' as a warning, check the "
+    "crush margin, and give the drawing's tolerances to `bearingsim tolerances` for the crush "
+    "probability. Details: docs/validation.md §10, §12.")
 
 
 def verdict_section(summary: dict | None, burn: dict | None, out_dir: Path, sim_dir: Path | None,

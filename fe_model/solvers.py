@@ -1,10 +1,9 @@
 """One factorisation of the SPD stiffness matrix, reused for every load case.
 
-Measured on the 2-core build machine for a ~400k-dof P2 housing model (factor + 6
-solves): MKL PARDISO with the matrix declared SPD (mtype 2) ~15 s / 3.1 GB; scipy
-SuperLU 250-550 s; AMG-preconditioned CG ~110 s; CHOLMOD/MUMPS need system packages.
-So PARDISO is the default and SuperLU the portable fallback (non-x86 machines, where
-pypardiso is not installed); see benchmarks/fe.py for the figures of this code.
+Two direct solvers: scipy's SuperLU, always there, and MKL PARDISO (matrix declared SPD),
+installed with the optional extra `bearingsim[pardiso]` (x86-64 only, about 1 GB of MKL,
+OpenMP and TBB). At the default mesh SuperLU is as fast; PARDISO pays for much finer meshes
+(docs/performance.md, benchmarks/fe.py). `auto` takes PARDISO when it is installed.
 """
 
 from __future__ import annotations

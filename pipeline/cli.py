@@ -297,6 +297,23 @@ def tolerances(scene: SceneArg,
 
 
 @app.command()
+def warmup(scenes: Annotated[Optional[list[str]], typer.Argument(
+        help=_literal("Scenes to compile for (files or built-in names) [default: every built-in scene]."))] = None) -> None:
+    """Compile the force kernels once for this machine (container images, cluster nodes): later runs start warm."""
+    from .kernel_cache import cache_directory, warm_up
+
+    def report(row: dict) -> None:
+        err_console.print(f"  {row['scene']:<28} {row['status']}"
+                          + (f" in {row['seconds']:.1f} s" if row["seconds"] > 0 else ""), highlight=False)
+
+    try:
+        warm_up(scenes, report)
+    except SceneError as exc:
+        _fail(EXIT_SCENE, f"scene: {explain(exc)}")
+    err_console.print(f"kernels cached in {escape(str(cache_directory()))}/", highlight=False)
+
+
+@app.command()
 def stiffness(scene: SceneArg,
               speeds: Annotated[Optional[str], typer.Option(
                   "--speeds", metavar="RPM,...",

@@ -159,6 +159,18 @@ def simulate_bearing(params: BearingModelParams, start: dict, settings: HHTSetti
                       has_cage=params.has_cage, step_history=rec.log[:, :2].copy())
 
 
+def load_kernels(params: BearingModelParams, start: dict, settings: HHTSettings) -> float:
+    """Compile (or load from numba's cache) every kernel a run of `params` calls, with the
+    first two steps of the run; returns the seconds it took. The caller may hold a lock
+    around it so that processes sharing a cache compile once (pipeline.kernel_cache)."""
+    t0 = time.perf_counter()
+    params = params.with_float32_residual()
+    model = BearingModel(params)
+    q0, v0 = initial_coordinates(params, start)
+    warm_up_compiled_loop(model, q0, v0, settings)
+    return time.perf_counter() - t0
+
+
 def warm_up_compiled_loop(model: BearingModel, q0, v0, settings: HHTSettings) -> None:
     """Compile (or load from numba's cache) the time loop with two steps of the model; the
     model's impact log and energy balance are left dirty."""

@@ -63,6 +63,11 @@ def finished_record(run_dir: Path, scene_hash: str, target: str = "simulate") ->
 def run_point(request: PointRequest, stages=None) -> dict:
     """Run the point's pipeline to `request.target`; return (and save) its record.
     `stages` replaces the pipeline's stages (tests)."""
+    from ..numba_cache import configure_numba_cache
+
+    # a worker started by an outside `dask worker` has not been through the command line:
+    # point numba at the per-user cache of this machine before any kernel loads
+    configure_numba_cache()
     run_dir = Path(request.run_dir)
     done = finished_record(run_dir, request.scene_hash, request.target)
     if done is not None and done["status"] == "done":  # a rescheduled task that had finished

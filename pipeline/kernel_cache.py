@@ -1,0 +1,139 @@
+"""Compile the force kernels once per machine, however many processes start at once.
+
+numba writes compiled kernels to the cache directory of `pipeline.numba_cache` (one per
+version of the dynamics sources). Two processes that start on a cold cache would each compile
+the same kernels (minutes of CPU each): the sweep's workers, parallel test processes, a user
+running two scenes at once. So the first process of a kernel configuration takes an exclusive
+file lock in the cache directory, compiles by running the first two steps of its model, and
+leaves a marker; the others wait on the lock and then load what it compiled. A process that
+finds the marker takes no lock at all.
+
+The kernel configuration is what selects compiled specialisations: the `[physics]` options and
+whether the scene has a cage, a lubricant and a hinge. Loads, dimensions and solver tolerances
+are run-time values and share the kernels.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import dataclasses
+import hashlib
+import json
+import logging
+import os
+import time
+from pathlib import Path
+
+log = logging.getLogger("bearingsim")
+LOCK_FILE = ".bearingsim-compile.lock"
+LOG_FILE = "bearingsim-compile.log"
+
+
+def kernel_configuration(scene) -> str:
+    """A short key of what selects the compiled specialisations of a scene's dynamic run."""
+    what = {"physics": dataclasses.asdict(scene.physics), "cage": scene.cage is not None,
+            "lubricant": scene.lubricant is not None, "hinge": scene.hinge.source != "none"}
+    return hashlib.sha256(json.dumps(what, sort_keys=True).encode()).hexdigest()[:12]
+
+
+def cache_directory() -> Path | None:
+    """numba's cache directory of this process (None: numba's default, next to the sources)."""
+    value = os.environ.get("NUMBA_CACHE_DIR")
+    return Path(value) if value else None
+
+
+@contextlib.contextmanager
+def _exclusive(path: Path):
+    import fcntl
+
+    fd = os.open(path, os.O_RDWR | os.O_CREAT | getattr(os, "O_NOFOLLOW", 0), 0o644)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX)
+        yield
+    finally:
+        fcntl.flock(fd, fcntl.LOCK_UN)
+        os.close(fd)
+
+
+def ensure_compiled(scene, compile_kernels) -> float:
+    """Run `compile_kernels()` (which compiles or loads the scene's kernels) under the cache's
+    lock unless another process already did it for this configuration; returns the seconds
+    spent here (waiting included), 0 when the marker was there."""
+    cache = cache_directory()
+    if cache is None:
+        return compile_kernels()
+    key = kernel_configuration(scene)
+    marker = cache / f".compiled-{key}"
+    if marker.exists():
+        return 0.0
+    t0 = time.perf_counter()
+    cache.mkdir(parents=True, exist_ok=True)
+    with _exclusive(cache / LOCK_FILE):
+        if not marker.exists():
+            seconds = compile_kernels()
+            marker.touch()
+            _note(cache, f"{time.strftime('%Y-%m-%dT%H:%M:%S')} pid {os.getpid()} compiled configuration {key} "
+                         f"of scene {scene.name} in {seconds:.1f} s")
+    return time.perf_counter() - t0
+
+
+def _note(cache: Path, line: str) -> None:
+    """One line a compile in the cache's own log (read by tests and by people asking why a
+    first run was slow)."""
+    try:
+        with open(cache / LOG_FILE, "a", encoding="utf-8") as f:
+            f.write(line + "\n")
+    except OSError as exc:
+        log.warning("could not note the compile in %s: %s", cache / LOG_FILE, exc)
+
+
+def compile_scene_kernels(scene) -> float:
+    """Compile (or load) every kernel `scene`'s dynamic run calls, without writing results:
+    the quasi-static start and the first two steps (an identified hinge is replaced by a given
+    one: the hinge's values do not select kernels). Returns the seconds it took."""
+    from bearingsim.dynamics.bearing.run import load_kernels
+
+    from .scene_sections import Hinge
+    from .stages.simulate import build_model
+
+    t0 = time.perf_counter()
+    if scene.hinge.source == "fe":
+        scene = dataclasses.replace(scene, hinge=Hinge(source="given", translational=(1e9, 1e9, 1e9),
+                                                       bending=(1e5, 1e5),
+                                                       damping_ratio_time=scene.hinge.damping_ratio_time))
+    params, start = build_model(scene)
+    load_kernels(params, start, scene.solver)
+    return time.perf_counter() - t0
+
+
+def warm_up(scene_names: list[str] | None = None, report=None) -> list[dict]:
+    """Compile the kernels of the built-in scenes (or of `scene_names`: names or files), one
+    compile per kernel configuration; `report(row)` is called after each scene. For container
+    images and cluster nodes: run once, and every later run on the machine starts warm."""
+    from .numba_cache import configure_numba_cache
+    from .scene import builtin_scene_names, load_scene
+
+    from .stages.quasistatic import solve
+    from .validity import run_findings
+
+    configure_numba_cache()
+    rows, done = [], set()
+    for name in scene_names or builtin_scene_names():
+        scene = load_scene(name)
+        key = kernel_configuration(scene)
+        if any(f.level == "error" for f in run_findings(scene, {"simulate"})):
+            t0 = time.perf_counter()
+            solve(scene)
+            row = {"scene": name, "configuration": key, "seconds": time.perf_counter() - t0,
+                   "status": "quasi-static kernels (the scene does not run the dynamics)"}
+        elif key in done:
+            row = {"scene": name, "configuration": key, "status": "same kernels as above", "seconds": 0.0}
+        else:
+            seconds = ensure_compiled(scene, lambda: compile_scene_kernels(scene))
+            row = {"scene": name, "configuration": key, "seconds": seconds,
+                   "status": "compiled or loaded" if seconds > 0 else "already compiled on this machine"}
+            done.add(key)
+        rows.append(row)
+        if report is not None:
+            report(row)
+    return rows

@@ -232,6 +232,18 @@ class Run:
     def stage_dir(self, stage: str) -> Path:
         return Path(self.run_dir) / stage
 
+    def __repr__(self) -> str:
+        """One line: the scene, the directory, the stages it holds and the verdict."""
+        from .results.run_display import run_repr
+
+        return run_repr(self)
+
+    def _repr_html_(self) -> str:
+        """A notebook's display: the verdict, its key numbers and the cage orbit."""
+        from .results.run_display import run_html
+
+        return run_html(self)
+
     @property
     def stages(self) -> dict[str, str]:
         """Stage name -> "done" for every finished stage in the directory, plus the status of

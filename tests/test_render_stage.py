@@ -129,7 +129,8 @@ def test_render_command_regenerates_the_report_without_solving(run_dir, monkeypa
     assert result.exit_code == 0, result.output
     assert "no display" in result.output and "off-screen" in result.output  # --show falls back
     out = run / "report"
-    for name in ("report.html", "burn_zone_3d.png", "burn_zone_map.png", "fe_fx.png", "fe_fx.vtu", "renders.json"):
+    for name in ("report.html", "burn_zone_3d.png", "burn_zone_map.png", "fe_fx.png", "fe_fx.vtu", "renders.json",
+                 "paraview/balls.pvd", "paraview/outer_race.vtp"):
         assert (out / name).is_file() and (out / name).stat().st_size > 0, name
     assert (run / "simulate" / "timeseries.h5").stat().st_mtime_ns == h5_mtime
     manifest = read_manifest(out)
@@ -152,6 +153,8 @@ def test_render_command_regenerates_the_report_without_solving(run_dir, monkeypa
     assert burn["peak_sector_deg"] == pytest.approx(math.floor(math.degrees(RUB_AZIMUTH)) + 0.5)
     assert burn["track_outside_fraction"] == 0.0  # 25° ± 5° tracks stay inside the raceway
     assert renders["fe"][0]["max_displacement_m"] == pytest.approx(3e-6, rel=1e-12)
+    # ParaView: the series the synthetic run holds (balls only: it saved no race or cage motion)
+    assert renders["paraview"] == {"balls": "paraview/balls.pvd", "outer_race": "paraview/outer_race.vtp"}
 
     page = (out / "report.html").read_text()
     assert len(re.findall(r'src="data:image/png;base64,', page)) >= 5  # orbit, map twice, burn 3-D, FE

@@ -316,9 +316,13 @@ class Run:
         from .results.timeseries import read_timeseries
 
         path = self._file("simulate", "timeseries.h5")
-        series, attrs = read_timeseries(path, names)
-        arrays = {n: NamedArray(s.data, s.units, s.dims, s.description, n) for n, s in series.items()}
-        return TimeSeries(arrays, attrs, path)
+        names = None if names is None else list(names)
+        wanted = names if names is None or "time" in names else [*names, "time"]  # the coordinate
+        series, attrs = read_timeseries(path, wanted)
+        time = series["time"].data if "time" in series else None
+        arrays = {n: NamedArray(s.data, s.units, s.dims, s.description, n) for n, s in series.items()
+                  if names is None or n in names}
+        return TimeSeries(arrays, attrs, path, time=time)
 
     def impacts(self) -> dict[str, NamedArray]:
         """`simulate/impacts.csv` as column name -> NamedArray over dimension "impact"."""

@@ -56,7 +56,7 @@ class NamedArray:
 
 # bearingsim's unit strings that UDUNITS (netCDF's CF conventions, pint) reads otherwise
 UDUNITS = {"-": "1", "": "1", "count": "1", "N.m": "N m", "N.m/rad": "N m/rad", "N.m/m": "N m/m",
-           "N·m": "N m", "N·m/rad": "N m/rad", "rev/min": "1/min", "deg": "degree", "µm": "um"}
+           "N·m": "N m", "N·m/rad": "N m/rad", "deg": "degree", "µm": "um"}
 
 
 def udunits(unit: str) -> str:

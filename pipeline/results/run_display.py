@@ -31,14 +31,13 @@ def _stages_held(run) -> list[str]:
 
 
 def run_repr(run) -> str:
-    """`Run('helicopter-b', runs/demo, stages: quasistatic, simulate; pressed, elevated risk)`."""
-    parts = [repr(run.scene.name), str(run.run_dir)]
+    """`Run('helicopter-b', runs/demo; stages: quasistatic, simulate; pressed, elevated risk)`."""
     stages = _stages_held(run)
-    parts.append("stages: " + (", ".join(stages) if stages else "none"))
+    parts = [f"{run.scene.name!r}, {run.run_dir}", "stages: " + (", ".join(stages) if stages else "none")]
     verdict = (_summary(run) or {}).get("verdict") or {}
     if verdict.get("class"):
         parts.append(f"{verdict['class']}, {verdict.get('risk', '?')} risk")
-    return f"Run({', '.join(parts)})"
+    return f"Run({'; '.join(parts)})"
 
 
 def run_html(run) -> str:

@@ -10,6 +10,7 @@ The Python API (README "Python API"; `bearingsim.pipeline.api`)::
     scene = bearingsim.load_scene("helicopter-b-given-hinge", {"load.moment": 300})
     run = bearingsim.run(scene, "runs/demo", stages=["simulate"])
     run.summary["cage_speed_mean"], run.timeseries()["cage/position"].values
+    table = bearingsim.sweep(scene, vary={"load.moment": [200, 430, 600]})
 
 Its names load on first use: `import bearingsim` imports no numba, matplotlib or gmsh.
 """
@@ -19,7 +20,7 @@ __version__ = "0.1.0"
 _API = {
     "load_scene": "bearingsim.pipeline.api",
     "run": "bearingsim.pipeline.api",
-    "sweep": "bearingsim.pipeline.api",
+    "sweep": "bearingsim.pipeline.sweep.api",
     "SweepResult": "bearingsim.pipeline.sweep.api",
     "open_run": "bearingsim.pipeline.api",
     "stage_names": "bearingsim.pipeline.api",

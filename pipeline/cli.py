@@ -197,6 +197,8 @@ class _StageProgress:
         if stage not in self.tasks:
             self.tasks[stage] = self.progress.add_task(text, total=1.0, stage=stage)
         self.progress.update(self.tasks[stage], description=text, completed=max(0.0, min(1.0, fraction)))
+        if fraction >= 1.0:  # the stage finished: a full bar, and its clock stops
+            self.progress.stop_task(self.tasks[stage])
 
     def __exit__(self, *exc):
         if not self.quiet:

@@ -91,7 +91,7 @@ def compute(ctx: StageContext) -> dict:
     # scene.solver is the integrator's own settings (HHTSettings) plus the run's duration
     run = simulate_bearing(params, start, scene.solver, scene.solver.duration,
                            scene.output.sample_interval, progress=progress)
-    ctx.progress("writing results", 1.0)
+    ctx.progress("writing results", 0.99)
     summary = write_simulation_results(ctx.out_dir, scene, params, start, run,
                                        wall_time=time.perf_counter() - wall0)
     atomic_write_json(ctx.out_dir / SUMMARY_FILE, summary)

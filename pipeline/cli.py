@@ -469,6 +469,8 @@ def sweep(scene: SceneArg,
             records = run_sweep(plan, None, retry_failed=retry_failed)
         else:
             with dask_client(scheduler, workers) as client, SweepProgress(err_console) as bar:
+                if getattr(client, "dashboard_link", None):
+                    err_console.print(f"Dask dashboard: {client.dashboard_link}", highlight=False)
                 records = run_sweep(plan, client, progress=bar.update, retry_failed=retry_failed)
     except OSError as exc:
         _fail(EXIT_FAILED, f"cannot reach the Dask scheduler {scheduler!r}: {exc}" if scheduler else str(exc))

@@ -193,7 +193,8 @@ def quasistatic_section(qs_dir: Path | None) -> str:
     parts = [table(["inner race", "value", "unit"], [
         ["displacement x, y, z", [d * 1e6 for d in ir.get("displacement", [])], "µm"],
         ["tilt about x, y", [r * 1e3 for r in ir.get("tilt", [])], "mrad"],
-        ["cage speed (kinematic)", result.get("cage_speed"), "rad/s"],
+        ["cage speed (kinematic)", f"{result['cage_speed'] * 30.0 / math.pi:.1f}" if result.get("cage_speed") is not None
+         else None, "rev/min"],
         ["converged", result.get("converged"), ""], ["iterations", result.get("iterations"), ""]])]
     rows = [[f"{b['azimuth'] * deg:.1f}", b["inner_load"], b["outer_load"], b["inner_contact_angle"] * deg,
              b["outer_contact_angle"] * deg, b.get("max_pressure_inner", float("nan")) / 1e6,
@@ -286,6 +287,18 @@ def burn_section(burn: dict | None, out_dir: Path) -> str:
             + image(out_dir / burn["render"], "Outer race in 3-D, four fixed views (half ring each)."))
 
 
+def paraview_note(out_dir: Path) -> str:
+    """Where the ParaView files are (docs/outputs.md "ParaView"), when the stage wrote them."""
+    folder = Path(out_dir) / "paraview"
+    files = sorted(p.name for p in folder.iterdir() if p.suffix in (".pvd", ".vtp")) if folder.is_dir() else []
+    if not files:
+        return ""
+    return (f"<p>ParaView: open {html.escape(', '.join(files))} in <code>report/paraview/</code> together "
+            "(the time slider plays the run; balls as points with a <code>diameter</code> for Glyph → Sphere; "
+            "the outer race coloured by <code>land_heat</code> is the burn zone). Fields and units: "
+            "docs/outputs.md.</p>")
+
+
 def provenance_section(run_dir: Path, stage_dirs: dict[str, Path]) -> str:
     versions = _read_json(run_dir / "versions.json") or {}
     rows = []
@@ -306,6 +319,7 @@ def write_report_html(path: Path, scene, run_dir: Path, stage_dirs: dict[str, Pa
     scene_file = run_dir / "scene.toml"
     scene_text = scene_file.read_text(encoding="utf-8") if scene_file.is_file() else ""
     dyn = "".join(image(sim / f) for f in DYNAMIC_FIGURES if (sim / f).is_file()) if sim else ""
+    dyn += paraview_note(out_dir)
     sections = [
         ("Verdict", verdict_section(summary, burn, out_dir, sim, evidence)),
         ("Summary metrics", summary_section(summary)),

@@ -129,6 +129,8 @@ def sweep(scene, vary: Mapping[str, Any] | Iterable[str] | str, *,
         records = run_sweep(plan, client, progress=report, retry_failed=retry_failed)
     else:
         with dask_client(scheduler, workers) as made:
+            if progress and getattr(made, "dashboard_link", None):
+                print(f"Dask dashboard: {made.dashboard_link}", file=sys.stderr, flush=True)
             records = run_sweep(plan, made, progress=report, retry_failed=retry_failed)
     paths = gather(plan, records)
     return SweepResult(read_table(paths["table"]), plan.varied, paths["table"], paths.get("map"), plan.sweep_dir)

@@ -157,9 +157,7 @@ class StiffnessTable:
             "order": list(DOFS),
             "units": {"stiffness": "rows Fx, Fy, Fz [N], Mx, My [N.m]; columns x, y, z [m], rx, ry [rad]: "
                                    "N/m, N/rad, N.m/m, N.m/rad", "speed": "rev/min",
-                      "cage_speed": "rad/s", "hinge.translational": "N/m", "hinge.bending": "N.m/rad",
-                      "hinge.damping_time": "s", "hinge.damping_translational": "N s/m",
-                      "hinge.damping_bending": "N m s/rad"},
+                      "cage_speed": "rad/s", "hinge.translational": "N/m", "hinge.bending": "N.m/rad"},
             "damping": None,
             "damping_note": BEARING_DAMPING_NOTE,
             "rows": [{"speed_rpm": float(rpm), "speed_rad_s": float(self.speeds_rad_s[n]),
@@ -189,6 +187,7 @@ def _hinge_json(h: dict) -> dict:
     return {"source": h["source"], "translational": H_u.tolist(), "bending": H_psi.tolist(),
             "damping_time": c_G, "damping_translational": (c_G * H_u).tolist(),
             "damping_bending": (c_G * H_psi).tolist(),
+            "units": {"damping_time": "s", "damping_translational": "N s/m", "damping_bending": "N m s/rad"},
             "relation": "parallel to the bearing between inner race and ground (docs/model.md §5); "
                         "damping G = c_G H (docs/model.md (M.18))"}
 

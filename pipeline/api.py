@@ -232,6 +232,18 @@ class Run:
     def stage_dir(self, stage: str) -> Path:
         return Path(self.run_dir) / stage
 
+    def __repr__(self) -> str:
+        """One line: the scene, the directory, the stages it holds and the verdict."""
+        from .results.run_display import run_repr
+
+        return run_repr(self)
+
+    def _repr_html_(self) -> str:
+        """A notebook's display: the verdict, its key numbers and the cage orbit."""
+        from .results.run_display import run_html
+
+        return run_html(self)
+
     @property
     def stages(self) -> dict[str, str]:
         """Stage name -> "done" for every finished stage in the directory, plus the status of
@@ -304,9 +316,13 @@ class Run:
         from .results.timeseries import read_timeseries
 
         path = self._file("simulate", "timeseries.h5")
-        series, attrs = read_timeseries(path, names)
-        arrays = {n: NamedArray(s.data, s.units, s.dims, s.description, n) for n, s in series.items()}
-        return TimeSeries(arrays, attrs, path)
+        names = None if names is None else list(names)
+        wanted = names if names is None or "time" in names else [*names, "time"]  # the coordinate
+        series, attrs = read_timeseries(path, wanted)
+        time = series["time"].data if "time" in series else None
+        arrays = {n: NamedArray(s.data, s.units, s.dims, s.description, n) for n, s in series.items()
+                  if names is None or n in names}
+        return TimeSeries(arrays, attrs, path, time=time)
 
     def impacts(self) -> dict[str, NamedArray]:
         """`simulate/impacts.csv` as column name -> NamedArray over dimension "impact"."""

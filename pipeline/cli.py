@@ -197,6 +197,8 @@ class _StageProgress:
         if stage not in self.tasks:
             self.tasks[stage] = self.progress.add_task(text, total=1.0, stage=stage)
         self.progress.update(self.tasks[stage], description=text, completed=max(0.0, min(1.0, fraction)))
+        if fraction >= 1.0:  # the stage finished: a full bar, and its clock stops
+            self.progress.stop_task(self.tasks[stage])
 
     def __exit__(self, *exc):
         if not self.quiet:
@@ -519,6 +521,8 @@ def sweep(scene: SceneArg,
             records = run_sweep(plan, None, retry_failed=retry_failed)
         else:
             with dask_client(scheduler, workers) as client, SweepProgress(err_console) as bar:
+                if getattr(client, "dashboard_link", None):
+                    err_console.print(f"Dask dashboard: {client.dashboard_link}", highlight=False)
                 records = run_sweep(plan, client, progress=bar.update, retry_failed=retry_failed)
     except OSError as exc:
         _fail(EXIT_FAILED, f"cannot reach the Dask scheduler {scheduler!r}: {exc}" if scheduler else str(exc))

@@ -209,6 +209,7 @@ def compute_stage(stage, scene, run_dir, key, up, progress) -> StageOutcome:
             "validity": warnings, "files": stage_files(tmp),
         })
     log.info("stage %s: done in %.2f s", stage.name, wall)
+    report(f"done in {wall:.1f} s", 1.0)  # a progress display ends the stage's bar here
     _log_warnings(stage.name, warnings)
     return StageOutcome(stage.name, "computed", key, wall, info, warnings)
 

@@ -172,3 +172,4 @@ class Thermal:
 class Output:
     sample_interval: float = field(default=1e-5, metadata={"unit": "s", "gt": 0.0, "doc": "interval of the saved time series"})
     figures: bool = field(default=True, metadata={"doc": "draw the PNG figures of the quasistatic and simulate stages; false skips them (results are the same; sweeps: [sweep] figures = false)"})
+    paraview_frames: int = field(default=200, metadata={"unit": "-", "ge": 0, "le": 10000, "doc": "frames of the ParaView motion series the report stage writes (report/paraview/, docs/outputs.md): the run's samples thinned to at most this many; 0 writes none"})

@@ -14,9 +14,16 @@ Hinge: H_u (3x3) [N/m] and H_psi (2) [N.m/rad] of docs/model.md §5, from the sc
 every speed. In bearingsim's model it acts in parallel with the bearing between the inner
 race and ground (the inner race sees K + diag(H_u, H_psi)).
 
-ROSS (`ross.BearingElement(n, kxx, cxx, kyy=, kxy=, kyx=, kzz=, frequency=)`, ROSS 2.x) takes
-kxx, kxy, kyx, kyy, kzz of the bearing rows, frequency = speed in rad/s, damping 0; it has no
-tilt terms (README "Stiffness export").
+Damping: the hinge's G = c_G H (docs/model.md (M.18)) is exported with it. The bearing's is
+not: the quasi-static model has none, and the dynamic model's only bearing damping is the
+contact damping of (M.62), a numerical choice (a fraction of each ball's critical damping on its
+Hertz stiffness, no published source) acting on the balls' own contact modes; condensed onto
+the inner race it is not a constant coefficient, so it is not given as one (BEARING_DAMPING_NOTE).
+
+ROSS (`ross.BearingElement(n, kxx, cxx, kyy=, kxy=, kyx=, kzz=, frequency=)`, ROSS 2.x):
+`stiffness.json` holds its keyword arguments as numbers (`ross.bearing_element`, and
+`ross.hinge_element` for the hinge), so `rs.BearingElement(n=0, **doc["ross"]["bearing_element"])`
+needs nothing of bearingsim; it has no tilt terms (docs/outputs.md "ROSS").
 """
 
 from __future__ import annotations
@@ -33,6 +40,16 @@ DOFS = ("x", "y", "z", "rx", "ry")
 STIFFNESS_DIR = "stiffness"
 CSV_FILE, JSON_FILE = "stiffness.csv", "stiffness.json"
 ROSS_TERMS = ("kxx", "kxy", "kyx", "kyy", "kzz")  # ROSS BearingElement's stiffness arguments
+ROSS_DAMPING = ("cxx", "cxy", "cyx", "cyy", "czz")
+BEARING_DAMPING_NOTE = (
+    "The bearing's damping is not exported (cxx = cxy = cyx = cyy = czz = 0 in ross.bearing_element): "
+    "the quasi-static model has none, and the dynamic model's contact damping (docs/model.md (M.62)) is a "
+    "numerical choice, not a measured or published bearing damping; condensed onto the inner race it would "
+    "depend on frequency through the balls' own modes. With it at zero every logarithmic decrement ROSS "
+    "computes comes from the rest of the rotor model (and the hinge's G = c_G H, ross.hinge_element).")
+SPEED_RANGE_NOTE = ("ROSS interpolates the coefficients in `frequency` and extrapolates outside it (with a "
+                    "warning): export speeds that cover the whole Campbell range, e.g. `bearingsim stiffness "
+                    "SCENE --speeds 0:6000:13`.")
 
 
 def term_name(i: int, j: int) -> str:
@@ -62,7 +79,7 @@ class StiffnessTable:
     cage_speed: np.ndarray  # (n,) [rad/s]
     warnings: tuple[tuple[str, ...], ...]
     operating_point: dict  # loads [N, N.m] and outer-ring speed [rev/min]
-    hinge: dict | None  # {"source", "translational" (3, 3) [N/m], "bending" (2,) [N.m/rad]}
+    hinge: dict | None  # {"source", "translational" (3, 3) [N/m], "bending" (2,) [N.m/rad], "damping_time" [s]}
 
     @property
     def speeds_rad_s(self) -> np.ndarray:
@@ -83,9 +100,29 @@ class StiffnessTable:
     def ross_coefficients(self) -> dict[str, np.ndarray]:
         """Keyword arguments of `ross.BearingElement` (add `n=`): stiffness from the bearing's
         translational rows, damping zero, frequency = inner-ring speed [rad/s]."""
-        zeros = np.zeros(len(self.speeds_rpm))
-        return {**{t: self.term(t) for t in ROSS_TERMS}, "cxx": zeros, "cyy": zeros, "cxy": zeros,
-                "cyx": zeros, "frequency": self.speeds_rad_s}
+        zeros = np.zeros(len(self.speeds_rpm))  # no bearing damping: BEARING_DAMPING_NOTE
+        return {**{t: self.term(t) for t in ROSS_TERMS}, **{c: zeros for c in ROSS_DAMPING},
+                "frequency": self.speeds_rad_s}
+
+    def ross_element_arguments(self) -> dict[str, list[float]]:
+        """`ross_coefficients()` as plain lists of floats (what stiffness.json holds)."""
+        ross = self.ross_coefficients()
+        return {k: [float(v) for v in ross[k]] for k in (*ROSS_TERMS, *ROSS_DAMPING, "frequency")}
+
+    def ross_hinge_arguments(self) -> dict[str, list[float]] | None:
+        """Keyword arguments of a second `ross.BearingElement` for the hinge: H_u's x, y, z
+        terms and their damping G_u = c_G H_u (docs/model.md (M.18)), the same at every
+        speed. None without a hinge."""
+        if self.hinge is None:
+            return None
+        H_u = np.asarray(self.hinge["translational"], float)
+        c_G = float(self.hinge.get("damping_time", 0.0))
+        n = len(self.speeds_rpm)
+        index = {"xx": (0, 0), "xy": (0, 1), "yx": (1, 0), "yy": (1, 1), "zz": (2, 2)}
+        out = {f"k{a}": [float(H_u[ij])] * n for a, ij in index.items()}
+        out.update({f"c{a}": [float(c_G * H_u[ij])] * n for a, ij in index.items()})
+        out["frequency"] = [float(v) for v in self.speeds_rad_s]
+        return out
 
     def csv_text(self) -> str:
         """One row per speed; units in the header; floats in round-trip precision."""
@@ -122,20 +159,37 @@ class StiffnessTable:
                                    "N/m, N/rad, N.m/m, N.m/rad", "speed": "rev/min",
                       "cage_speed": "rad/s", "hinge.translational": "N/m", "hinge.bending": "N.m/rad"},
             "damping": None,
-            "damping_note": "the quasi-static model has no damping; give ROSS cxx = cyy = cxy = cyx = 0",
+            "damping_note": BEARING_DAMPING_NOTE,
             "rows": [{"speed_rpm": float(rpm), "speed_rad_s": float(self.speeds_rad_s[n]),
                       "converged": bool(self.converged[n]), "cage_speed": float(self.cage_speed[n]),
                       "stiffness": self.bearing[n].tolist(), "warnings": list(self.warnings[n])}
                      for n, rpm in enumerate(self.speeds_rpm)],
-            "hinge": None if h is None else {"source": h["source"], "translational": np.asarray(h["translational"]).tolist(),
-                                             "bending": np.asarray(h["bending"]).tolist(),
-                                             "relation": "parallel to the bearing between inner race and ground "
-                                                         "(docs/model.md §5)"},
-            "ross": {"element": "ross.BearingElement", "kxx": "stiffness[0][0]", "kxy": "stiffness[0][1]",
-                     "kyx": "stiffness[1][0]", "kyy": "stiffness[1][1]", "kzz": "stiffness[2][2]",
-                     "cxx": 0.0, "frequency": "speed_rad_s",
-                     "not_representable": "tilt rows/columns (rx, ry) and the x-z, y-z couplings"},
+            "hinge": None if h is None else _hinge_json(h),
+            "ross": {
+                "bearing_element": self.ross_element_arguments(),
+                "hinge_element": self.ross_hinge_arguments(),
+                "units": {"k..": "N/m", "c..": "N s/m", "frequency": "rad/s (inner-ring speed)"},
+                "usage": "rs.BearingElement(n=NODE, **doc['ross']['bearing_element']); the hinge (mounting "
+                         "stiffness and its damping G = c_G H) as a second element, unless the rotor model has "
+                         "its own shaft and housing: rs.BearingElement(n=NODE, **doc['ross']['hinge_element'])",
+                "damping_note": BEARING_DAMPING_NOTE,
+                "speed_range_rpm": [float(self.speeds_rpm.min()), float(self.speeds_rpm.max())],
+                "speed_range_note": SPEED_RANGE_NOTE,
+                "not_representable": "tilt rows/columns (rx, ry) and the x-z, y-z couplings",
+            },
         }
+
+
+def _hinge_json(h: dict) -> dict:
+    """The hinge block of stiffness.json: H_u, H_psi, c_G and the damping G = c_G H."""
+    c_G = float(h.get("damping_time", 0.0))
+    H_u, H_psi = np.asarray(h["translational"], float), np.asarray(h["bending"], float)
+    return {"source": h["source"], "translational": H_u.tolist(), "bending": H_psi.tolist(),
+            "damping_time": c_G, "damping_translational": (c_G * H_u).tolist(),
+            "damping_bending": (c_G * H_psi).tolist(),
+            "units": {"damping_time": "s", "damping_translational": "N s/m", "damping_bending": "N m s/rad"},
+            "relation": "parallel to the bearing between inner race and ground (docs/model.md §5); "
+                        "damping G = c_G H (docs/model.md (M.18))"}
 
 
 def hinge_columns(hinge: dict | None) -> list[tuple[str, str, float]]:
@@ -159,8 +213,9 @@ def hinge_of(scene, identify_dir: Path | None) -> dict | None:
     matrices = hinge_matrices(scene, Path(identify_dir) if identify_dir is not None else None)
     if matrices is None:
         return None
-    H_u, H_psi, _ = matrices
-    return {"source": scene.hinge.source, "translational": np.asarray(H_u, float), "bending": np.asarray(H_psi, float)}
+    H_u, H_psi, c_G = matrices
+    return {"source": scene.hinge.source, "translational": np.asarray(H_u, float), "bending": np.asarray(H_psi, float),
+            "damping_time": float(c_G)}
 
 
 def check_speeds(speeds_rpm: Iterable[float] | float | None, scene) -> np.ndarray:

@@ -4,7 +4,9 @@ CLI), results come back with units and dimension names."""
 
 from __future__ import annotations
 
+import csv
 import json
+import math
 import re
 import subprocess
 import sys
@@ -168,3 +170,53 @@ def test_named_array_is_numpy_and_optionally_xarray():
         return
     da = a.to_xarray({"time": [0.0, 1.0, 2.0], "xy": ["x", "y"]})
     assert da.attrs["units"] == "N" and da.dims == ("time", "xy") and float(da.sel(xy="y").sum()) == 9.0
+
+
+def test_summary_units_cover_every_number(example):
+    """Every number of a real run's summary.json has a unit in its `units` map: a new key
+    without one (pipeline/results/summary_keys.py) fails here."""
+    from bearingsim.pipeline.results.summary_keys import numeric_keys
+
+    _, where = example
+    summary = json.loads((where / "runs/demo/simulate/summary.json").read_text())
+    assert [k for k in numeric_keys(summary) if k not in summary["units"]] == []
+    units = summary["units"]
+    assert (units["cage_speed_mean"], units["energy.drive"], units["land_film_min"], units["steps"]) == (
+        "rad/s", "J", "m", "1")
+    assert units["verdict.land_film_min_um"] == "um" and units["startup.metal_energy"] == "J"
+
+
+def test_impact_positions_are_degrees_0_to_360(example):
+    """impacts.csv's orbital position is the ball's azimuth at the impact, in degrees 0–360:
+    checked against the ball centres of timeseries.h5 (atan2 of the nearest sample; the
+    ball moves ~0.1° between samples)."""
+    ns, where = example
+    with open(where / "runs/demo/simulate/impacts.csv", newline="", encoding="utf-8") as fh:
+        rows = list(csv.DictReader(fh))
+    assert rows, "the 10 ms example run has pocket impacts (it had 2)"
+    assert all(h.endswith("]") for h in rows[0])  # every column carries its unit
+    ts = ns["run"].timeseries(["balls/position"])
+    t, position = ts.coords()["time"], np.asarray(ts["balls/position"])
+    for row in rows:
+        angle = float(row["orbital_position [deg]"])
+        assert 0.0 <= angle < 360.0
+        i, ball = int(np.argmin(np.abs(t - float(row["time [s]"])))), int(row["ball [1]"])
+        expected = math.degrees(math.atan2(position[i, ball, 1], position[i, ball, 0])) % 360.0
+        assert abs((angle - expected + 180.0) % 360.0 - 180.0) < 0.5
+
+
+def test_run_repr_is_short_and_the_notebook_display_shows_the_verdict(example):
+    ns, _ = example
+    run = ns["run"]
+    text = repr(run)
+    assert text.startswith("Run('helicopter-b-given-hinge', ") and "\n" not in text and len(text) < 300
+    assert run.summary["verdict"]["class"] in text
+    page = run._repr_html_()
+    assert run.summary["verdict"]["text"].split(":")[0] in page.replace("&#x27;", "'")
+    assert "thinnest land film" in page and 'src="data:image/png;base64,' in page
+
+
+def test_dir_bearingsim_lists_public_names_only():
+    names = dir(bearingsim)
+    assert "annotations" not in names and "importlib" not in names and "_API" not in names
+    assert {"load_scene", "run", "open_run", "sweep", "Run", "export_stiffness", "__version__"} <= set(names)

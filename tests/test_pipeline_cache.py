@@ -125,3 +125,16 @@ def test_upstream_rerun_invalidates_downstream(scene, tmp_path):
     changed = [dataclasses.replace(stages[0], inputs=lambda s: {"fe": {"mesh_size": 0.002}})] + stages[1:]
     run_stages(fe_scene, tmp_path, changed, ["simulate"])
     assert calls == ["identify", "simulate"]
+
+
+def test_progress_ends_each_computed_stage_at_one(scene, tmp_path):
+    """A stage's last progress call is 1.0, so a progress bar finishes (and its clock stops)
+    instead of staying at the stage's last message (the quasi-static one stopped at 70 %)."""
+    calls: list[str] = []
+    seen: list[tuple[str, str, float]] = []
+    run_stages(scene, tmp_path, make_stages(calls), ["simulate"], progress=lambda *a: seen.append(a))
+    last = {}
+    for stage, text, fraction in seen:
+        last[stage] = (text, fraction)
+    assert set(last) == {"quasistatic", "simulate"}
+    assert all(fraction == 1.0 and text.startswith("done in ") for text, fraction in last.values())

@@ -129,7 +129,8 @@ def test_render_command_regenerates_the_report_without_solving(run_dir, monkeypa
     assert result.exit_code == 0, result.output
     assert "no display" in result.output and "off-screen" in result.output  # --show falls back
     out = run / "report"
-    for name in ("report.html", "burn_zone_3d.png", "burn_zone_map.png", "fe_fx.png", "fe_fx.vtu", "renders.json"):
+    for name in ("report.html", "burn_zone_3d.png", "burn_zone_map.png", "fe_fx.png", "fe_fx.vtu", "renders.json",
+                 "paraview/balls.pvd", "paraview/outer_race.vtp"):
         assert (out / name).is_file() and (out / name).stat().st_size > 0, name
     assert (run / "simulate" / "timeseries.h5").stat().st_mtime_ns == h5_mtime
     manifest = read_manifest(out)
@@ -152,6 +153,8 @@ def test_render_command_regenerates_the_report_without_solving(run_dir, monkeypa
     assert burn["peak_sector_deg"] == pytest.approx(math.floor(math.degrees(RUB_AZIMUTH)) + 0.5)
     assert burn["track_outside_fraction"] == 0.0  # 25° ± 5° tracks stay inside the raceway
     assert renders["fe"][0]["max_displacement_m"] == pytest.approx(3e-6, rel=1e-12)
+    # ParaView: the series the synthetic run holds (balls only: it saved no race or cage motion)
+    assert renders["paraview"] == {"balls": "paraview/balls.pvd", "outer_race": "paraview/outer_race.vtp"}
 
     page = (out / "report.html").read_text()
     assert len(re.findall(r'src="data:image/png;base64,', page)) >= 5  # orbit, map twice, burn 3-D, FE
@@ -185,3 +188,33 @@ def test_run_finds_the_rendered_report_up_to_date_and_redraws_when_forced(run_di
 def test_render_rejects_a_directory_that_is_not_a_run(tmp_path):
     result = CliRunner().invoke(app, ["render", str(tmp_path)])
     assert result.exit_code == 2 and "not a run directory" in " ".join(result.output.split())
+
+
+def test_report_metrics_read_as_an_engineers_table(run_dir):
+    """No raw summary.json key in a table cell: every metric has a name and a unit."""
+    from bearingsim.pipeline.results.summary_keys import numeric_keys
+
+    run, _, _ = run_dir
+    if not (run / "report" / "report.html").is_file():
+        CliRunner().invoke(app, ["render", str(run)])
+    page = (run / "report" / "report.html").read_text()
+    summary = json.loads((run / "simulate" / "summary.json").read_text())
+    raw = [k for k in numeric_keys(summary) + list(summary)
+           if f"<td>{html.escape(k)}</td>" in page or f"<td>{html.escape(k.rpartition('.')[2])}</td>" in page]
+    assert raw == []
+    assert "<td>cage offset direction, mean</td>" in page and "<td>deg</td>" in page
+    # the azimuth 1 rad of the synthetic cage, in degrees 0–360
+    assert f"<td>{math.degrees(RUB_AZIMUTH):.0f}</td>" in page
+
+
+def test_drift_check_compares_directions_on_the_circle():
+    from bearingsim.pipeline.render.report import drift_rows
+
+    # 6.27 rad and 0.007 rad: 0.02 rad (0.6°) apart across the 2π wrap, not 6.26 rad
+    (row,) = drift_rows({"cage_offset_azimuth_mean": [6.27, 0.007]})
+    assert row[1:4] == ["359", "0", "deg"]
+    assert row[4] == f"{math.degrees(2 * math.pi - 6.27 + 0.007):.1f}°" and "drifts" not in row[4]
+    (row,) = drift_rows({"cage_offset_azimuth_mean": [0.0, 1.0]})
+    assert "drifts" in row[4]
+    (row,) = drift_rows({"cage_eps_mean": [0.5, 0.52]})
+    assert row[4] == "4 %"

@@ -166,3 +166,42 @@ def test_command_line_writes_the_same_table(tmp_path):
     assert float(rows[1]["kx_ry [N/rad]"]) == table.bearing[1][0, 4]
     bad = CliRunner().invoke(app, ["stiffness", SCENE, "--speeds", "fast", "--out", str(tmp_path / "b")])
     assert bad.exit_code == 2 and "--speeds" in bad.output
+
+
+def test_json_holds_ross_arguments_as_numbers_and_the_hinge_damping(exported):
+    """stiffness.json alone is enough for ROSS: keyword arguments as numbers, one value per
+    speed; the hinge element carries G = c_G H (docs/model.md (M.18); the given scene's
+    c_G = 1e-6 s and H_u = 1e9 N/m diagonal give 1000 N s/m)."""
+    scene, run_dir, table, _ = exported
+    doc = json.loads((run_dir / "stiffness" / "stiffness.json").read_text(encoding="utf-8"))
+    bearing = doc["ross"]["bearing_element"]
+    assert set(bearing) == {*ROSS_TERMS, "cxx", "cxy", "cyx", "cyy", "czz", "frequency"}
+    assert all(isinstance(v, float) for values in bearing.values() for v in values)
+    np.testing.assert_array_equal(bearing["kxy"], table.bearing[:, 0, 1])
+    np.testing.assert_allclose(bearing["frequency"], np.array(SPEEDS) * 2 * math.pi / 60, rtol=1e-15)
+    assert all(v == 0.0 for c in ("cxx", "cxy", "cyx", "cyy", "czz") for v in bearing[c])
+    assert "not exported" in doc["damping_note"] and "(M.62)" in doc["damping_note"]
+    hinge = doc["ross"]["hinge_element"]
+    assert scene.hinge.damping_ratio_time == 1e-6
+    assert hinge["kxx"] == [1e9] * 3 and hinge["cxx"] == pytest.approx([1000.0] * 3, rel=1e-12)
+    assert hinge["cxy"] == [0.0] * 3
+    np.testing.assert_allclose(doc["hinge"]["damping_translational"], np.eye(3) * 1e3, rtol=1e-12)
+    assert doc["ross"]["speed_range_rpm"] == [1000.0, 6000.0]
+
+
+def test_readme_ross_example_runs_against_the_json_alone(exported, tmp_path, monkeypatch):
+    """The README's ROSS block, verbatim but for the file's path (skipped without ross)."""
+    import re
+    from pathlib import Path
+
+    ross = pytest.importorskip("ross")
+    _, run_dir, table, _ = exported
+    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+    block = re.search(r"<!-- ross-example -->\s*```python\n(.*?)```", readme, re.S).group(1)
+    code = block.replace("runs/helicopter-b/stiffness/stiffness.json", str(run_dir / "stiffness" / "stiffness.json"))
+    assert "import bearingsim" not in code
+    namespace: dict = {}
+    exec(compile(code, "README.md", "exec"), namespace)  # noqa: S102 - the documented example
+    assert isinstance(namespace["bearing"], ross.BearingElement)
+    np.testing.assert_allclose(namespace["bearing"].kxx_interpolated(table.speeds_rad_s[1]),
+                               table.bearing[1, 0, 0], rtol=1e-9)

@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
+import math
+
 import pytest
 
 from bearingsim.pipeline.sweep.classify import CageClassThresholds
 from bearingsim.pipeline.sweep.points import SweepPoint
 from bearingsim.pipeline.sweep.stability_map import axis_label, map_axes, plot_stability_map
-from bearingsim.pipeline.sweep.table import read_table, result_row, write_table
+from bearingsim.pipeline.sweep.table import SUMMARY_COLUMNS, read_table, result_row, write_table
 
 
 def test_map_axes_prefer_moment_and_speed():
@@ -40,7 +42,15 @@ def test_table_round_trip_with_failed_and_pending_points(tmp_path):
     back = read_table(tmp_path / "results.csv")
     assert [r["status"] for r in back] == ["done", "done", "failed", "pending"]
     assert [r["cage_class"] for r in back] == ["centred", "crushed", "failed", "pending"]
-    assert back[1]["burn_zone_start"] == 0.5 and back[1]["burn_zone_end"] == 1.0
+    # positions in degrees in the table (summary.json's 0.5 and 1.0 rad)
+    assert back[1]["burn_zone_start"] == pytest.approx(math.degrees(0.5), rel=1e-12)
+    assert back[1]["burn_zone_end"] == pytest.approx(math.degrees(1.0), rel=1e-12)
+    header = (tmp_path / "results.csv").read_text().splitlines()[0].split(",")
+    # every number carries its unit; text columns (ids, classes, messages) none
+    assert {"load.moment [N m]", "cage_speed_mean [rad/s]", "burn_zone_start [degree]",
+            "cage_metal_contact_fraction [1]", "duration [s]"} <= set(header)
+    assert {"point_id", "status", "physics.cage_race", "cage_class", "risk", "warnings", "error", "run_dir"} <= set(header)
+    assert all("[" in h for h in header if h.split(" [")[0] in SUMMARY_COLUMNS)
     assert back[2]["error"] == "SceneError: boom" and back[0]["error"] is None
     assert back[1]["physics.cage_race"] == "dry" and back[1]["load.moment"] == 0.0
 

@@ -22,15 +22,29 @@ def _save(fig, path: Path) -> None:
     save_png(fig, Path(path))
 
 
-def cage_orbit(xy: np.ndarray, clearance: float, path: Path, title: str = "") -> None:
-    """Cage-centre orbit [µm] with the guide-clearance circle (ε = 1)."""
+def _settled(t, settled_from: float | None) -> np.ndarray:
+    """Samples of the settled window (t >= its start; the whole run without one)."""
+    t = np.asarray(t, dtype=float)
+    return t >= (settled_from if settled_from is not None else -np.inf)
+
+
+def _startup_label(settled_from: float | None) -> str:
+    return f"start-up (t < {settled_from:.3g} s)" if settled_from is not None else "start-up"
+
+
+def cage_orbit(xy: np.ndarray, clearance: float, path: Path, title: str = "", t=None,
+               settled_from: float | None = None) -> None:
+    """Cage-centre orbit [µm] with the guide-clearance circle (ε = 1): the start-up grey,
+    the settled window (from `settled_from` [s], the verdict's) coloured."""
     fig, ax = _subplots(figsize=(6.2, 6.0))
     th = np.linspace(0, 2 * math.pi, 361)
     c = clearance * 1e6
     ax.plot(c * np.cos(th), c * np.sin(th), "k--", lw=1, label=f"guide clearance C = {c:.0f} µm")
-    n = len(xy)
-    ax.plot(xy[: n // 2, 0] * 1e6, xy[: n // 2, 1] * 1e6, color="0.7", lw=0.5, label="first half")
-    ax.plot(xy[n // 2:, 0] * 1e6, xy[n // 2:, 1] * 1e6, color="C0", lw=0.6, label="second half")
+    late = _settled(t if t is not None else np.arange(len(xy)), settled_from)
+    if (~late).any():
+        ax.plot(xy[~late, 0] * 1e6, xy[~late, 1] * 1e6, color="0.7", lw=0.5, label=_startup_label(settled_from))
+    ax.plot(xy[late, 0] * 1e6, xy[late, 1] * 1e6, color="C0", lw=0.6,
+            label="settled window" if settled_from is not None else "whole run")
     ax.set_aspect("equal")
     lim = 1.15 * max(c, np.abs(xy).max() * 1e6)
     ax.set_xlim(-lim, lim)
@@ -44,15 +58,19 @@ def cage_orbit(xy: np.ndarray, clearance: float, path: Path, title: str = "") ->
 
 
 def cage_speed(t: np.ndarray, speed: np.ndarray, path: Path, kinematic: float | None = None,
-               title: str = "") -> None:
-    """Cage rotation speed [rev/min] with its relative variation over the last half."""
+               title: str = "", settled_from: float | None = None) -> None:
+    """Cage rotation speed [rev/min] with its mean and relative variation over the settled
+    window (the verdict's; the last half of the run without one)."""
     rpm = speed * 60.0 / (2 * math.pi)
-    late = t >= t[0] + 0.5 * (t[-1] - t[0])
+    late = _settled(t, settled_from if settled_from is not None else t[0] + 0.5 * (t[-1] - t[0]))
+    window = "settled" if settled_from is not None else "last half"
     mean = rpm[late].mean()
     var = (rpm[late].max() - rpm[late].min()) / mean if mean else float("nan")
     fig, ax = _subplots(figsize=(8, 4))
     ax.plot(t, rpm, lw=0.7, label="cage speed")
-    ax.axhline(mean, color="C1", lw=1, label=f"mean (last half) {mean:.1f} rpm, variation {100 * var:.2f} % p-p")
+    ax.axhline(mean, color="C1", lw=1, label=f"mean ({window}) {mean:.1f} rev/min, variation {100 * var:.2f} % p-p")
+    if settled_from is not None:
+        ax.axvline(settled_from, color="0.5", ls="--", lw=0.8, label=f"settled from {settled_from:.3g} s")
     if kinematic is not None:
         ax.axhline(kinematic * 60 / (2 * math.pi), color="k", ls=":", lw=1, label="epicyclic (pure rolling)")
     ax.set_xlabel("time [s]")
@@ -98,12 +116,21 @@ def cage_race_force(t, force_norm, metal_force, eps, path: Path, title: str = ""
     _save(fig, path)
 
 
-def pocket_impacts(times, orbital_position, peak_force, path: Path, title: str = "") -> None:
-    """Ball–pocket impacts: peak force against time and against orbital position."""
+def pocket_impacts(times, orbital_position, peak_force, path: Path, title: str = "",
+                   settled_from: float | None = None) -> None:
+    """Ball–pocket impacts: peak force against time and against orbital position [deg,
+    0–360], start-up and settled window apart (the verdict counts the settled ones)."""
+    times, peak_force = np.asarray(times, dtype=float), np.asarray(peak_force, dtype=float)
+    position = np.degrees(np.mod(np.asarray(orbital_position, dtype=float), 2 * math.pi))
+    late = _settled(times, settled_from)
     fig, (a1, a2) = _subplots(1, 2, figsize=(11, 4))
     if len(times):
-        a1.scatter(times, peak_force, s=4)
-        a2.scatter(np.degrees(np.mod(orbital_position, 2 * math.pi)), peak_force, s=4)
+        for part, colour, label in ((~late, "0.6", _startup_label(settled_from)),
+                                    (late, "C0", "settled window" if settled_from is not None else "whole run")):
+            if part.any():
+                a1.scatter(times[part], peak_force[part], s=4, color=colour, label=f"{label}: {part.sum()}")
+                a2.scatter(position[part], peak_force[part], s=4, color=colour)
+        a1.legend(fontsize=8)
     else:
         for ax in (a1, a2):
             ax.text(0.5, 0.5, "no impacts", ha="center", va="center", transform=ax.transAxes)
@@ -114,5 +141,7 @@ def pocket_impacts(times, orbital_position, peak_force, path: Path, title: str =
     for ax in (a1, a2):
         ax.set_ylabel("impact peak force [N]")
         ax.grid(alpha=0.3)
-    fig.suptitle(f"Ball–pocket impacts ({len(times)}) {title}")
+    count = (f"{int(late.sum())} settled + {int((~late).sum())} start-up" if settled_from is not None
+             else f"{len(times)}")
+    fig.suptitle(f"Ball–pocket impacts ({count}) {title}")
     _save(fig, path)

@@ -8,5 +8,7 @@ package costs nothing. Entry points:
 - `fe_deflection.render_case` — one FE load case (PNG + ParaView `.vtu`);
 - `burn_zone_data.burn_zone_map` + `burn_zone.render_burn_zone_3d` /
   `render_burn_zone_map` — the burn zone on the outer race;
+- `paraview_series.write_paraview` — the ParaView motion series and the land heat on the
+  outer race (`body_surfaces` gives the bodies' surfaces);
 - `report.write_report_html` — the self-contained page.
 """

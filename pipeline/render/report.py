@@ -17,20 +17,6 @@ import time
 import tomllib
 from pathlib import Path
 
-SUMMARY_UNITS = {
-    "duration": "s", "wall_time": "s", "integration_wall_time": "s", "kernel_load_time": "s", "cage_speed_mean": "rad/s",
-    "kinematic_cage_speed": "rad/s", "cage_speed_variation": "-", "cage_metal_contact_fraction": "-",
-    "cage_contact_angle_spread": "rad", "cage_whirl_ratio": "-", "inner_race_axial_mean": "m",
-    "pocket_impacts": "count", "pocket_impact_force_p95": "N", "burn_zone_sector": "rad",
-    "burn_zone_energy_total": "J", "burn_zone_energy_metal": "J", "burn_zone_energy_film": "J",
-    "burn_zone_sector_metal": "rad", "settled_window": "s", "settled_revolutions": "count",
-    "cage_eps_mean": "-", "cage_eps_max": "-", "cage_offset_azimuth_mean": "rad", "cage_offset_spread": "rad",
-    "cage_offset_sector": "rad", "cage_land_force_mean": "N", "cage_land_force_max": "N",
-    "land_film_min": "m", "land_film_min_time": "s", "land_film_min_azimuth": "rad", "land_roughness": "m",
-    "land_film_ratio_min": "-", "pocket_impact_regions": "rad, rad, -",
-    "end_time": "s", "revolutions": "count", "block_length": "s", "max_metal_force": "N", "metal_energy": "J",
-    "film_energy": "J", "land_force_peak": "N", "metal_contact_fraction": "-", "pocket_impact_force_max": "N",
-}
 SOLVER_COUNTERS = ("steps", "rejected_steps", "newton_failures", "newton_iterations", "factorizations",
                    "residual_evaluations", "min_step_accepts", "integration_wall_time", "kernel_load_time",
                    "wall_time")
@@ -85,27 +71,59 @@ def _not_run(what: str) -> str:
 
 
 def summary_section(summary: dict | None) -> str:
-    """Every key of summary.json as written (SI units), the start-up and the drift check."""
+    """The summary's metrics as an engineer reads them (results.summary_keys.METRICS: names,
+    units, digits; azimuths 0–360°), the start-up apart, and the drift check."""
+    from ..results.summary_keys import METRICS, metric_text
+
     if summary is None:
         return _not_run("No dynamic run in this directory (stage simulate did not run).")
-    skip = set(SOLVER_COUNTERS) | {"warnings"}
-    rows = [[k, summary[k], SUMMARY_UNITS.get(k, "")] for k in summary
-            if k not in skip and not isinstance(summary[k], dict)]
-    for key in ("burn_zone_sector", "burn_zone_sector_metal", "cage_offset_sector"):
-        if summary.get(key):
-            a, b = summary[key]
-            rows.append([f"{key} (deg)", [math.degrees(a), math.degrees(b)], "deg"])
-    energy = summary.get("energy") or {}
-    rows += [[f"energy/{k}", v, "J"] for k, v in energy.items()]
-    rows += [[f"startup/{k}", v, SUMMARY_UNITS.get(k, "")] for k, v in (summary.get("startup") or {}).items()]
-    parts = [table(["metric", "value", "unit"], rows)]
-    drift = summary.get("settled_drift")
-    if drift:
-        parts.append("<p>Drift check: the same metrics over the first and the second half of the settled "
-                     "window; values that differ much mean the statistics still drift (run longer).</p>")
-        parts.append(table(["metric", "first half", "second half", "unit"],
-                           [[k, v[0], v[1], SUMMARY_UNITS.get(k, "")] for k, v in drift.items()]))
+    rows, startup = [], []
+    for key, metric in METRICS.items():
+        table_name, _, name = key.rpartition(".")
+        value = (summary.get(table_name) or {}).get(name) if table_name else summary.get(key)
+        if value is None and (table_name or key not in summary):
+            continue
+        (startup if table_name == "startup" else rows).append([metric.label, metric_text(metric, value), metric.unit])
+    parts = [table(["metric (settled window)", "value", "unit"], rows)]
+    if startup:
+        parts.append(table(["start-up (before the settled window)", "value", "unit"], startup))
+    parts.append(drift_section(summary.get("settled_drift")))
     return "".join(parts)
+
+
+DRIFT_LIMIT = 0.2  # relative change between the halves that reads as a drift
+DRIFT_ANGLE_LIMIT_DEG = 10.0  # change of a mean direction that reads as a drift
+
+
+def drift_rows(drift: dict) -> list[list]:
+    """[metric, first half, second half, unit, change] per drift metric; a direction's
+    change is its angle on the circle (6.27 rad and 0.007 rad are 0.6° apart)."""
+    from ..results.summary_keys import METRICS, angle_difference, metric_text
+
+    rows = []
+    for key, pair in drift.items():
+        metric = METRICS.get(key)
+        if metric is None or not pair or None in pair:
+            continue
+        first, second = (float(v) for v in pair)
+        if metric.kind == "position":
+            change = math.degrees(angle_difference(first, second))
+            note = f"{change:.1f}°" + (" — drifts" if change > DRIFT_ANGLE_LIMIT_DEG else "")
+        else:
+            scale = max(abs(first), abs(second))
+            change = abs(second - first) / scale if scale > 0.0 else 0.0
+            note = f"{100 * change:.0f} %" + (" — drifts" if change > DRIFT_LIMIT else "")
+        rows.append([metric.label, metric_text(metric, first), metric_text(metric, second), metric.unit, note])
+    return rows
+
+
+def drift_section(drift: dict | None) -> str:
+    if not drift:
+        return ""
+    return ("<p>Drift check: the same metrics over the first and the second half of the settled window; "
+            f"a change of more than {100 * DRIFT_LIMIT:.0f} % (or {DRIFT_ANGLE_LIMIT_DEG:.0f}° for a direction, "
+            "measured on the circle) means the statistics still drift: run longer.</p>"
+            + table(["metric", "first half", "second half", "unit", "change"], drift_rows(drift)))
 
 
 # How far to trust the verdict: the validation against the reference cases (docs/validation.md)
@@ -154,10 +172,21 @@ def verdict_section(summary: dict | None, burn: dict | None, out_dir: Path, sim_
     return "".join(parts)
 
 
+SOLVER_LABELS = {"steps": "accepted steps", "rejected_steps": "rejected steps",
+                 "newton_failures": "Newton failures", "newton_iterations": "Newton iterations",
+                 "factorizations": "matrix factorisations", "residual_evaluations": "residual evaluations",
+                 "min_step_accepts": "steps accepted at the minimum step", "integration_wall_time": "integration time",
+                 "kernel_load_time": "kernel compile/load time", "wall_time": "wall time of the stage"}
+
+
 def solver_section(summary: dict | None) -> str:
     if summary is None:
         return _not_run("No dynamic run: no solver counters.")
-    return table(["counter", "value"], [[k, summary[k]] for k in SOLVER_COUNTERS if k in summary])
+    rows = [[SOLVER_LABELS[k], f"{summary[k]:.3g}" if isinstance(summary[k], float) else summary[k],
+             "s" if k.endswith("time") else ""] for k in SOLVER_COUNTERS if k in summary]
+    if summary.get("viscosity_lookup"):
+        rows.append(["viscosity lookup route (speed only, same results)", summary["viscosity_lookup"], ""])
+    return table(["counter", "value", "unit"], rows)
 
 
 def quasistatic_section(qs_dir: Path | None) -> str:
@@ -169,7 +198,8 @@ def quasistatic_section(qs_dir: Path | None) -> str:
     parts = [table(["inner race", "value", "unit"], [
         ["displacement x, y, z", [d * 1e6 for d in ir.get("displacement", [])], "µm"],
         ["tilt about x, y", [r * 1e3 for r in ir.get("tilt", [])], "mrad"],
-        ["cage speed (kinematic)", result.get("cage_speed"), "rad/s"],
+        ["cage speed (kinematic)", f"{result['cage_speed'] * 30.0 / math.pi:.1f}" if result.get("cage_speed") is not None
+         else None, "rev/min"],
         ["converged", result.get("converged"), ""], ["iterations", result.get("iterations"), ""]])]
     rows = [[f"{b['azimuth'] * deg:.1f}", b["inner_load"], b["outer_load"], b["inner_contact_angle"] * deg,
              b["outer_contact_angle"] * deg, b.get("max_pressure_inner", float("nan")) / 1e6,
@@ -180,6 +210,15 @@ def quasistatic_section(qs_dir: Path | None) -> str:
         parts.append(_not_run(f"warning: {w}"))
     parts.append(image(qs_dir / "load_distribution.png", "Ball loads and contact angles against azimuth."))
     return "".join(parts)
+
+
+def _cleaned(matrix) -> list:
+    """A hinge matrix with the round-off of an FE fit (terms below 1e-12 of its largest) shown as 0."""
+    import numpy as np
+
+    m = np.asarray(matrix, dtype=float)
+    big = float(np.max(np.abs(m), initial=0.0))
+    return np.where(np.abs(m) < 1e-12 * big, 0.0, m).tolist()
 
 
 def hinge_section(scene, identify_dir: Path | None) -> str:
@@ -199,7 +238,7 @@ def hinge_section(scene, identify_dir: Path | None) -> str:
     with open(path, "rb") as fh:
         doc = tomllib.load(fh)
     hinge, fit, mesh = doc.get("hinge", {}), doc.get("fit", {}), doc.get("mesh", {})
-    rows = [["H_u (translational)", hinge.get("translational"), "N/m"],
+    rows = [["H_u (translational)", _cleaned(hinge.get("translational", [])), "N/m"],
             ["H_psi (bending)", hinge.get("bending"), "N·m/rad"],
             ["damping time c_G", h.damping_ratio_time, "s"]]
     rows += [[f"fit: {k}", v, ""] for k, v in fit.items()]
@@ -253,6 +292,18 @@ def burn_section(burn: dict | None, out_dir: Path) -> str:
             + image(out_dir / burn["render"], "Outer race in 3-D, four fixed views (half ring each)."))
 
 
+def paraview_note(out_dir: Path) -> str:
+    """Where the ParaView files are (docs/outputs.md "ParaView"), when the stage wrote them."""
+    folder = Path(out_dir) / "paraview"
+    files = sorted(p.name for p in folder.iterdir() if p.suffix in (".pvd", ".vtp")) if folder.is_dir() else []
+    if not files:
+        return ""
+    return (f"<p>ParaView: open {html.escape(', '.join(files))} in <code>report/paraview/</code> together "
+            "(the time slider plays the run; balls as points with a <code>diameter</code> for Glyph → Sphere; "
+            "the outer race coloured by <code>land_heat</code> is the burn zone). Fields and units: "
+            "docs/outputs.md.</p>")
+
+
 def provenance_section(run_dir: Path, stage_dirs: dict[str, Path]) -> str:
     versions = _read_json(run_dir / "versions.json") or {}
     rows = []
@@ -273,6 +324,7 @@ def write_report_html(path: Path, scene, run_dir: Path, stage_dirs: dict[str, Pa
     scene_file = run_dir / "scene.toml"
     scene_text = scene_file.read_text(encoding="utf-8") if scene_file.is_file() else ""
     dyn = "".join(image(sim / f) for f in DYNAMIC_FIGURES if (sim / f).is_file()) if sim else ""
+    dyn += paraview_note(out_dir)
     sections = [
         ("Verdict", verdict_section(summary, burn, out_dir, sim, evidence)),
         ("Summary metrics", summary_section(summary)),

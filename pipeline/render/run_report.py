@@ -84,8 +84,10 @@ def settled_start(series: dict, summary: dict | None, guide_clearance: float | N
     return None
 
 
-def render_burn_zone(scene, simulate_dir: Path, summary: dict | None, out_dir: Path, show: bool) -> dict | None:
-    """Both burn-zone images; None when the scene has no outer-race-guided cage."""
+def render_burn_zone(scene, simulate_dir: Path, summary: dict | None, out_dir: Path, show: bool,
+                     maps: dict | None = None) -> dict | None:
+    """Both burn-zone images; None when the scene has no outer-race-guided cage. The map
+    drawn (a BurnZoneMap) is put in `maps["burn_zone"]` when `maps` is given."""
     from ..results.simulation_output import guide_land_speed, land_boundary
     from .burn_zone import heat_caption, render_burn_zone_3d, render_burn_zone_map
     from .burn_zone_data import OuterRaceProfile, burn_zone_map, outer_semi_major_axis
@@ -109,6 +111,8 @@ def render_burn_zone(scene, simulate_dir: Path, summary: dict | None, out_dir: P
                         semi_axis=semi_axis, start=start, land_boundary=land_boundary(scene),
                         land_speed=guide_land_speed(scene),
                         startup_metal_energy=_startup_metal(series, start, startup))
+    if maps is not None:
+        maps["burn_zone"] = bzm
     render_burn_zone_map(bzm, out_dir / BURN_MAP, scene.name)
     outside = 0.5 * scene.bearing.outer_outside_diameter if scene.bearing.outer_outside_diameter else None
     render_burn_zone_3d(bzm, out_dir / BURN_RENDER, scene.name, outside, show=show)
@@ -206,6 +210,16 @@ def render_verdict_orbit(scene, simulate_dir: Path, summary: dict | None, out_di
     return ORBIT_FIGURE
 
 
+def render_paraview(scene, simulate_dir: Path, out_dir: Path, burn_map=None) -> dict:
+    """The ParaView motion series and the outer race with its land heat, into
+    `out_dir/paraview/` (render.paraview_series); {what: path relative to out_dir}."""
+    from .paraview_series import PARAVIEW_DIR, write_paraview
+
+    files = write_paraview(simulate_dir / "timeseries.h5", scene, out_dir / PARAVIEW_DIR,
+                           scene.output.paraview_frames, burn_map)
+    return {k: f"{PARAVIEW_DIR}/{v}" for k, v in files.items()}
+
+
 def write_run_report(scene, run_dir: Path, upstream: dict[str, Path], out_dir: Path,
                      progress: Callable[[str, float], None] = lambda text, f: None,
                      show: bool = False) -> dict:
@@ -219,19 +233,22 @@ def write_run_report(scene, run_dir: Path, upstream: dict[str, Path], out_dir: P
     fe_records = []
     if "identify" in upstream:
         fe_records = render_fe_cases(scene, upstream["identify"], out_dir, show, progress)
-    burn = orbit = summary = None
+    burn = orbit = summary = paraview = None
     sim = upstream.get("simulate")
     if sim is not None and (sim / "timeseries.h5").is_file():
         progress("burn zone", 0.65)
         summary_path = sim / "summary.json"
         summary = json.loads(summary_path.read_text()) if summary_path.is_file() else None
-        burn = render_burn_zone(scene, sim, summary, out_dir, show)
-        progress("verdict", 0.85)
+        maps: dict = {}
+        burn = render_burn_zone(scene, sim, summary, out_dir, show, maps)
+        progress("verdict", 0.8)
         orbit = render_verdict_orbit(scene, sim, summary, out_dir)
+        progress("ParaView series", 0.85)
+        paraview = render_paraview(scene, sim, out_dir, maps.get("burn_zone"))
     progress("report", 0.9)
     write_report_html(out_dir / REPORT_FILE, scene, run_dir, upstream, out_dir, fe_records, burn,
                       evidence={"orbit": orbit})
     info = {"report": REPORT_FILE, "fe_cases": [r["file"] for r in fe_records],
-            "burn_zone": burn}
-    atomic_write_json(out_dir / RENDERS_FILE, {"fe": fe_records, "burn_zone": burn})
+            "burn_zone": burn, "paraview": paraview}
+    atomic_write_json(out_dir / RENDERS_FILE, {"fe": fe_records, "burn_zone": burn, "paraview": paraview})
     return info

@@ -41,11 +41,34 @@ class NamedArray:
                 f"{self.description})")
 
     def to_xarray(self, coords: Mapping[str, Any] | None = None):
-        """An `xarray.DataArray` (attrs `units`, `description`); `coords` by dimension name."""
+        """An `xarray.DataArray` that netCDF takes as it is: its name netCDF-safe
+        (`cage/position` -> `cage_position`; the original in attribute `bearingsim_name`),
+        `units` a UDUNITS string ("N m", "1"), `long_name` the description; `coords` by
+        dimension name."""
         xr = _xarray()
         used = {d: c for d, c in (coords or {}).items() if d in self.dims}
-        return xr.DataArray(self.values, dims=self.dims, coords=used, name=self.name or None,
-                            attrs={"units": self.unit, "description": self.description})
+        attrs = {"units": udunits(self.unit), "long_name": self.description, "description": self.description}
+        if self.name:
+            attrs["bearingsim_name"] = self.name
+        return xr.DataArray(self.values, dims=self.dims, coords=used, name=netcdf_name(self.name) or None,
+                            attrs=attrs)
+
+
+# bearingsim's unit strings that UDUNITS (netCDF's CF conventions, pint) reads otherwise
+UDUNITS = {"-": "1", "": "1", "count": "1", "N.m": "N m", "N.m/rad": "N m/rad", "N.m/m": "N m/m",
+           "N·m": "N m", "N·m/rad": "N m/rad", "deg": "degree", "µm": "um"}
+
+
+def udunits(unit: str) -> str:
+    """A unit string UDUNITS parses: "-" -> "1", "N.m" -> "N m"; others unchanged."""
+    return UDUNITS.get(unit, unit.replace("N.m", "N m").replace("·", " "))
+
+
+def netcdf_name(name: str) -> str:
+    """A netCDF variable name: the group separator and other characters netCDF refuses
+    become "_" (`cage_race/force` -> `cage_race_force`)."""
+    out = "".join(c if c.isalnum() or c in "_-." else "_" for c in name)
+    return out if not out or out[0].isalpha() or out[0] == "_" else f"v_{out}"
 
 
 def _xarray():
@@ -64,8 +87,13 @@ class TimeSeries(Mapping):
     """`timeseries.h5` as a read-only mapping: name (e.g. "cage/position") -> NamedArray.
     `attrs` holds the file's attributes (scene, version, ball count, guide clearance)."""
 
-    def __init__(self, arrays: dict[str, NamedArray], attrs: dict, path: Path | None = None):
+    def __init__(self, arrays: dict[str, NamedArray], attrs: dict, path: Path | None = None,
+                 time: np.ndarray | None = None):
+        """`time` [s]: the sample times, the time coordinate even when "time" is not one of
+        the arrays (a selection of names); taken from `arrays["time"]` when not given."""
         self._arrays, self.attrs, self.path = arrays, attrs, path
+        self._time = np.asarray(time) if time is not None else (
+            np.asarray(arrays["time"].values) if "time" in arrays else None)
 
     def __getitem__(self, name: str) -> NamedArray:
         try:
@@ -87,20 +115,32 @@ class TimeSeries(Mapping):
     def coords(self) -> dict[str, np.ndarray]:
         """Coordinates by dimension: time (from "time"), ball index, component labels."""
         out: dict[str, Any] = {d: np.array(labels) for d, labels in COMPONENT_LABELS.items()}
-        if "time" in self._arrays:
-            out["time"] = np.asarray(self._arrays["time"].values)
+        if self._time is not None:
+            out["time"] = self._time
         balls = next((a.shape[a.dims.index("ball")] for a in self._arrays.values() if "ball" in a.dims), None)
         if balls is not None:
             out["ball"] = np.arange(balls)
         return out
 
     def to_xarray(self):
-        """An `xarray.Dataset` of every series (time as coordinate; xarray needed)."""
+        """An `xarray.Dataset` of every series, time as coordinate (with its unit), names
+        netCDF-safe (`NamedArray.to_xarray`): `.to_netcdf(path)` writes it as it is."""
         xr = _xarray()
         coords = self.coords()
-        variables = {n: a.to_xarray(coords) for n, a in self._arrays.items() if n != "time"}
-        return xr.Dataset(variables, coords={"time": coords["time"]} if "time" in coords else None,
-                          attrs={k: _plain(v) for k, v in self.attrs.items()})
+        variables = {}
+        for n, a in self._arrays.items():
+            if n == "time":
+                continue
+            da = a.to_xarray(coords)
+            if da.name in variables:
+                raise ValueError(f"{n!r} and {variables[da.name].attrs['bearingsim_name']!r} share the "
+                                 f"netCDF name {da.name!r}")
+            variables[da.name] = da
+        ds = xr.Dataset(variables, attrs={k: _plain(v) for k, v in self.attrs.items()})
+        if "time" in coords:
+            ds = ds.assign_coords(time=("time", coords["time"], {"units": "s", "long_name": "sample time",
+                                                                 "standard_name": "time"}))
+        return ds
 
 
 def _plain(value):

@@ -12,6 +12,7 @@ import numpy as np
 
 from ..artefacts import atomic_write_text
 from .cage_metrics import DEFAULT_LAND_ROUGHNESS, cage_summary
+from .summary_keys import summary_units
 from .verdict import cage_verdict
 from .timeseries import Series, write_timeseries
 
@@ -23,13 +24,25 @@ def collect_series(run, params) -> dict[str, Series]:
             for name, s in run.channels().items()}
 
 
+IMPACT_UNITS = {"time": "s", "ball": "1", "orbital_position": "deg", "peak_force": "N",
+                "impact_speed": "m/s", "duration": "s"}
+
+
 def write_impacts_csv(path: Path, impacts: np.ndarray, fields: tuple) -> None:
-    units = {"time": "s", "ball": "-", "orbital_position": "rad", "peak_force": "N",
-             "impact_speed": "m/s", "duration": "s"}
+    """One row per ball-pocket impact, units in the header; the orbital position (rad in the
+    model's impact log) in degrees 0–360 from +x towards +y, as every user-facing file."""
     buf = io.StringIO()
-    buf.write(",".join(f"{f} [{units[f]}]" for f in fields) + "\n")
+    buf.write(",".join(f"{f} [{IMPACT_UNITS[f]}]" for f in fields) + "\n")
     for row in impacts:
-        buf.write(",".join(str(int(x)) if f == "ball" else f"{x:.9g}" for f, x in zip(fields, row)) + "\n")
+        cells = []
+        for f, x in zip(fields, row):
+            if f == "ball":
+                cells.append(str(int(x)))
+            elif f == "orbital_position":
+                cells.append(f"{np.degrees(x) % 360.0:.9g}")
+            else:
+                cells.append(f"{x:.9g}")
+        buf.write(",".join(cells) + "\n")
     atomic_write_text(path, buf.getvalue())
 
 
@@ -70,6 +83,7 @@ def write_simulation_results(out_dir: Path, scene, params, start, run, wall_time
         summary = _summary_and_figures(out_dir, scene, params, start, run, series, wall_time,
                                        screen_summary(quasistatic))
         written.result()
+    summary["units"] = summary_units(summary)
     return summary
 
 
@@ -143,5 +157,6 @@ def _summary_and_figures(out_dir: Path, scene, params, start, run, series: dict[
     if scene.output.figures:
         from .simulation_figures import draw_simulation_figures
 
-        draw_simulation_figures(out_dir, series, run, params, start, scene.name)
+        window = summary.get("settled_window") or [None]
+        draw_simulation_figures(out_dir, series, run, params, start, scene.name, settled_from=window[0])
     return summary

@@ -2,6 +2,8 @@
 
 Written atomically (temporary file + rename) so a reader never sees a half-written file.
 Opens in any HDF5 tool (h5py, h5dump, HDFView, ParaView's HDF5 reader, xarray via h5netcdf).
+Dimensions are named with HDF5 dimension scales, as netCDF-4 names them, so xarray and
+netCDF tools see "time", "ball", "xyz" rather than anonymous dimensions.
 
 Storage: every dataset of at least :data:`COMPRESS_MIN_BYTES` is chunked along its first
 (time) axis and compressed with gzip (deflate) behind the byte-shuffle filter. gzip is the
@@ -69,6 +71,7 @@ def write_timeseries(path: Path, series: dict[str, Series], attrs: dict | None =
         with h5py.File(tmp, "w") as h5:
             for key, value in (attrs or {}).items():
                 h5.attrs[key] = value
+            written = {}
             for name, s in series.items():
                 data = np.asarray(s.data)
                 if data.ndim != len(s.dims):
@@ -79,10 +82,48 @@ def write_timeseries(path: Path, series: dict[str, Series], attrs: dict | None =
                 ds.attrs["units"] = s.units
                 ds.attrs["description"] = s.description
                 ds.attrs["dims"] = ",".join(s.dims)
+                written[name] = (ds, s.dims)
+            attach_dimension_scales(h5, written)
         os.replace(tmp, path)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
+
+
+# coordinate values of the dimensions that are not a series of their own
+DIMENSION_LABELS = {"xyz": ["x", "y", "z"], "xy": ["x", "y"], "t_h": ["time", "step_size"]}
+
+
+def attach_dimension_scales(h5, written: dict) -> None:
+    """Name every dataset's dimensions as netCDF-4 does, with HDF5 dimension scales: the
+    `time` series is the scale of dimension "time"; the others ("ball", "xyz", ...) get a
+    small root dataset of their labels or indices. xarray (h5netcdf engine) then reads named
+    dimensions instead of phony_dim_*; read_timeseries skips these label datasets."""
+    import h5py
+
+    sizes: dict[str, int] = {}
+    for ds, dims in written.values():
+        for dim, size in zip(dims, ds.shape):
+            if sizes.setdefault(dim, size) != size:
+                return  # one name, two lengths: not a netCDF dimension; leave the file unnamed
+    scales = {}
+    for dim, size in sizes.items():
+        if dim in written and written[dim][0].shape == (size,):
+            scale = written[dim][0]
+        elif dim in h5:
+            return  # a series of another shape holds the name
+        else:
+            labels = DIMENSION_LABELS.get(dim)
+            data = (np.array(labels, dtype=h5py.string_dtype()) if labels is not None and len(labels) == size
+                    else np.arange(size, dtype=np.int32))
+            scale = h5.create_dataset(dim, data=data)
+            scale.attrs["description"] = f"coordinate of dimension {dim!r}"
+        scale.make_scale(dim)
+        scales[dim] = scale
+    for ds, dims in written.values():
+        for i, dim in enumerate(dims):
+            if scales[dim] != ds:
+                ds.dims[i].attach_scale(scales[dim])
 
 
 def read_timeseries(path: Path, names: Iterable[str] | None = None) -> tuple[dict[str, Series], dict]:
@@ -98,7 +139,7 @@ def read_timeseries(path: Path, names: Iterable[str] | None = None) -> tuple[dic
         attrs = {k: v for k, v in h5.attrs.items()}
 
         def read(name, obj):
-            if isinstance(obj, h5py.Dataset):
+            if isinstance(obj, h5py.Dataset) and not (names is None and _is_label_scale(obj)):
                 out[name] = Series(obj[()], str(obj.attrs.get("units", "")),
                                    str(obj.attrs.get("description", "")),
                                    tuple(str(obj.attrs.get("dims", "")).split(",")))
@@ -114,3 +155,8 @@ def read_timeseries(path: Path, names: Iterable[str] | None = None) -> tuple[dic
                     raise KeyError(f"{path} holds no dataset {name!r}; it holds: {', '.join(held)}")
                 read(name, obj)
     return out, attrs
+
+
+def _is_label_scale(ds) -> bool:
+    """A dimension's label dataset of `attach_dimension_scales` (not a saved series)."""
+    return ds.is_scale and "units" not in ds.attrs

@@ -10,19 +10,18 @@ The Python API (README "Python API"; `bearingsim.pipeline.api`)::
     scene = bearingsim.load_scene("helicopter-b-given-hinge", {"load.moment": 300})
     run = bearingsim.run(scene, "runs/demo", stages=["simulate"])
     run.summary["cage_speed_mean"], run.timeseries()["cage/position"].values
+    table = bearingsim.sweep(scene, vary={"load.moment": [200, 430, 600]})
 
 Its names load on first use: `import bearingsim` imports no numba, matplotlib or gmsh.
 """
-
-from __future__ import annotations
-
-import importlib
 
 __version__ = "0.1.0"
 
 _API = {
     "load_scene": "bearingsim.pipeline.api",
     "run": "bearingsim.pipeline.api",
+    "sweep": "bearingsim.pipeline.sweep.api",
+    "SweepResult": "bearingsim.pipeline.sweep.api",
     "open_run": "bearingsim.pipeline.api",
     "stage_names": "bearingsim.pipeline.api",
     "Run": "bearingsim.pipeline.api",
@@ -43,6 +42,8 @@ __all__ = ["__version__", *sorted(_API)]
 
 def __getattr__(name: str):
     if name in _API:
+        import importlib
+
         value = getattr(importlib.import_module(_API[name]), name)
         globals()[name] = value  # later look-ups skip this function
         return value
@@ -50,4 +51,5 @@ def __getattr__(name: str):
 
 
 def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_API))
+    """The public names only (what `__all__` lists), as tab completion should offer them."""
+    return list(__all__)

@@ -1,7 +1,8 @@
 """Stage `report`: renders and the run report, from saved results only (never re-solves).
 
 Writes into the stage directory (`<run>/report/`): `report.html` (one self-contained
-page), the burn-zone renders, one PNG + ParaView `.vtu` per FE load case, and
+page), the burn-zone renders, one PNG + ParaView `.vtu` per FE load case, the ParaView
+motion series and land-heat surface (`paraview/`, `pipeline.render.paraview_series`), and
 `renders.json` (see `pipeline.render.run_report`). Its key hashes the scene's name and
 description, the render settings and the upstream stages' keys, so any change of
 results upstream redraws it.
@@ -20,11 +21,13 @@ from pathlib import Path
 
 from ..runner import Stage, StageContext, StageOutcome
 
-RENDER_SETTINGS = {"burn_zone_sectors": 360, "track_bins": [360, 96], "fe_warp_fraction": 0.06}
+RENDER_SETTINGS = {"burn_zone_sectors": 360, "track_bins": [360, 96], "fe_warp_fraction": 0.06,
+                   "paraview": "balls, cage, inner race, outer race with land heat"}
 
 
 def report_inputs(scene) -> dict:
-    return {"name": scene.name, "description": scene.description, "render": RENDER_SETTINGS}
+    return {"name": scene.name, "description": scene.description, "render": RENDER_SETTINGS,
+            "paraview_frames": scene.output.paraview_frames}
 
 
 def compute(ctx: StageContext, show: bool = False) -> dict:

@@ -22,8 +22,11 @@ SUMMARY_FILE = "summary.json"
 
 
 def simulate_inputs(scene: Scene) -> dict:
-    """Everything physical and numerical; the FE inputs reach it through identify's key."""
+    """Everything physical and numerical; the FE inputs reach it through identify's key.
+    The report's own setting (output.paraview_frames) is the report stage's input only."""
     raw = {k: v for k, v in scene.raw.items() if k not in ("name", "description", "fe")}
+    if "paraview_frames" in raw.get("output", {}):
+        raw["output"] = {k: v for k, v in raw["output"].items() if k != "paraview_frames"}
     return {"scene": raw, "hinge": dataclasses.asdict(scene.hinge)}
 
 
@@ -110,7 +113,7 @@ def compute(ctx: StageContext) -> dict:
     run = simulate_bearing(params, start, scene.solver, scene.solver.duration,
                            scene.output.sample_interval, progress=progress)
     run.stats["kernel_load_time"] += compile_seconds
-    ctx.progress("writing results", 1.0)
+    ctx.progress("writing results", 0.99)
     summary = write_simulation_results(ctx.out_dir, scene, params, start, run,
                                        wall_time=time.perf_counter() - wall0,
                                        quasistatic=_quasistatic_result(ctx.upstream.get("quasistatic")))

@@ -18,7 +18,11 @@ def format_duration(seconds: float | None) -> str:
 
 def status_line(s: SweepStatus) -> str:
     resumed = f" ({s.resumed} from an earlier run)" if s.resumed else ""
-    return (f"{s.done}/{s.total} done{resumed}, {s.running} running, {s.failed} failed, "
+    lost = ""
+    if s.lost_workers:
+        lost = (f", {s.lost_workers} worker{'s' if s.lost_workers > 1 else ''} lost"
+                f" ({s.retried} point{'s' if s.retried != 1 else ''} retried)")
+    return (f"{s.done}/{s.total} done{resumed}, {s.running} running, {s.failed} failed{lost}, "
             f"elapsed {format_duration(s.elapsed_s)}, ETA {format_duration(s.eta_s)}")
 
 
@@ -44,7 +48,7 @@ class SweepProgress:
             return
         line = status_line(s)
         if not self.console.is_terminal:  # logs and CI: one line per change of counts
-            counts = (s.done, s.failed, s.running)
+            counts = (s.done, s.failed, s.running, s.lost_workers, s.retried)
             if counts != self._counts:
                 self._counts = counts
                 self.console.print(f"sweep: {line}" + (f" | last: {s.last}" if s.last else ""),

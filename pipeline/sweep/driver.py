@@ -60,16 +60,24 @@ class SweepStatus:
     elapsed_s: float
     eta_s: float | None
     last: str = ""  # label and outcome of the latest finished point
+    lost_workers: int = 0  # workers that left the cluster during the sweep
+    retried: int = 0  # points that were running on a lost worker and were started again
 
 
-def plan_sweep(scene: str | Path, sets: list[str] | None = None, vary: list[str] | None = None, *,
+def plan_sweep(scene, sets: list[str] | None = None, vary: list[str] | None = None, *,
                mode: str | None = None, name: str | None = None, out: Path | None = None,
                store: Path | None = None, max_points: int = MAX_POINTS,
                figures: bool | None = None) -> SweepPlan:
-    """Validate the scene, the sweep definition and every point; nothing is computed.
-    A sweep of more than `max_points` points is refused before its points are built.
-    `figures` (`--figures/--no-figures`) overrides the scene's `[sweep] figures`."""
-    table, origin = read_scene_table(scene)
+    """Validate the scene (a path, a built-in name or a Scene of the Python API), the sweep
+    definition and every point; nothing is computed. A sweep of more than `max_points`
+    points is refused before its points are built. `figures` (`--figures/--no-figures`)
+    overrides the scene's `[sweep] figures`."""
+    from ..scene import Scene
+
+    if isinstance(scene, Scene):
+        table, origin = dict(scene.raw), getattr(scene, "_origin", "a Scene object of the Python API")
+    else:
+        table, origin = read_scene_table(scene)
     table = apply_overrides(table, list(sets or []))
     section = with_command_line(build_sweep_section(table.get("sweep", {})), list(vary or []), mode, name,
                                 figures)
@@ -112,10 +120,10 @@ def run_sweep(plan: SweepPlan, client, *, progress: Callable[[SweepStatus], None
     records, todo = unfinished(plan, retry_failed)
     resumed = sum(1 for r in records.values() if r["status"] == "done")
     token = uuid.uuid4().hex[:8]  # fresh task keys: a reused client must not serve old results
-    futures = {client.submit(point_function, req, key=f"bearingsim-point-{req.point_id}-{token}",
-                             pure=False): req for req in todo}
+    futures = {client.submit(point_function, req, key=task_key(req, token), pure=False): req for req in todo}
     t0, last, last_table = time.perf_counter(), "", time.perf_counter()
     finished_now = 0
+    workers = WorkerWatch(client)
     try:
         while True:
             for fut in [f for f in futures if f.done()]:
@@ -123,8 +131,10 @@ def run_sweep(plan: SweepPlan, client, *, progress: Callable[[SweepStatus], None
                 records[req.point_id] = _outcome(fut, req)
                 finished_now += 1
                 last = f"{req.label}: {records[req.point_id]['status']}"
+            workers.poll({f.key for f in futures})
             if progress is not None:
-                progress(_status(plan, records, futures, client, resumed, finished_now, t0, last))
+                status = _status(plan, records, futures, client, resumed, finished_now, t0, last)
+                progress(dataclasses.replace(status, lost_workers=workers.lost, retried=workers.retried))
             if not futures:
                 break
             if time.perf_counter() - last_table > 15.0:  # partial table for long sweeps
@@ -135,6 +145,37 @@ def run_sweep(plan: SweepPlan, client, *, progress: Callable[[SweepStatus], None
         for fut in futures:
             fut.cancel()
     return [records.get(req.point_id) for req in plan.requests]
+
+
+def task_key(req: PointRequest, token: str) -> str:
+    """The Dask task key of a point: its values first, so the dashboard and the scheduler's
+    logs say which point a task is (`bearingsim-point-load.moment=300_speed.inner_rpm=2000-
+    <point id>-<token>`)."""
+    values = "_".join(f"{k}={v}" for k, v in (part.split("=", 1) for part in req.label.split(", ")))
+    values = "".join(c if c.isalnum() or c in "._=+" else "~" for c in values)[:120]
+    return f"bearingsim-point-{values}-{req.point_id}-{token}"
+
+
+class WorkerWatch:
+    """Workers that leave the cluster and the points they were running (which Dask starts
+    again elsewhere): what the progress line reports as lost workers and retried points."""
+
+    def __init__(self, client):
+        self.client, self.lost, self.retried = client, 0, 0
+        self._workers: set[str] | None = None
+        self._running: dict[str, set] = {}
+
+    def poll(self, keys: set) -> None:
+        try:
+            workers = set(self.client.scheduler_info()["workers"])
+            running = {w: {k for k in tasks if k in keys} for w, tasks in self.client.processing().items()}
+        except Exception:  # noqa: BLE001 - progress must never break a sweep
+            return
+        if self._workers is not None:
+            gone = self._workers - workers
+            self.lost += len(gone)
+            self.retried += sum(len(self._running.get(w, set()) & keys) for w in gone)
+        self._workers, self._running = workers, running
 
 
 def _outcome(fut, req: PointRequest) -> dict:
@@ -166,6 +207,25 @@ def _running(client, keys: set) -> int:
     except Exception:  # noqa: BLE001 - progress must never break a sweep
         return 0
     return sum(min(threads.get(w, 1), sum(1 for k in tasks if k in keys)) for w, tasks in processing.items())
+
+
+def run_in_process(plan: SweepPlan, *, progress: Callable[[SweepStatus], None] | None = None,
+                   retry_failed: bool = False,
+                   point_function: Callable[[PointRequest], dict] = run_point) -> list[dict | None]:
+    """`run_sweep` without Dask: the unfinished points one after the other in this process
+    (a notebook's or a test's small sweep; the same records, table and resuming)."""
+    _write_plan(plan)
+    records, todo = unfinished(plan, retry_failed)
+    resumed = sum(1 for r in records.values() if r["status"] == "done")
+    t0, last = time.perf_counter(), ""
+    for n, req in enumerate(todo):
+        if progress is not None:
+            progress(_status(plan, records, {}, None, resumed, n, t0, last))
+        records[req.point_id] = point_function(req)
+        last = f"{req.label}: {records[req.point_id]['status']}"
+    if progress is not None:
+        progress(_status(plan, records, {}, None, resumed, len(todo), t0, last))
+    return [records.get(req.point_id) for req in plan.requests]
 
 
 def _rows(plan: SweepPlan, records: dict) -> list[dict]:

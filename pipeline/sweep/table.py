@@ -2,15 +2,18 @@
 
 Columns: `point_id`, `status` (done | failed | pending), one column per varied scene key,
 `cage_class` and `risk` (:mod:`pipeline.sweep.classify`), the summary metrics of docs/scenes.md (with
-`burn_zone_sector` split into `burn_zone_start` / `burn_zone_end`, rad), run counters,
-`error` (the message of a failed point) and `run_dir`. Written as CSV, and as parquet
-too when pyarrow is installed.
+`burn_zone_sector` split into `burn_zone_start` / `burn_zone_end`), run counters,
+`warnings` (the run's own, joined by "; "), `error` (the message of a failed point) and
+`run_dir`. Angles are in degrees, azimuths 0–360 from +x towards +y (`summary.json` keeps
+rad). The CSV header carries each column's unit, `name [unit]` (`read_table` strips it);
+written as CSV, and as parquet too when pyarrow is installed.
 """
 
 from __future__ import annotations
 
 import csv
 import io
+import math
 import os
 import tempfile
 from pathlib import Path
@@ -29,6 +32,44 @@ SUMMARY_COLUMNS = (
     "duration", "steps", "rejected_steps", "newton_iterations", "wall_time",
 )
 CSV_FILE, PARQUET_FILE = "results.csv", "results.parquet"
+POSITION_COLUMNS = ("cage_offset_azimuth_mean", "burn_zone_start", "burn_zone_end")  # deg, 0–360
+ANGLE_COLUMNS = ("cage_contact_angle_spread", "cage_offset_spread")  # widths, deg
+
+
+def column_unit(column: str) -> str | None:
+    """The unit of a results column (UDUNITS strings, "1" for ratios and counts), None for text."""
+    from ..results.summary_keys import unit_of
+
+    if column in POSITION_COLUMNS or column in ANGLE_COLUMNS:
+        return "degree"
+    if column in SUMMARY_COLUMNS:
+        return unit_of(column)
+    if "." in column:
+        return scene_key_unit(column)
+    return None
+
+
+def scene_key_unit(key: str) -> str | None:
+    """The unit of a dotted scene key from its section's metadata (None when unknown)."""
+    from ..schema import field_unit
+
+    section, _, name = key.rpartition(".")
+    cls = _section_classes().get(section.split(".")[0])
+    if cls is None:
+        return None
+    from ..results.named_arrays import udunits
+
+    unit = field_unit(cls, name)
+    return udunits(unit) if unit else None
+
+
+def _section_classes() -> dict[str, type]:
+    from bearingsim.dynamics.geometry import BearingGeometry, CageGeometry, Material
+
+    from ..scene_sections import Hinge, Load, Output, Physics, SolverSettings, Speed
+
+    return {"bearing": BearingGeometry, "cage": CageGeometry, "materials": Material, "load": Load,
+            "speed": Speed, "hinge": Hinge, "solver": SolverSettings, "physics": Physics, "output": Output}
 
 
 def result_row(point, record: dict | None, run_dir: Path, limits: CageClassThresholds) -> dict[str, Any]:
@@ -44,7 +85,13 @@ def result_row(point, record: dict | None, run_dir: Path, limits: CageClassThres
     flat = dict(summary or {})
     sector = flat.pop("burn_zone_sector", None) or (None, None)
     flat["burn_zone_start"], flat["burn_zone_end"] = sector
+    for k in POSITION_COLUMNS + ANGLE_COLUMNS:
+        if flat.get(k) is not None:
+            flat[k] = math.degrees(flat[k]) % 360.0 if k in POSITION_COLUMNS else math.degrees(flat[k])
+    if flat.get("burn_zone_end") is not None and flat["burn_zone_end"] < flat["burn_zone_start"]:
+        flat["burn_zone_end"] += 360.0  # an arc across 0°: end = start + width
     row.update({k: flat.get(k) for k in SUMMARY_COLUMNS})
+    row["warnings"] = "; ".join(str(w) for w in flat.get("warnings") or []) or None
     row["error"] = (record or {}).get("error")
     row["run_dir"] = str(run_dir)
     return row
@@ -57,7 +104,8 @@ def write_table(rows: list[dict[str, Any]], sweep_dir: Path) -> list[Path]:
     columns = list(rows[0])
     text = io.StringIO()
     writer = csv.DictWriter(text, fieldnames=columns, lineterminator="\n")
-    writer.writeheader()
+    units = {c: column_unit(c) for c in columns}
+    writer.writerow({c: f"{c} [{units[c]}]" if units[c] else c for c in columns})
     for row in rows:
         writer.writerow({k: ("" if row.get(k) is None else row.get(k)) for k in columns})
     atomic_write_text(sweep_dir / CSV_FILE, text.getvalue())
@@ -77,7 +125,13 @@ def write_table(rows: list[dict[str, Any]], sweep_dir: Path) -> list[Path]:
 def read_table(path: Path) -> list[dict[str, Any]]:
     """Rows of a `results.csv`, numbers as floats, empty cells as None."""
     with open(path, newline="", encoding="utf-8") as fh:
-        return [{k: _cell(v) for k, v in row.items()} for row in csv.DictReader(fh)]
+        return [{_column_name(k): _cell(v) for k, v in row.items()} for row in csv.DictReader(fh)]
+
+
+def _column_name(header: str) -> str:
+    """`load.moment [N m]` -> `load.moment`."""
+    name, bracket, _ = header.partition(" [")
+    return name if bracket and header.endswith("]") else header
 
 
 def _cell(text: str) -> Any:

@@ -244,23 +244,30 @@ def quasistatic(scene: SceneArg, json_: Annotated[bool, typer.Option("--json", h
                 out: OutOpt = None, force: ForceOpt = False, set_: SetOpt = None) -> None:
     """Static equilibrium: ball loads, contact angles, inner-race displacement, stiffness."""
     from .figures.worker import prestart
-    from .stages.quasistatic import RESULT_FILE
 
     prestart()  # matplotlib loads in a second process while this one loads the scene and solves
 
     from .artefacts import dumps_json
 
-    _, run_dir, _ = _pipeline(scene, set_, out, ["quasistatic"], {"quasistatic"} if force else set(), quiet=json_)
-    try:
-        result = json.loads((run_dir / "quasistatic" / RESULT_FILE).read_text(encoding="utf-8"))
-    except (OSError, ValueError) as exc:
-        _fail(EXIT_FAILED, f"cannot read {run_dir / 'quasistatic' / RESULT_FILE}: {exc}; run again with --force")
+    run_dir, result = _quasistatic_result(scene, set_, out, force, json_)
     if json_:
         sys.stdout.write(dumps_json(result) + "\n")
     else:
         from .scene_report import print_quasistatic
 
         print_quasistatic(result, out_console)
+
+
+def _quasistatic_result(scene: str, overrides, out, force: bool, quiet: bool) -> tuple[Path, dict]:
+    """Run (or reuse) the quasi-static stage and read its result file."""
+    from .stages.quasistatic import RESULT_FILE
+
+    _, run_dir, _ = _pipeline(scene, overrides, out, ["quasistatic"], {"quasistatic"} if force else set(), quiet=quiet)
+    path = run_dir / "quasistatic" / RESULT_FILE
+    try:
+        return run_dir, json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError) as exc:
+        _fail(EXIT_FAILED, f"cannot read {path}: {exc}; run again with --force")
 
 
 @app.command()
@@ -273,7 +280,7 @@ def tolerances(scene: SceneArg,
                json_: Annotated[bool, typer.Option("--json", help="Print the analysis as one JSON object on stdout.")] = False,
                out: OutOpt = None, force: ForceOpt = False, set_: SetOpt = None) -> None:
     """Crush probability over tolerance stacks: P(free/pressed/crushed), margin distribution, drivers."""
-    from .stages.quasistatic import RESULT_FILE, SAMPLES_FILE, TOLERANCE_FIGURE
+    from .stages.quasistatic import SAMPLES_FILE, TOLERANCE_FIGURE
     from .tolerance_report import print_tolerances, tolerance_overrides
 
     try:
@@ -283,11 +290,7 @@ def tolerances(scene: SceneArg,
                                            "--tolerances FILE (docs/scenes.md, section [tolerances])")
     except SceneError as exc:
         _fail(EXIT_SCENE, f"scene: {explain(exc)}")
-    _, run_dir, _ = _pipeline(scene, overrides, out, ["quasistatic"], {"quasistatic"} if force else set(), quiet=json_)
-    try:
-        result = json.loads((run_dir / "quasistatic" / RESULT_FILE).read_text(encoding="utf-8"))
-    except (OSError, ValueError) as exc:
-        _fail(EXIT_FAILED, f"cannot read {run_dir / 'quasistatic' / RESULT_FILE}: {exc}; run again with --force")
+    run_dir, result = _quasistatic_result(scene, overrides, out, force, json_)
     if json_:
         from .artefacts import dumps_json
 

@@ -57,9 +57,7 @@ def moment_sweep_figure(study: Path, out: Path, screen: dict | None) -> Path:
     axes[0].axhline(1.0, color="k", lw=0.8)
     axes[0].text(5, 1.005, "metal contact (eps > 1)", fontsize=8, va="bottom")
     axes[0].set_ylabel("cage eccentricity e / C [-]")
-    axes[1].set_ylabel("metal-contact fraction, settled window [-]")
-    axes[2].set_ylabel("mean land force [N]")
-    axes[2].set_yscale("symlog", linthresh=1.0)
+    _label_sweep_axes(axes)
     if screen:
         ms = np.array(sorted(float(k) for k in screen))
         for ax in axes:
@@ -67,16 +65,28 @@ def moment_sweep_figure(study: Path, out: Path, screen: dict | None) -> Path:
                 reg = screen[str(int(mm))]["regime"]
                 ax.axvspan(mm - 12, mm + 12, color={"free": "#e8f4e8", "pressed": "#fff3d6", "crushed": "#f9dcdc"}[reg], lw=0)
     for ax in axes:
-        ax.set_xlabel("moment [N m]")
         ax.axvline(100, color="g", lw=1, ls=":")
         ax.axvline(430, color="r", lw=1, ls=":")
-        ax.grid(alpha=0.3)
     axes[1].legend(fontsize=8, loc="upper left")
     axes[0].legend(fontsize=7, loc="lower right")
-    fig.suptitle("Reference bearing, 3060 rev/min, settled window 0.1–0.4 s. Dotted: case a (healthy on the rig, green), "
-                 "case b (failed, red). Shading: crush screen (green free, yellow pressed, red crushed)", fontsize=9)
+    fig.suptitle("Reference bearing, 3060 rev/min, settled window 0.1–0.4 s. Dotted: case a (the paper's healthy case, "
+                 "green), case b (failed on the rig, red). Shading: crush screen (green free, yellow pressed, red crushed)",
+                 fontsize=9)
+    return _save(plt, fig, out / "moment_sweep.png")
+
+
+def _label_sweep_axes(axes) -> None:
+    """Labels and grid of the three panels of a moment sweep: eccentricity, metal, land force."""
+    axes[1].set_ylabel("metal-contact fraction, settled window [-]")
+    axes[2].set_ylabel("mean land force [N]")
+    axes[2].set_yscale("symlog", linthresh=1.0)
+    for ax in axes:
+        ax.set_xlabel("moment [N m]")
+        ax.grid(alpha=0.3)
+
+
+def _save(plt, fig, path: Path) -> Path:
     fig.tight_layout()
-    path = out / "moment_sweep.png"
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path
@@ -108,23 +118,15 @@ def operating_sweep_figure(study: Path, out: Path, screen: dict | None) -> Path:
     axes[0].axhline(1.0, color="k", lw=0.8)
     axes[0].set_ylim(0, 1.6)
     axes[0].set_ylabel("cage eccentricity e / C [-] (dynamics: settled mean)")
-    axes[1].set_ylabel("metal-contact fraction, settled window [-]")
-    axes[2].set_ylabel("mean land force [N]")
-    axes[2].set_yscale("symlog", linthresh=1.0)
+    _label_sweep_axes(axes)
     axes[2].set_ylim(bottom=0.0)
     for ax in axes:
-        ax.set_xlabel("moment [N m]")
         ax.axvline(430, color="k", lw=1, ls=":")
-        ax.grid(alpha=0.3)
     axes[0].legend(fontsize=7, loc="upper left")
     axes[1].legend(fontsize=8, loc="upper left")
     fig.suptitle("Reference bearing, 3060 rev/min, settled window 0.1–0.4 s; dotted vertical: case b (430 N m); "
                  "dash-dot: the screen's crush threshold of each state", fontsize=9)
-    fig.tight_layout()
-    path = out / "operating_sweep.png"
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return _save(plt, fig, out / "operating_sweep.png")
 
 
 def tornado_figure(study: Path, out: Path, case: str, metric: str, label: str) -> Path:

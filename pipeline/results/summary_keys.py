@@ -18,6 +18,14 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
+# the crush screen's block (pipeline.results.simulation_output.screen_summary), repeated in the verdict
+_SCREEN_UNITS = {
+    "crush_margin": "1", "crush_margin_at_reference_temperature": "1", "guide_clearance": "m",
+    "pocket_clearance": "m", "non_guiding_gap": "m", "guide_clearance_at_reference_temperature": "m",
+    "pocket_clearance_at_reference_temperature": "m", "temperatures_degC.*": "degC", "crush_probability": "1",
+    "crush_probability_standard_error": "1", "tolerance_samples": "1", "margin_p5": "1",
+}
+
 # dotted key (nested tables joined by ".", "*" any key of that table) -> UDUNITS unit
 SUMMARY_UNITS: dict[str, str] = {
     "duration": "s", "wall_time": "s", "integration_wall_time": "s", "kernel_load_time": "s",
@@ -53,20 +61,7 @@ SUMMARY_UNITS: dict[str, str] = {
     "verdict.settled_from_s": "s", "verdict.settled_revolutions": "1",
     "non_guiding_clearance": "m", "non_guiding_gap_min": "m", "non_guiding_gap_min_time": "s",
     "non_guiding_contact_fraction": "1",
-    "crush_screen.crush_margin": "1", "crush_screen.crush_margin_at_reference_temperature": "1",
-    "crush_screen.guide_clearance": "m", "crush_screen.pocket_clearance": "m", "crush_screen.non_guiding_gap": "m",
-    "crush_screen.guide_clearance_at_reference_temperature": "m",
-    "crush_screen.pocket_clearance_at_reference_temperature": "m",
-    "crush_screen.temperatures_degC.*": "degC", "crush_screen.crush_probability": "1",
-    "crush_screen.crush_probability_standard_error": "1", "crush_screen.tolerance_samples": "1",
-    "crush_screen.margin_p5": "1",
-    "verdict.screen.crush_margin": "1", "verdict.screen.crush_margin_at_reference_temperature": "1",
-    "verdict.screen.guide_clearance": "m", "verdict.screen.pocket_clearance": "m", "verdict.screen.non_guiding_gap": "m",
-    "verdict.screen.guide_clearance_at_reference_temperature": "m",
-    "verdict.screen.pocket_clearance_at_reference_temperature": "m",
-    "verdict.screen.temperatures_degC.*": "degC", "verdict.screen.crush_probability": "1",
-    "verdict.screen.crush_probability_standard_error": "1", "verdict.screen.tolerance_samples": "1",
-    "verdict.screen.margin_p5": "1",
+    **{f"{block}.{key}": unit for block in ("crush_screen", "verdict.screen") for key, unit in _SCREEN_UNITS.items()},
 }
 
 

@@ -55,14 +55,16 @@ def _exclusive(path: Path):
         os.close(fd)
 
 
-def ensure_compiled(scene, compile_kernels) -> float:
+def ensure_compiled(scene, compile_kernels, configuration: str | None = None) -> float:
     """Run `compile_kernels()` (which compiles or loads the scene's kernels) under the cache's
-    lock unless another process already did it for this configuration; returns the seconds
-    spent here (waiting included), 0 when the marker was there."""
+    lock unless another process already did it for this configuration (default: the scene's
+    dynamic-run configuration; "quasistatic" for the quasi-static solver's kernels, which the
+    physics options do not select); returns the seconds spent here (waiting included), 0 when
+    the marker was there."""
     cache = cache_directory()
     if cache is None:
         return compile_kernels()
-    key = kernel_configuration(scene)
+    key = configuration or kernel_configuration(scene)
     marker = cache / f".compiled-{key}"
     if marker.exists():
         return 0.0

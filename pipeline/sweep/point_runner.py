@@ -60,14 +60,21 @@ def finished_record(run_dir: Path, scene_hash: str, target: str = "simulate") ->
     return record if record.get("status") in ("done", "failed") else None
 
 
+def prepare_worker() -> str:
+    """Point numba at this machine's per-user kernel cache (pipeline.numba_cache) before any
+    kernel loads; returns it. A worker started by an outside `dask worker` has not been
+    through the command line, which does this for local clusters; the compile lock of
+    pipeline.kernel_cache then makes the workers of one machine compile once."""
+    from ..numba_cache import configure_numba_cache
+
+    configure_numba_cache()
+    return os.environ["NUMBA_CACHE_DIR"]
+
+
 def run_point(request: PointRequest, stages=None) -> dict:
     """Run the point's pipeline to `request.target`; return (and save) its record.
     `stages` replaces the pipeline's stages (tests)."""
-    from ..numba_cache import configure_numba_cache
-
-    # a worker started by an outside `dask worker` has not been through the command line:
-    # point numba at the per-user cache of this machine before any kernel loads
-    configure_numba_cache()
+    prepare_worker()
     run_dir = Path(request.run_dir)
     done = finished_record(run_dir, request.scene_hash, request.target)
     if done is not None and done["status"] == "done":  # a rescheduled task that had finished

@@ -60,7 +60,7 @@ SUMMARY_UNITS: dict[str, str] = {
     "verdict.pocket_impact_regions_deg": "degree, degree, 1 (start, end, share)",
     "verdict.settled_from_s": "s", "verdict.settled_revolutions": "1",
     "non_guiding_clearance": "m", "non_guiding_gap_min": "m", "non_guiding_gap_min_time": "s",
-    "non_guiding_contact_fraction": "1",
+    "non_guiding_contact_fraction": "1", "verdict.non_guiding_gap_min_um": "um",
     **{f"{block}.{key}": unit for block in ("crush_screen", "verdict.screen") for key, unit in _SCREEN_UNITS.items()},
 }
 

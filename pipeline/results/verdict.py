@@ -105,6 +105,8 @@ def cage_verdict(summary: dict, limits: CageClassThresholds = CageClassThreshold
         "settled_from_s": window[0],
         "settled_revolutions": summary.get("settled_revolutions"),
         "screen": summary.get("crush_screen"),
+        "non_guiding_gap_min_um": (None if summary.get("non_guiding_gap_min") is None
+                                   else 1e6 * summary["non_guiding_gap_min"]),
     }
     verdict["text"] = verdict_sentence(verdict, summary.get("warnings") or [],
                                        LAND_NAMES.get(guidance, "guide land"))
@@ -197,6 +199,8 @@ def verdict_rows(v: dict) -> list[tuple[str, str, str]]:
         ("impacts concentrate at (orbital position)", region_text, "deg"),
         ("settled window from", num(v.get("settled_from_s"), "{:.4g}"), "s"),
         ("  cage revolutions in it", num(v.get("settled_revolutions"), "{:.1f}"), "count"),
+        ("least gap to the non-guiding land in the run (< 0: touching)", num(v.get("non_guiding_gap_min_um"), "{:.0f}"),
+         "µm"),
     ]
     screen = v.get("screen")
     if screen:
@@ -214,7 +218,7 @@ def verdict_rows(v: dict) -> list[tuple[str, str, str]]:
              f"{um('guide_clearance')} ({um('guide_clearance_at_reference_temperature')})", "µm"),
             ("  pocket clearance c_p, operating (as drawn)",
              f"{um('pocket_clearance')} ({um('pocket_clearance_at_reference_temperature')})", "µm"),
-            ("  gap left to the non-guiding land", um("non_guiding_gap"), "µm"),
+            ("  gap left to the non-guiding land (screen)", um("non_guiding_gap"), "µm"),
         ]
         if screen.get("crush_probability") is not None:
             rows += [("  P(crushed) over tolerance stacks",

@@ -206,3 +206,28 @@ def test_a_run_reports_the_cage_touching_the_inner_land(tmp_path):
     assert summary["non_guiding_gap_min"] < 0.0 and summary["non_guiding_contact_fraction"] > 0.5
     assert any("touches the non-guiding land" in w for w in summary["warnings"])
     assert "touches the non-guiding land" in result.output
+
+
+def test_quasistatic_json_reports_operating_clearances_and_a_smaller_margin_hot(tmp_path):
+    """`bearingsim quasistatic helicopter-b --json`: the screen at 100 °C has a smaller crush
+    margin than the same command with every part at 20 °C, and names both clearance sets."""
+    import json
+
+    from typer.testing import CliRunner
+
+    from bearingsim.pipeline.cli import app
+
+    def screen(*extra):
+        args = ["quasistatic", "helicopter-b", "--json", "--out", str(tmp_path / f"r{len(extra)}")]
+        for o in extra:
+            args += ["--set", o]
+        result = CliRunner().invoke(app, args)
+        assert result.exit_code == 0, result.output
+        return json.loads(result.stdout)["cage_screen"]
+
+    hot, cold = screen(), screen("thermal.parts_degC=20")
+    assert hot["clearances"]["temperatures_degC"]["cage"] == 100.0
+    assert hot["clearances"]["guide_clearance"]["operating"] == pytest.approx(hot["guide_clearance"])
+    assert hot["clearances"]["guide_clearance"]["reference"] == pytest.approx(0.29e-3, rel=1e-9)
+    assert hot["crush_margin"] < cold["crush_margin"]
+    assert cold["crush_margin"] == pytest.approx(hot["crush_margin_at_reference_temperature"], abs=2e-3)

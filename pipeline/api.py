@@ -299,10 +299,13 @@ class Run:
 
         return hinge_of(self.scene, self.stage_dir("identify"))
 
-    def timeseries(self, names: Iterable[str] | None = None) -> TimeSeries:
-        """`simulate/timeseries.h5` as name -> NamedArray (all series, or only `names`)."""
+    def timeseries(self, names: str | Iterable[str] | None = None) -> TimeSeries:
+        """`simulate/timeseries.h5` as name -> NamedArray (all series, or only `names`: one
+        name or several)."""
         from .results.timeseries import read_timeseries
 
+        if isinstance(names, str):
+            names = [names]
         path = self._file("simulate", "timeseries.h5")
         series, attrs = read_timeseries(path, names)
         arrays = {n: NamedArray(s.data, s.units, s.dims, s.description, n) for n, s in series.items()}

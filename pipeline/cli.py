@@ -10,6 +10,7 @@ from __future__ import annotations
 import contextlib
 import json
 import logging
+import math
 import sys
 from pathlib import Path
 from typing import Annotated, Optional
@@ -22,7 +23,8 @@ from .numba_cache import configure_numba_cache
 # before any kernel is compiled or loaded: the cache keyed by the dynamics sources
 configure_numba_cache()
 
-from .artefacts import OutputRefused, RunDirectoryBusy, claim_run_directory, run_directory_lock  # noqa: E402
+from .artefacts import OutputRefused, RunDirectoryBusy  # noqa: E402
+from .interrupts import interruption, stop_on_sigterm  # noqa: E402
 from .runner import StageNotAvailable
 from .schema import SceneError
 
@@ -123,6 +125,8 @@ def _run_locked(scene, scene_arg, run_dir, targets, force, quiet, notes=(), shar
     with contextlib.ExitStack() as logged:
         try:
             logged.enter_context(run_log(run_dir))
+        except OutputRefused as exc:
+            _fail(EXIT_SCENE, str(exc))
         except OSError as exc:
             _fail(EXIT_SCENE, f"--out {run_dir}: cannot write run.log there ({exc.strerror or exc}); give a "
                               "writable directory")
@@ -142,11 +146,11 @@ def _run_stages_reported(scene, scene_arg, run_dir, targets, force, quiet, notes
             return run_stages_logged(scene, run_dir, targets, force, read_scene_table(scene_arg)[1],
                                      notes=notes, progress=bar.update,
                                      store=shared_store_dir() if shared else None, store_stages=SHARED_STAGES)
-    except KeyboardInterrupt:
-        log.warning("interrupted by the user (Ctrl-C); finished stages are kept, the interrupted one "
-                    "left nothing behind")
-        _fail(EXIT_INTERRUPTED, f"interrupted (Ctrl-C): finished stages are kept in {run_dir}/, the "
-                                "interrupted stage left nothing; run the same command again to continue")
+    except KeyboardInterrupt as exc:
+        how, code = interruption(exc)
+        log.warning("interrupted (%s); finished stages are kept, the interrupted one left nothing behind", how)
+        _fail(code, f"interrupted ({how}): finished stages are kept in {run_dir}/, the "
+                    "interrupted stage left nothing; run the same command again to continue")
     except StageNotAvailable as exc:
         _fail(EXIT_UNAVAILABLE, f"{exc}. Results so far are in {run_dir}/")
     except OutputRefused as exc:
@@ -347,7 +351,7 @@ def render(run_dir: Annotated[Path, typer.Argument(help="A run directory written
     """Regenerate renders and the report from saved results (never re-solves)."""
     from .provenance import attach_run_log
     from .render.offscreen import display_available
-    from .stages.report import render_run
+    from .stages.report import StageResultsDamaged, render_run
 
     if not (run_dir / "scene.toml").is_file():
         _fail(EXIT_SCENE, f"{run_dir} is not a run directory (no scene.toml); give the directory "
@@ -357,18 +361,33 @@ def render(run_dir: Annotated[Path, typer.Argument(help="A run directory written
         show = False
     elif not show:
         err_console.print("rendering off-screen", highlight=False)
-    handler = attach_run_log(run_dir)
+    log = logging.getLogger("bearingsim")
+    try:
+        handler = attach_run_log(run_dir)
+    except OSError as exc:  # OutputRefused too: a link or a special file in run.log's place
+        _fail(EXIT_SCENE, str(exc) if isinstance(exc, OutputRefused) else
+              f"{run_dir}: cannot write run.log there ({exc.strerror or exc}); render needs a run directory "
+              f"it may write (its report/ is redrawn): copy it, e.g. cp -r {run_dir} {run_dir}-copy")
     try:
         outcome = render_run(run_dir, show=show)
+    except KeyboardInterrupt as exc:
+        how, code = interruption(exc)
+        log.warning("render interrupted (%s); the report was left as it was", how)
+        _fail(code, f"interrupted ({how}): {run_dir / 'report'}/ is left as it was; run render again")
     except SceneError as exc:
         _fail(EXIT_SCENE, f"scene: {explain(exc)}")
-    except (FileNotFoundError, OutputRefused) as exc:
+    except (FileNotFoundError, OutputRefused, StageResultsDamaged) as exc:
+        log.error("render refused: %s", exc)
         _fail(EXIT_SCENE, str(exc))
+    except PermissionError as exc:
+        log.error("render failed: %s", exc)
+        _fail(EXIT_SCENE, f"{run_dir}: cannot write the report there ({exc.strerror or exc}); render needs a "
+                          f"run directory it may write: copy it, e.g. cp -r {run_dir} {run_dir}-copy")
     except (RuntimeError, ValueError, ArithmeticError, OSError) as exc:
-        logging.getLogger("bearingsim").exception("render failed")
+        log.exception("render failed")
         _fail(EXIT_FAILED, f"{type(exc).__name__}: {exc}\n(full log: {run_dir / 'run.log'})")
     finally:
-        logging.getLogger("bearingsim").removeHandler(handler)
+        log.removeHandler(handler)
         handler.close()
     err_console.print(f"  report       computed in {outcome.wall_time:.2f} s", highlight=False)
     err_console.print(f"report: {run_dir / 'report' / outcome.info['report']}", highlight=False)
@@ -408,6 +427,10 @@ def stability(cases: Annotated[Optional[list[str]], typer.Argument(help=_literal
     """Stability suite: stiff and extreme cases, each a pass or a clearly reported refusal."""
     from .studies.stability import case_names, markdown_table, run_suite, write_suite
 
+    for option, value, example in (("--window", window, "0.01"), ("--wall-budget", wall_budget, "180")):
+        if not (math.isfinite(value) and value > 0.0):
+            _fail(EXIT_SCENE, f"{option}: is {value} s; give a positive finite time in seconds, e.g. "
+                              f"{option} {example}")
     unknown = [c for c in cases or [] if c not in case_names()]
     if unknown:
         _fail(EXIT_SCENE, f"unknown stability case {unknown[0]!r}; cases: {', '.join(case_names())}")
@@ -447,7 +470,7 @@ def sweep(scene: SceneArg,
                                              "else yes); --no-figures saves their drawing time.")] = None) -> None:
     """Parameter sweep on Dask: one pipeline run per point, a results table and a cage-stability map."""
     from .sweep.console import SweepProgress, class_counts, print_results
-    from .sweep.driver import dask_client, gather, plan_sweep, run_sweep, unfinished
+    from .sweep.driver import claim_sweep_directory, dask_client, gather, plan_sweep, run_sweep, unfinished
     from .sweep.table import read_table, result_row
 
     try:
@@ -460,6 +483,10 @@ def sweep(scene: SceneArg,
         print_results(rows, plan.varied, out_console)
         err_console.print(f"{len(rows)} points; sweep directory {plan.sweep_dir}/", highlight=False)
         return
+    try:
+        claim_sweep_directory(plan.sweep_dir)
+    except OutputRefused as exc:
+        _fail(EXIT_SCENE, str(exc))
     err_console.print(f"sweep {plan.name}: {len(plan.points)} points on "
                       f"{scheduler or f'a local cluster of {workers} workers'}", highlight=False)
     try:
@@ -468,6 +495,12 @@ def sweep(scene: SceneArg,
         else:
             with dask_client(scheduler, workers) as client, SweepProgress(err_console) as bar:
                 records = run_sweep(plan, client, progress=bar.update, retry_failed=retry_failed)
+    except KeyboardInterrupt as exc:
+        how, code = interruption(exc)
+        _fail(code, f"interrupted ({how}): finished points are kept in {plan.sweep_dir / 'points'}/; run the "
+                    "same command again to run only the others")
+    except OutputRefused as exc:
+        _fail(EXIT_SCENE, str(exc))
     except OSError as exc:
         _fail(EXIT_FAILED, f"cannot reach the Dask scheduler {scheduler!r}: {exc}" if scheduler else str(exc))
     except RuntimeError as exc:  # e.g. the optional dask extra is not installed
@@ -483,4 +516,5 @@ def sweep(scene: SceneArg,
 
 
 def main() -> None:  # pragma: no cover - console entry point
+    stop_on_sigterm()
     app()

@@ -148,7 +148,8 @@ def _run_stages_reported(scene, scene_arg, run_dir, targets, force, quiet, notes
                                      store=shared_store_dir() if shared else None, store_stages=SHARED_STAGES)
     except KeyboardInterrupt as exc:
         how, code = interruption(exc)
-        log.warning("interrupted (%s); finished stages are kept, the interrupted one left nothing behind", how)
+        log.warning("interrupted %s(%s); finished stages are kept, the interrupted one left nothing behind",
+                    "by the user " if how == "Ctrl-C" else "", how)
         _fail(code, f"interrupted ({how}): finished stages are kept in {run_dir}/, the "
                     "interrupted stage left nothing; run the same command again to continue")
     except StageNotAvailable as exc:
@@ -226,11 +227,13 @@ def check(scene: SceneArg, set_: SetOpt = None) -> None:
     """Validate a scene and print it resolved, with units and the derived geometry."""
     from .scene_report import print_scene
 
-    from .validity import run_findings, scene_findings
+    from .run_session import fe_findings
+    from .validity import raise_errors, run_findings, scene_findings
 
     try:
         resolved = _load(scene, set_)
-        notes = scene_findings(resolved)
+        notes = raise_errors(scene_findings(resolved)) + raise_errors(fe_findings(resolved))
+        _check_sweep_table(scene, set_)
     except SceneError as exc:
         _fail(EXIT_SCENE, f"scene: {explain(exc)}")
     print_scene(resolved, out_console)
@@ -239,6 +242,17 @@ def check(scene: SceneArg, set_: SetOpt = None) -> None:
     if refusals:
         err_console.print("note: simulate and run would refuse this scene: "
                           + escape("; ".join(f.text for f in refusals)), highlight=False, soft_wrap=True)
+
+
+def _check_sweep_table(scene: str, overrides) -> None:
+    """Every point of the scene's own [sweep] table, validated as `sweep` would (SceneError)."""
+    from .scene import apply_overrides, read_scene_table
+    from .sweep.driver import plan_sweep
+
+    table = apply_overrides(read_scene_table(scene)[0], list(overrides or []))
+    sweep = table.get("sweep")
+    if isinstance(sweep, dict) and ("vary" in sweep or "points" in sweep):
+        plan_sweep(scene, overrides)
 
 
 @app.command()

@@ -519,7 +519,7 @@ def sweep(scene: SceneArg,
         _fail(EXIT_FAILED, f"cannot reach the Dask scheduler {scheduler!r}: {exc}" if scheduler else str(exc))
     except RuntimeError as exc:  # e.g. the optional dask extra is not installed
         _fail(EXIT_FAILED, str(exc))
-    paths = gather(plan, records)
+    paths = gather(plan, records, warn=False)  # the table below prints the short-run warning
     rows = read_table(paths["table"])
     print_results(rows, plan.varied, out_console)
     err_console.print(f"classes: {class_counts(rows)}\nresults: {paths['table']}\nmap: {paths['map']}", highlight=False)

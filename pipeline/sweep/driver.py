@@ -20,6 +20,7 @@ import json
 import logging
 import time
 import uuid
+import warnings
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
@@ -31,7 +32,7 @@ from ..schema import SceneError
 from .point_runner import PointRequest, finished_record, run_point
 from .points import SweepPoint, expand, point_table, scene_hash
 from .spec import MAX_POINTS, SweepSection, build_sweep_section, check_size, with_command_line
-from .table import result_row, write_table
+from .table import result_row, short_run_warning, write_table
 
 PLAN_FILE, MAP_FILE = "sweep.json", "stability_map.png"
 SWEEP_MARKER = ".bearingsim-sweep"
@@ -179,15 +180,23 @@ def _rows(plan: SweepPlan, records: dict) -> list[dict]:
             for p, req in zip(plan.points, plan.requests)]
 
 
-def gather(plan: SweepPlan, records: list[dict | None]) -> dict[str, Path]:
-    """Write the results table and the stability map; returns {"table": ..., "map": ...}."""
+def gather(plan: SweepPlan, records: list[dict | None], warn: bool = True) -> dict[str, Path]:
+    """Write the results table and the stability map; returns {"table": ..., "map": ...}.
+    When points ran too short to settle, the map's title says so and (with `warn`) a Python
+    warning is issued."""
     from .stability_map import plot_stability_map
 
     rows = _rows(plan, {req.point_id: rec for req, rec in zip(plan.requests, records)})
     paths = write_table(rows, plan.sweep_dir)
     s = plan.section
+    short = short_run_warning(rows)
+    title = f"{plan.name}: cage motion\n(contours: metal-contact fraction)"
+    if short:
+        title += "\nRUN TOO SHORT TO SETTLE: classes show a start-up transient, not a regime"
+        if warn:
+            warnings.warn(f"sweep {plan.name}: {short}", stacklevel=2)
     out = plot_stability_map(rows, plan.varied, plan.sweep_dir / MAP_FILE, map_x=s.map_x, map_y=s.map_y,
-                             title=f"{plan.name}: cage motion\n(contours: metal-contact fraction)")
+                             title=title)
     return {"table": paths[0], **({"parquet": paths[1]} if len(paths) > 1 else {}), "map": out}
 
 

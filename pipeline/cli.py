@@ -292,12 +292,12 @@ def stiffness(scene: SceneArg,
         resolved = _load(scene, set_)
         speed_list = parse_speeds(speeds) if speeds else None
     except SceneError as exc:
-        _fail(EXIT_SCENE, f"scene: {exc}")
+        _fail(EXIT_SCENE, f"scene: {explain(exc)}")
     run_dir = _run_dir(resolved, out)
     try:
         table = export_stiffness(resolved, run_dir, speed_list)
     except SceneError as exc:
-        _fail(EXIT_SCENE, f"scene: {exc}")
+        _fail(EXIT_SCENE, f"scene: {explain(exc)}")
     except OutputRefused as exc:
         _fail(EXIT_SCENE, str(exc))
     except RunDirectoryBusy as exc:
@@ -305,7 +305,7 @@ def stiffness(scene: SceneArg,
     except StageNotAvailable as exc:
         _fail(EXIT_UNAVAILABLE, str(exc))
     except (RuntimeError, ValueError, ArithmeticError) as exc:
-        _fail(EXIT_FAILED, f"{type(exc).__name__}: {exc}")
+        _fail(EXIT_FAILED, f"{type(exc).__name__}: {explain(exc)}")
     out_console.print(table.markdown(), highlight=False, soft_wrap=True, markup=False)
     if not table.converged.all():
         err_console.print("warning: the quasi-static solve did not converge at some speeds (column converged)",
@@ -523,6 +523,11 @@ def sweep(scene: SceneArg,
     rows = read_table(paths["table"])
     print_results(rows, plan.varied, out_console)
     err_console.print(f"classes: {class_counts(rows)}\nresults: {paths['table']}\nmap: {paths['map']}", highlight=False)
+    failed = [r for r in records if r is not None and r.get("status") == "failed" and not r.get("lost")]
+    if failed:  # failed points are results (their error is in the table): exit 0, said plainly
+        err_console.print(f"[bold yellow]warning:[/] {len(failed)} of {len(records)} points failed (column "
+                          f"error of {paths['table']}); rerun with --retry-failed to run them again",
+                          highlight=False, soft_wrap=True)
     unfinished = [r for r in records if r is None or r.get("lost")]
     if unfinished:
         _fail(EXIT_FAILED, f"{len(unfinished)} points did not finish (worker lost); rerun the same command "

@@ -128,9 +128,18 @@ def run_stages(
             outcomes[-1].warnings.insert(0, {"level": "warning", "key": "", "message": (
                 f"the cached result was damaged ({', '.join(damaged[:5])} changed or missing since the stage "
                 f"wrote it): recomputed")})
-        drop_stale_dependents(run_dir, stages, keys, not_needed)
-    drop_stale_dependents(run_dir, stages, keys, not_needed)
+        _note_removed(outcomes[-1], drop_stale_dependents(run_dir, stages, keys, not_needed))
+    if outcomes:
+        _note_removed(outcomes[-1], drop_stale_dependents(run_dir, stages, keys, not_needed))
     return outcomes
+
+
+def _note_removed(outcome: StageOutcome, removed: list[str]) -> None:
+    """Say on the console, not only in run.log, which results a changed input removed."""
+    if removed:
+        outcome.warnings.append({"level": "warning", "key": "", "message": (
+            f"removed {', '.join(f'{r}/' for r in removed)}: computed from the previous {outcome.name} "
+            f"result, which these inputs replaced; run {removed[-1]} again to recompute it")})
 
 
 def drop_stale_dependents(run_dir: Path, stages: list[Stage], keys: dict[str, str],

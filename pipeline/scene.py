@@ -88,6 +88,7 @@ def read_scene_table(scene: str | Path) -> tuple[dict, str]:
             reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
             raise SceneError("", f"scene file {shown!r} cannot be read ({reason})") from None
         origin = str(path)
+        data = data.removeprefix(b"\xef\xbb\xbf")  # a byte-order mark some editors write: not TOML
         try:
             text = data.decode("utf-8")
         except UnicodeDecodeError as exc:
@@ -140,6 +141,8 @@ def parse_override(text: str) -> tuple[list[str], Any]:
     word that is not valid TOML is taken as a string (`name=foo`)."""
     if "=" not in text:
         raise SceneError("", f"--set expects KEY=VALUE (e.g. load.moment=250), got {text!r}")
+    if "\n" in text or "\r" in text:  # TOML would read the lines after the first as more tables
+        raise SceneError("", f"--set: {text!r} holds a line break; give one KEY=VALUE per --set")
     key, value_text = (s.strip() for s in text.split("=", 1))
     if not key or any(not part for part in key.split(".")):
         raise SceneError("", f"--set: bad key {key!r} in {text!r}")

@@ -262,11 +262,11 @@ def _resources(scene) -> list[Finding]:
 def _plausibility(scene) -> list[Finding]:
     """Values that look like the wrong unit (scene files are SI: m, N, N.m, Pa, kg/m^3)."""
     b, out = scene.bearing, []
-    if b.ball_diameter > 0.5:
+    if b.ball_diameter >= 0.2:  # the largest rolling-bearing balls are about 0.1 m; 0.5 in is 0.0127 m
         out.append(warning("bearing.ball_diameter",
                            f"{_g(b.ball_diameter)} m is a ball of {b.ball_diameter:.3g} metres (mass "
                            f"{_g(b.ball_mass(scene.materials.ball))} kg): scene lengths are in metres; did you "
-                           f"write millimetres? (12.7 mm is 0.0127) [m]"))
+                           f"write millimetres or inches? (12.7 mm = 0.5 in is 0.0127) [m]"))
     elif b.ball_diameter < 1e-4:
         out.append(warning("bearing.ball_diameter",
                            f"{_g(b.ball_diameter)} m is a ball of {b.ball_diameter * 1e6:.3g} µm: scene lengths "

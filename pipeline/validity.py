@@ -271,6 +271,11 @@ def _plausibility(scene) -> list[Finding]:
         out.append(warning("bearing.ball_diameter",
                            f"{_g(b.ball_diameter)} m is a ball of {b.ball_diameter * 1e6:.3g} µm: scene lengths "
                            f"are in metres [m]"))
+    if scene.load.axial < 0.0:
+        out.append(warning("load.axial", f"{_g(scene.load.axial)} N is a thrust along -z: the model's rings are "
+                                         "symmetric about their mid-plane, so the other flanks of the grooves "
+                                         "carry it and the result is the mirror image of +z; a one-sided "
+                                         "angular-contact bearing carries thrust one way only: check the sign [N]"))
     if scene.cage is not None and scene.cage.mean_diameter > 5.0:
         out.append(warning("cage.mean_diameter", f"{_g(scene.cage.mean_diameter)} m: scene lengths are in metres [m]"))
     for name in ("ball", "race", "cage"):

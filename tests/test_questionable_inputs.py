@@ -69,3 +69,9 @@ def test_a_changed_quasistatic_says_it_removed_the_simulation(tmp_path):
                                  "--set", "load.moment=200"])
     assert result.exit_code == 0 and "removed simulate/" in result.stderr
     assert not (out / "simulate").exists()
+
+
+def test_a_negative_thrust_is_said_to_be_mirrored():
+    result = runner.invoke(app, ["check", "helicopter-b-given-hinge", "--set", "load.axial=-34000"])
+    assert result.exit_code == 0 and "thrust along -z" in result.stderr
+    assert "thrust along -z" not in runner.invoke(app, ["check", "helicopter-b-given-hinge"]).stderr

@@ -511,8 +511,13 @@ def sweep(scene: SceneArg,
                 records = run_sweep(plan, client, progress=bar.update, retry_failed=retry_failed)
     except KeyboardInterrupt as exc:
         how, code = interruption(exc)
-        _fail(code, f"interrupted ({how}): finished points are kept in {plan.sweep_dir / 'points'}/; run the "
-                    "same command again to run only the others")
+        if not scheduler:  # the local cluster is closed: no worker writes the points any more
+            from .sweep.point_runner import remove_stale_temporaries
+
+            for request in plan.requests:
+                remove_stale_temporaries(Path(request.run_dir))
+        _fail(code, f"interrupted ({how}): finished points are kept in {plan.sweep_dir / 'points'}/, the "
+                    "interrupted ones left nothing; run the same command again to run only the others")
     except OutputRefused as exc:
         _fail(EXIT_SCENE, str(exc))
     except OSError as exc:

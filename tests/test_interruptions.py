@@ -5,10 +5,12 @@ the exit code is 143 (128 + SIGTERM) — and bad numeric options are messages, n
 
 from __future__ import annotations
 
+import os
 import signal
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 import pytest
 from typer.testing import CliRunner
@@ -55,8 +57,35 @@ def test_ctrl_c_during_a_sweep_says_how_to_continue(tmp_path, monkeypatch):
     def interrupted(*args, **kwargs):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(driver, "run_sweep", interrupted)
+    def interrupted_while_a_point_ran(plan, *args, **kwargs):
+        (Path(plan.requests[0].run_dir) / ".simulate.k1ll3d.tmp").mkdir(parents=True)
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(driver, "run_sweep", interrupted_while_a_point_ran)
     result = runner.invoke(app, ["sweep", "helicopter-b-given-hinge", "--set", "solver.duration=0.002",
                                  "--vary", "load.moment=1,2", "--out", str(tmp_path / "s"), "--workers", "1"])
     assert result.exit_code == 130, result.output[-2000:]
     assert "interrupted (Ctrl-C)" in result.stderr and "run the same command again" in result.stderr
+    assert not list((tmp_path / "s").rglob(".*.tmp"))  # the killed point's temporary is gone
+
+
+@pytest.mark.slow
+def test_ctrl_c_of_a_real_sweep_is_one_message(tmp_path):
+    """Ctrl-C reaches the whole process group, the workers included: one message, no traceback."""
+    out = tmp_path / "s"
+    proc = subprocess.Popen([sys.executable, "-c", "from bearingsim.pipeline.cli import main; main()",
+                             "sweep", "helicopter-b-given-hinge", "--set", "solver.duration=0.3",
+                             "--set", "output.figures=false", "--vary", "load.moment=100,200,300,400",
+                             "--out", str(out)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            start_new_session=True, preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    try:
+        deadline = time.monotonic() + 300
+        while not list(out.glob("points/*/.simulate.*.tmp")) and time.monotonic() < deadline:
+            time.sleep(0.2)
+        os.killpg(proc.pid, signal.SIGINT)
+        _, err = proc.communicate(timeout=120)
+    finally:
+        proc.kill()
+    assert proc.returncode == 130, err[-3000:]
+    assert "interrupted (Ctrl-C)" in err and "Traceback" not in err and "killing" not in err
+    assert not list(out.rglob(".*.tmp"))

@@ -60,29 +60,26 @@ LOOKALIKES = {"copied stage folder": _copied_stage_folder, "scene.toml and versi
               "results.csv": _a_results_table, "sweep.json and a map": _a_sweep_json_of_the_users}
 
 
-@pytest.mark.parametrize("content", LOOKALIKES)
-def test_a_users_lookalike_folder_is_refused_by_quasistatic(content, tmp_path):
-    folder = tmp_path / "proj"
-    folder.mkdir()
-    LOOKALIKES[content](folder)
-    before = snapshot(folder)
-    result = runner.invoke(app, ["quasistatic", "deep-groove-209", "--out", str(folder)])
-    assert result.exit_code == 2, result.output
-    assert "not a bearingsim run" in result.stderr and f"--out {folder / 'run'}" in result.stderr
-    assert snapshot(folder) == before  # not even the marker or the lock
+# command, what the refusal says, the safe folder it proposes inside the user's
+REFUSING = {
+    "quasistatic": (["quasistatic", "deep-groove-209"], "not a bearingsim run", "run"),
+    "sweep": (["sweep", "helicopter-b-given-hinge", "--set", "solver.duration=0.002", "--vary", "load.moment=1,2"],
+              "not a bearingsim sweep", "sweep"),
+}
 
 
+@pytest.mark.parametrize("command", REFUSING)
 @pytest.mark.parametrize("content", LOOKALIKES)
-def test_a_users_lookalike_folder_is_refused_by_sweep(content, tmp_path):
+def test_a_users_lookalike_folder_is_refused(content, command, tmp_path):
+    args, says, safe = REFUSING[command]
     folder = tmp_path / "mine"
     folder.mkdir()
     LOOKALIKES[content](folder)
     before = snapshot(folder)
-    result = runner.invoke(app, ["sweep", "helicopter-b-given-hinge", "--set", "solver.duration=0.002",
-                                 "--vary", "load.moment=1,2", "--out", str(folder)])
+    result = runner.invoke(app, [*args, "--out", str(folder)])
     assert result.exit_code == 2, result.output
-    assert "not a bearingsim sweep" in result.stderr and f"--out {folder / 'sweep'}" in result.stderr
-    assert snapshot(folder) == before
+    assert says in result.stderr and f"--out {folder / safe}" in result.stderr
+    assert snapshot(folder) == before  # not even the marker or the lock
 
 
 def test_a_file_as_sweep_directory_is_refused(tmp_path):

@@ -123,7 +123,10 @@ class FEConfig:
 
 
 def _require(key: str, value: float, op: str, bound: float, unit: str, meaning: str) -> None:
-    ok = {"<": value < bound, ">": value > bound, "<=": value <= bound}[op]
+    # an inclusive bound admits the value as the message states it (6 digits): 4 x 0.01 m
+    # computes as 0.039999... m, and 0.04 m must not be refused as "must be <= 0.04 m"
+    stated = float(f"{bound:.6g}")
+    ok = {"<": value < bound, ">": value > bound, "<=": value <= max(bound, stated)}[op]
     if not ok:
         raise ValueError(
             f"[fe] {key} = {value!r} {unit} is not allowed: it must be {op} {bound:.6g} {unit} "

@@ -311,10 +311,13 @@ class Run:
 
         return hinge_of(self.scene, self.stage_dir("identify"))
 
-    def timeseries(self, names: Iterable[str] | None = None) -> TimeSeries:
-        """`simulate/timeseries.h5` as name -> NamedArray (all series, or only `names`)."""
+    def timeseries(self, names: str | Iterable[str] | None = None) -> TimeSeries:
+        """`simulate/timeseries.h5` as name -> NamedArray (all series, or only `names`: one
+        name or several)."""
         from .results.timeseries import read_timeseries
 
+        if isinstance(names, str):
+            names = [names]
         path = self._file("simulate", "timeseries.h5")
         names = None if names is None else list(names)
         wanted = names if names is None or "time" in names else [*names, "time"]  # the coordinate

@@ -204,12 +204,6 @@ def is_fresh(stage_dir: Path, key: str) -> bool:
 
 
 # --- directories -----------------------------------------------------------------------
-def is_own_stage_dir(path: Path) -> bool:
-    """A folder bearingsim wrote as a stage: it holds a manifest naming a stage."""
-    manifest = read_manifest(path)
-    return bool(manifest) and "stage" in manifest and "key" in manifest
-
-
 @contextmanager
 def staged_directory(final_dir: Path) -> Iterator[Path]:
     """Yield a temporary directory; on success it replaces `final_dir` whole.
@@ -284,7 +278,7 @@ def sweep_stale_temporaries(directory: Path, max_age_s: float = STALE_TEMPORARY_
 
 def is_own_run_dir(run_dir: Path) -> bool:
     """A directory bearingsim made a run directory: its marker, or (runs of older versions)
-    a resolved scene.toml beside versions.json, or a stage folder with its manifest."""
+    a resolved scene.toml beside versions.json."""
     run_dir = Path(run_dir)
     if (run_dir / RUN_MARKER).is_file():
         return True
@@ -292,12 +286,8 @@ def is_own_run_dir(run_dir: Path) -> bool:
         first = (run_dir / "scene.toml").open(encoding="utf-8").readline()
     except (OSError, ValueError):
         first = ""
-    if first.startswith(SCENE_HEADER) and (run_dir / "versions.json").is_file():
-        return True
-    try:
-        return any(p.is_dir() and is_own_stage_dir(p) for p in run_dir.iterdir())
-    except OSError:
-        return False
+    # a stage folder alone says nothing: a user may keep a copy of one in a folder of theirs
+    return first.startswith(SCENE_HEADER) and (run_dir / "versions.json").is_file()
 
 
 def claim_run_directory(run_dir: Path) -> None:
@@ -358,8 +348,10 @@ def run_directory_lock(run_dir: Path) -> Iterator[None]:
     except ImportError:  # pragma: no cover - not POSIX
         yield
         return
+    from .no_follow import open_no_follow
+
     run_dir.mkdir(parents=True, exist_ok=True)
-    with open(run_dir / ".lock", "a+") as handle:
+    with open_no_follow(run_dir / ".lock") as handle:
         try:
             fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:

@@ -10,6 +10,7 @@ from __future__ import annotations
 import contextlib
 import json
 import logging
+import math
 import sys
 from pathlib import Path
 from typing import Annotated, Optional
@@ -22,7 +23,8 @@ from .numba_cache import configure_numba_cache
 # before any kernel is compiled or loaded: the cache keyed by the dynamics sources
 configure_numba_cache()
 
-from .artefacts import OutputRefused, RunDirectoryBusy, claim_run_directory, run_directory_lock  # noqa: E402
+from .artefacts import OutputRefused, RunDirectoryBusy  # noqa: E402
+from .interrupts import interruption, stop_on_sigterm  # noqa: E402
 from .runner import StageNotAvailable
 from .schema import SceneError
 
@@ -123,6 +125,8 @@ def _run_locked(scene, scene_arg, run_dir, targets, force, quiet, notes=(), shar
     with contextlib.ExitStack() as logged:
         try:
             logged.enter_context(run_log(run_dir))
+        except OutputRefused as exc:
+            _fail(EXIT_SCENE, str(exc))
         except OSError as exc:
             _fail(EXIT_SCENE, f"--out {run_dir}: cannot write run.log there ({exc.strerror or exc}); give a "
                               "writable directory")
@@ -142,11 +146,12 @@ def _run_stages_reported(scene, scene_arg, run_dir, targets, force, quiet, notes
             return run_stages_logged(scene, run_dir, targets, force, read_scene_table(scene_arg)[1],
                                      notes=notes, progress=bar.update,
                                      store=shared_store_dir() if shared else None, store_stages=SHARED_STAGES)
-    except KeyboardInterrupt:
-        log.warning("interrupted by the user (Ctrl-C); finished stages are kept, the interrupted one "
-                    "left nothing behind")
-        _fail(EXIT_INTERRUPTED, f"interrupted (Ctrl-C): finished stages are kept in {run_dir}/, the "
-                                "interrupted stage left nothing; run the same command again to continue")
+    except KeyboardInterrupt as exc:
+        how, code = interruption(exc)
+        log.warning("interrupted %s(%s); finished stages are kept, the interrupted one left nothing behind",
+                    "by the user " if how == "Ctrl-C" else "", how)
+        _fail(code, f"interrupted ({how}): finished stages are kept in {run_dir}/, the "
+                    "interrupted stage left nothing; run the same command again to continue")
     except StageNotAvailable as exc:
         _fail(EXIT_UNAVAILABLE, f"{exc}. Results so far are in {run_dir}/")
     except OutputRefused as exc:
@@ -224,11 +229,13 @@ def check(scene: SceneArg, set_: SetOpt = None) -> None:
     """Validate a scene and print it resolved, with units and the derived geometry."""
     from .scene_report import print_scene
 
-    from .validity import run_findings, scene_findings
+    from .run_session import fe_findings
+    from .validity import raise_errors, run_findings, scene_findings
 
     try:
         resolved = _load(scene, set_)
-        notes = scene_findings(resolved)
+        notes = raise_errors(scene_findings(resolved)) + raise_errors(fe_findings(resolved))
+        _check_sweep_table(scene, set_)
     except SceneError as exc:
         _fail(EXIT_SCENE, f"scene: {explain(exc)}")
     print_scene(resolved, out_console)
@@ -237,6 +244,17 @@ def check(scene: SceneArg, set_: SetOpt = None) -> None:
     if refusals:
         err_console.print("note: simulate and run would refuse this scene: "
                           + escape("; ".join(f.text for f in refusals)), highlight=False, soft_wrap=True)
+
+
+def _check_sweep_table(scene: str, overrides) -> None:
+    """Every point of the scene's own [sweep] table, validated as `sweep` would (SceneError)."""
+    from .scene import apply_overrides, read_scene_table
+    from .sweep.driver import plan_sweep
+
+    table = apply_overrides(read_scene_table(scene)[0], list(overrides or []))
+    sweep = table.get("sweep")
+    if isinstance(sweep, dict) and ("vary" in sweep or "points" in sweep):
+        plan_sweep(scene, overrides)
 
 
 @app.command()
@@ -331,12 +349,12 @@ def stiffness(scene: SceneArg,
         resolved = _load(scene, set_)
         speed_list = parse_speeds(speeds) if speeds else None
     except SceneError as exc:
-        _fail(EXIT_SCENE, f"scene: {exc}")
+        _fail(EXIT_SCENE, f"scene: {explain(exc)}")
     run_dir = _run_dir(resolved, out)
     try:
         table = export_stiffness(resolved, run_dir, speed_list)
     except SceneError as exc:
-        _fail(EXIT_SCENE, f"scene: {exc}")
+        _fail(EXIT_SCENE, f"scene: {explain(exc)}")
     except OutputRefused as exc:
         _fail(EXIT_SCENE, str(exc))
     except RunDirectoryBusy as exc:
@@ -344,7 +362,7 @@ def stiffness(scene: SceneArg,
     except StageNotAvailable as exc:
         _fail(EXIT_UNAVAILABLE, str(exc))
     except (RuntimeError, ValueError, ArithmeticError) as exc:
-        _fail(EXIT_FAILED, f"{type(exc).__name__}: {exc}")
+        _fail(EXIT_FAILED, f"{type(exc).__name__}: {explain(exc)}")
     out_console.print(table.markdown(), highlight=False, soft_wrap=True, markup=False)
     if not table.converged.all():
         err_console.print("warning: the quasi-static solve did not converge at some speeds (column converged)",
@@ -404,7 +422,7 @@ def render(run_dir: Annotated[Path, typer.Argument(help="A run directory written
     """Regenerate renders and the report from saved results (never re-solves)."""
     from .provenance import attach_run_log
     from .render.offscreen import display_available
-    from .stages.report import render_run
+    from .stages.report import StageResultsDamaged, render_run
 
     if not (run_dir / "scene.toml").is_file():
         _fail(EXIT_SCENE, f"{run_dir} is not a run directory (no scene.toml); give the directory "
@@ -414,18 +432,33 @@ def render(run_dir: Annotated[Path, typer.Argument(help="A run directory written
         show = False
     elif not show:
         err_console.print("rendering off-screen", highlight=False)
-    handler = attach_run_log(run_dir)
+    log = logging.getLogger("bearingsim")
+    try:
+        handler = attach_run_log(run_dir)
+    except OSError as exc:  # OutputRefused too: a link or a special file in run.log's place
+        _fail(EXIT_SCENE, str(exc) if isinstance(exc, OutputRefused) else
+              f"{run_dir}: cannot write run.log there ({exc.strerror or exc}); render needs a run directory "
+              f"it may write (its report/ is redrawn): copy it, e.g. cp -r {run_dir} {run_dir}-copy")
     try:
         outcome = render_run(run_dir, show=show)
+    except KeyboardInterrupt as exc:
+        how, code = interruption(exc)
+        log.warning("render interrupted (%s); the report was left as it was", how)
+        _fail(code, f"interrupted ({how}): {run_dir / 'report'}/ is left as it was; run render again")
     except SceneError as exc:
         _fail(EXIT_SCENE, f"scene: {explain(exc)}")
-    except (FileNotFoundError, OutputRefused) as exc:
+    except (FileNotFoundError, OutputRefused, StageResultsDamaged) as exc:
+        log.error("render refused: %s", exc)
         _fail(EXIT_SCENE, str(exc))
+    except PermissionError as exc:
+        log.error("render failed: %s", exc)
+        _fail(EXIT_SCENE, f"{run_dir}: cannot write the report there ({exc.strerror or exc}); render needs a "
+                          f"run directory it may write: copy it, e.g. cp -r {run_dir} {run_dir}-copy")
     except (RuntimeError, ValueError, ArithmeticError, OSError) as exc:
-        logging.getLogger("bearingsim").exception("render failed")
+        log.exception("render failed")
         _fail(EXIT_FAILED, f"{type(exc).__name__}: {exc}\n(full log: {run_dir / 'run.log'})")
     finally:
-        logging.getLogger("bearingsim").removeHandler(handler)
+        log.removeHandler(handler)
         handler.close()
     err_console.print(f"  report       computed in {outcome.wall_time:.2f} s", highlight=False)
     err_console.print(f"report: {run_dir / 'report' / outcome.info['report']}", highlight=False)
@@ -465,6 +498,10 @@ def stability(cases: Annotated[Optional[list[str]], typer.Argument(help=_literal
     """Stability suite: stiff and extreme cases, each a pass or a clearly reported refusal."""
     from .studies.stability import case_names, markdown_table, run_suite, write_suite
 
+    for option, value, example in (("--window", window, "0.01"), ("--wall-budget", wall_budget, "180")):
+        if not (math.isfinite(value) and value > 0.0):
+            _fail(EXIT_SCENE, f"{option}: is {value} s; give a positive finite time in seconds, e.g. "
+                              f"{option} {example}")
     unknown = [c for c in cases or [] if c not in case_names()]
     if unknown:
         _fail(EXIT_SCENE, f"unknown stability case {unknown[0]!r}; cases: {', '.join(case_names())}")
@@ -504,7 +541,7 @@ def sweep(scene: SceneArg,
                                              "else yes); --no-figures saves their drawing time.")] = None) -> None:
     """Parameter sweep on Dask: one pipeline run per point, a results table and a cage-stability map."""
     from .sweep.console import SweepProgress, class_counts, print_results
-    from .sweep.driver import dask_client, gather, plan_sweep, run_sweep, unfinished
+    from .sweep.driver import claim_sweep_directory, dask_client, gather, plan_sweep, run_sweep, unfinished
     from .sweep.table import read_table, result_row
 
     try:
@@ -517,6 +554,10 @@ def sweep(scene: SceneArg,
         print_results(rows, plan.varied, out_console)
         err_console.print(f"{len(rows)} points; sweep directory {plan.sweep_dir}/", highlight=False)
         return
+    try:
+        claim_sweep_directory(plan.sweep_dir)
+    except OutputRefused as exc:
+        _fail(EXIT_SCENE, str(exc))
     err_console.print(f"sweep {plan.name}: {len(plan.points)} points on "
                       f"{scheduler or f'a local cluster of {workers} workers'}", highlight=False)
     try:
@@ -527,14 +568,30 @@ def sweep(scene: SceneArg,
                 if getattr(client, "dashboard_link", None):
                     err_console.print(f"Dask dashboard: {client.dashboard_link}", highlight=False)
                 records = run_sweep(plan, client, progress=bar.update, retry_failed=retry_failed)
+    except KeyboardInterrupt as exc:
+        how, code = interruption(exc)
+        if not scheduler:  # the local cluster is closed: no worker writes the points any more
+            from .sweep.point_runner import remove_stale_temporaries
+
+            for request in plan.requests:
+                remove_stale_temporaries(Path(request.run_dir))
+        _fail(code, f"interrupted ({how}): finished points are kept in {plan.sweep_dir / 'points'}/, the "
+                    "interrupted ones left nothing; run the same command again to run only the others")
+    except OutputRefused as exc:
+        _fail(EXIT_SCENE, str(exc))
     except OSError as exc:
         _fail(EXIT_FAILED, f"cannot reach the Dask scheduler {scheduler!r}: {exc}" if scheduler else str(exc))
     except RuntimeError as exc:  # e.g. the optional dask extra is not installed
         _fail(EXIT_FAILED, str(exc))
-    paths = gather(plan, records)
+    paths = gather(plan, records, warn=False)  # the table below prints the short-run warning
     rows = read_table(paths["table"])
     print_results(rows, plan.varied, out_console)
     err_console.print(f"classes: {class_counts(rows)}\nresults: {paths['table']}\nmap: {paths['map']}", highlight=False)
+    failed = [r for r in records if r is not None and r.get("status") == "failed" and not r.get("lost")]
+    if failed:  # failed points are results (their error is in the table): exit 0, said plainly
+        err_console.print(f"[bold yellow]warning:[/] {len(failed)} of {len(records)} points failed (column "
+                          f"error of {paths['table']}); rerun with --retry-failed to run them again",
+                          highlight=False, soft_wrap=True)
     unfinished = [r for r in records if r is None or r.get("lost")]
     if unfinished:
         _fail(EXIT_FAILED, f"{len(unfinished)} points did not finish (worker lost); rerun the same command "
@@ -542,4 +599,5 @@ def sweep(scene: SceneArg,
 
 
 def main() -> None:  # pragma: no cover - console entry point
+    stop_on_sigterm()
     app()

@@ -31,8 +31,8 @@ INTEGRATION_HINTS = {
         "cut the step further); a very stiff hinge (hinge.translational, hinge.bending) or contact "
         "(physics.contact_damping_ratio) needs smaller steps"),
     "Newton did not converge within max_newton_iter iterations": (
-        "lower solver.min_step so the step controller may cut the step further; a tighter solver.rtol "
-        "gives smaller steps everywhere"),
+        "lower solver.first_step and solver.min_step so the step controller may cut the step further; "
+        "a tighter solver.rtol gives smaller steps everywhere"),
     "residual is NaN or infinite": (
         "a force became NaN or infinite: check the scene's units (lengths in m, loads in N and N.m, "
         "speeds in rev/min), lower solver.first_step, and check physics.min_film"),
@@ -69,8 +69,10 @@ def explain(exc: BaseException) -> str:
     """`exc` as a one-paragraph message whose advice names scene keys."""
     text = str(exc)
     reason = getattr(exc, "reason", None)
-    if type(exc).__name__ == "IntegrationError" and reason in INTEGRATION_HINTS:
-        text = _TRY.sub(f". Try: {INTEGRATION_HINTS[reason]}.", text)
+    # the reason may end with where it happened ("... at the minimum step")
+    hint = next((h for r, h in INTEGRATION_HINTS.items() if isinstance(reason, str) and reason.startswith(r)), None)
+    if type(exc).__name__ == "IntegrationError" and hint is not None:
+        text = _TRY.sub(f". Try: {hint}.", text)
     for phrase, replacement in PHRASES:
         text = text.replace(phrase, replacement)
     return text

@@ -108,10 +108,19 @@ def write_run_provenance(run_dir: Path, raw_scene: dict, origin: str) -> None:
     atomic_write_json(run_dir / "versions.json", versions())
 
 
+class _RunLogHandler(logging.FileHandler):
+    """A FileHandler that refuses a link or a special file in the log's place (OutputRefused)."""
+
+    def _open(self):
+        from .no_follow import open_no_follow
+
+        return open_no_follow(Path(self.baseFilename))
+
+
 def attach_run_log(run_dir: Path) -> logging.Handler:
-    """Append the bearingsim log to `<run_dir>/run.log`."""
+    """Append the bearingsim log to `<run_dir>/run.log` (never through a link)."""
     run_dir.mkdir(parents=True, exist_ok=True)
-    handler = logging.FileHandler(run_dir / "run.log", encoding="utf-8")
+    handler = _RunLogHandler(run_dir / "run.log", encoding="utf-8")
     handler.setFormatter(logging.Formatter("%(asctime)s %(levelname)s %(message)s"))
     logger = logging.getLogger("bearingsim")
     logger.setLevel(logging.INFO)

@@ -22,8 +22,48 @@ def check_before_solving(scene, targets: list[str]) -> list:
     from .validity import raise_errors, run_findings, scene_findings
 
     notes = raise_errors(scene_findings(scene))
-    raise_errors(run_findings(scene, set(closure(STAGES, targets))))
+    stages = set(closure(STAGES, targets))
+    raise_errors(run_findings(scene, stages))
+    if "identify" in stages:
+        notes += raise_errors(fe_findings(scene))
     return notes
+
+
+# Triangles of the FE section beyond which identification takes hours and gigabytes: the default
+# mesh of helicopter-b has ~7 800 (0.9 s to mesh); a uniform mesh of 1 mm has 24 000.
+FE_TRIANGLES_ERROR, FE_TRIANGLES_WARNING = 2e6, 2e5
+EQUILATERAL_AREA = 0.433  # sqrt(3)/4: area of an equilateral triangle of side 1
+
+
+def fe_findings(scene) -> list:
+    """What the FE identification would refuse (the [fe] geometry against the bearing ring)
+    and the size of its mesh, for a scene whose hinge comes from the FE model."""
+    from bearingsim.meshes.housing import section_rectangles
+
+    from .stages.identify import ring_seat
+    from .validity import error, warning
+
+    if scene.hinge.source != "fe" or scene.fe is None:
+        return []
+    ring = ring_seat(scene)
+    try:
+        scene.fe.validate(ring)
+    except ValueError as exc:
+        return [error("", str(exc))]
+    fe = scene.fe
+    area = sum((r1 - r0) * (z1 - z0) for parts in section_rectangles(fe.housing_geometry(ring)).values()
+               for r0, r1, z0, z1 in parts)
+    triangles = area / (EQUILATERAL_AREA * fe.mesh_size ** 2)  # uniform mesh: fewer than refined
+    smallest = (area / (EQUILATERAL_AREA * FE_TRIANGLES_ERROR)) ** 0.5
+    text = (f"{fe.mesh_size:.6g} m gives at least {triangles:.3g} triangles in the {area * 1e4:.3g} cm^2 "
+            f"meridian section (uniform; fe.edge_refinement < 1 adds more)")
+    if triangles > FE_TRIANGLES_ERROR:
+        return [error("fe.mesh_size", f"{text}, more than the {FE_TRIANGLES_ERROR:.0e} identify accepts (the "
+                                      f"default mesh of helicopter-b has about 7800); allowed >= {smallest:.3g} m [m]")]
+    if triangles > FE_TRIANGLES_WARNING:
+        return [warning("fe.mesh_size", f"{text}, over 25 times the default mesh of helicopter-b: expect a "
+                                        f"long identification [m]")]
+    return []
 
 
 @contextlib.contextmanager

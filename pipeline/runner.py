@@ -15,6 +15,7 @@ inputs changed removes the results downstream of it that were computed from the 
 from __future__ import annotations
 
 import logging
+import os
 import shutil
 import time
 from contextlib import contextmanager
@@ -127,9 +128,18 @@ def run_stages(
             outcomes[-1].warnings.insert(0, {"level": "warning", "key": "", "message": (
                 f"the cached result was damaged ({', '.join(damaged[:5])} changed or missing since the stage "
                 f"wrote it): recomputed")})
-        drop_stale_dependents(run_dir, stages, keys, not_needed)
-    drop_stale_dependents(run_dir, stages, keys, not_needed)
+        _note_removed(outcomes[-1], drop_stale_dependents(run_dir, stages, keys, not_needed))
+    if outcomes:
+        _note_removed(outcomes[-1], drop_stale_dependents(run_dir, stages, keys, not_needed))
     return outcomes
+
+
+def _note_removed(outcome: StageOutcome, removed: list[str]) -> None:
+    """Say on the console, not only in run.log, which results a changed input removed."""
+    if removed:
+        outcome.warnings.append({"level": "warning", "key": "", "message": (
+            f"removed {', '.join(f'{r}/' for r in removed)}: computed from the previous {outcome.name} "
+            f"result, which these inputs replaced; run {removed[-1]} again to recompute it")})
 
 
 def drop_stale_dependents(run_dir: Path, stages: list[Stage], keys: dict[str, str],
@@ -220,6 +230,12 @@ def _via_store(stage, scene, run_dir, key, up, progress, store: Path, force: boo
     the same stage (e.g. one FE identification for a whole sweep) compute it once; the
     others wait for the lock and then link the published result."""
     entry = store / stage.name / key
+    try:
+        entry.parent.mkdir(parents=True, exist_ok=True)
+        if not os.access(entry.parent, os.W_OK | os.X_OK):
+            raise PermissionError(13, "not writable by this user")
+    except OSError as exc:
+        return _without_store(compute_stage(stage, scene, run_dir, key, up, progress), store, exc)
     with _store_lock(entry.with_name(f".{key}.lock")):
         if not force and cache_state(entry, key)[0] == "fresh":
             with staged_directory(run_dir / stage.name) as tmp:
@@ -230,9 +246,23 @@ def _via_store(stage, scene, run_dir, key, up, progress, store: Path, force: boo
             return StageOutcome(stage.name, "from store", key, info=manifest.get("info", {}),
                                 warnings=_warnings(manifest))
         outcome = compute_stage(stage, scene, run_dir, key, up, progress)
-        with staged_directory(entry) as tmp:  # atomic: readers never see a partial entry
-            shutil.copytree(run_dir / stage.name, tmp, dirs_exist_ok=True, copy_function=_link_or_copy)
+        try:
+            with staged_directory(entry) as tmp:  # atomic: readers never see a partial entry
+                shutil.copytree(run_dir / stage.name, tmp, dirs_exist_ok=True, copy_function=_link_or_copy)
+        except OSError as exc:  # the run's own result is complete: only the sharing failed
+            return _without_store(outcome, store, exc)
         return outcome
+
+
+def _without_store(outcome: StageOutcome, store: Path, exc: OSError) -> StageOutcome:
+    """`outcome` of a stage computed in the run directory only, with a warning that names the
+    unusable store and what to do."""
+    reason = exc.strerror or str(exc)
+    message = (f"the stage store {store} cannot be used ({reason}): {outcome.name} was computed in this "
+               f"run directory only; set BEARINGSIM_STAGE_STORE to a writable directory, or pass --no-store")
+    log.warning("stage %s: %s", outcome.name, message)
+    outcome.warnings.insert(0, {"level": "warning", "key": "", "message": message})
+    return outcome
 
 
 def _link_or_copy(src, dst) -> None:

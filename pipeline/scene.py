@@ -34,6 +34,7 @@ from .schema import SceneError, build, convert
 FORM1_KEYS = ("inner_groove_center_diameter", "outer_groove_center_diameter",
               "inner_groove_radius", "outer_groove_radius")
 FORM2_KEYS = ("pitch_diameter", "inner_conformity", "outer_conformity", "diametral_clearance")
+MAX_SCENE_BYTES = 1_000_000  # [B] the built-in scenes are 2-5 kB
 TOP_LEVEL = ("name", "description", "bearing", "cage", "materials", "lubricant", "load",
              "speed", "hinge", "fe", "solver", "physics", "output", "sweep", "thermal", "tolerances")
 
@@ -95,7 +96,9 @@ def read_scene_table(scene: str | Path) -> tuple[dict, str]:
         is_path = True  # e.g. a name too long for the file system: reported below
     if is_path:
         try:
-            data = path.read_bytes()
+            data = _read_scene_file(path, shown)
+        except SceneError:
+            raise
         except IsADirectoryError:
             raise SceneError("", f"scene file {shown!r} is a directory; give a .toml file") from None
         except FileNotFoundError:
@@ -104,6 +107,7 @@ def read_scene_table(scene: str | Path) -> tuple[dict, str]:
             reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
             raise SceneError("", f"scene file {shown!r} cannot be read ({reason})") from None
         origin = str(path)
+        data = data.removeprefix(b"\xef\xbb\xbf")  # a byte-order mark some editors write: not TOML
         try:
             text = data.decode("utf-8")
         except UnicodeDecodeError as exc:
@@ -126,12 +130,38 @@ def read_scene_table(scene: str | Path) -> tuple[dict, str]:
                              "two levels (e.g. hinge.translational as a 3x3 matrix)") from None
 
 
+def _read_scene_file(path: Path, shown: str) -> bytes:
+    """The bytes of a regular scene file of at most MAX_SCENE_BYTES; a device, a FIFO or an
+    oversized file is refused before it is read (bounded time and memory)."""
+    import os
+    import stat
+
+    def check(mode: int) -> None:
+        if stat.S_ISDIR(mode):
+            raise IsADirectoryError(path)
+        if not stat.S_ISREG(mode):
+            raise SceneError("", f"scene file {shown!r} is not a regular file (a device, a FIFO or a socket); "
+                                 "give a .toml file")
+
+    check(os.stat(path).st_mode)
+    fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0))
+    with os.fdopen(fd, "rb") as fh:
+        check(os.fstat(fd).st_mode)  # the same file as the one checked (it may have been swapped)
+        data = fh.read(MAX_SCENE_BYTES + 1)
+    if len(data) > MAX_SCENE_BYTES:
+        raise SceneError("", f"scene file {shown!r} is larger than {MAX_SCENE_BYTES // 1000} kB; a scene is a "
+                             "few kB of TOML: give the scene file, not a data file")
+    return data
+
+
 # --- overrides -------------------------------------------------------------------------
 def parse_override(text: str) -> tuple[list[str], Any]:
     """`load.moment=250` -> (["load", "moment"], 250.0). Values are TOML literals; a bare
     word that is not valid TOML is taken as a string (`name=foo`)."""
     if "=" not in text:
         raise SceneError("", f"--set expects KEY=VALUE (e.g. load.moment=250), got {text!r}")
+    if "\n" in text or "\r" in text:  # TOML would read the lines after the first as more tables
+        raise SceneError("", f"--set: {text!r} holds a line break; give one KEY=VALUE per --set")
     key, value_text = (s.strip() for s in text.split("=", 1))
     if not key or any(not part for part in key.split(".")):
         raise SceneError("", f"--set: bad key {key!r} in {text!r}")

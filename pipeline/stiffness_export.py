@@ -38,6 +38,7 @@ import numpy as np
 
 DOFS = ("x", "y", "z", "rx", "ry")
 STIFFNESS_DIR = "stiffness"
+MAX_SPEEDS = 1000  # speeds of one `stiffness` call: each is a quasi-static solve
 CSV_FILE, JSON_FILE = "stiffness.csv", "stiffness.json"
 ROSS_TERMS = ("kxx", "kxy", "kyx", "kyy", "kzz")  # ROSS BearingElement's stiffness arguments
 ROSS_DAMPING = ("cxx", "cxy", "cyx", "cyy", "czz")
@@ -336,6 +337,9 @@ def parse_speeds(text: str) -> list[float]:
     from .sweep.spec import parse_values
 
     values = parse_values("speeds", text, "--speeds")
+    if len(values) > MAX_SPEEDS:
+        raise SceneError("--speeds", f"{len(values)} speeds; at most {MAX_SPEEDS} per call (each is a "
+                                     f"quasi-static solve): give fewer, e.g. 0:20000:41 [rev/min]")
     try:
         return [float(v) for v in values]
     except (TypeError, ValueError):

@@ -274,15 +274,20 @@ def _resources(scene) -> list[Finding]:
 def _plausibility(scene) -> list[Finding]:
     """Values that look like the wrong unit (scene files are SI: m, N, N.m, Pa, kg/m^3)."""
     b, out = scene.bearing, []
-    if b.ball_diameter > 0.5:
+    if b.ball_diameter >= 0.2:  # the largest rolling-bearing balls are about 0.1 m; 0.5 in is 0.0127 m
         out.append(warning("bearing.ball_diameter",
                            f"{_g(b.ball_diameter)} m is a ball of {b.ball_diameter:.3g} metres (mass "
                            f"{_g(b.ball_mass(scene.materials.ball))} kg): scene lengths are in metres; did you "
-                           f"write millimetres? (12.7 mm is 0.0127) [m]"))
+                           f"write millimetres or inches? (12.7 mm = 0.5 in is 0.0127) [m]"))
     elif b.ball_diameter < 1e-4:
         out.append(warning("bearing.ball_diameter",
                            f"{_g(b.ball_diameter)} m is a ball of {b.ball_diameter * 1e6:.3g} µm: scene lengths "
                            f"are in metres [m]"))
+    if scene.load.axial < 0.0:
+        out.append(warning("load.axial", f"{_g(scene.load.axial)} N is a thrust along -z: the model's rings are "
+                                         "symmetric about their mid-plane, so the other flanks of the grooves "
+                                         "carry it and the result is the mirror image of +z; a one-sided "
+                                         "angular-contact bearing carries thrust one way only: check the sign [N]"))
     if scene.cage is not None and scene.cage.mean_diameter > 5.0:
         out.append(warning("cage.mean_diameter", f"{_g(scene.cage.mean_diameter)} m: scene lengths are in metres [m]"))
     for name in ("ball", "race", "cage"):

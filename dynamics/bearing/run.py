@@ -7,7 +7,6 @@ interpolation, no re-solving), at times within one step (<= max_step) of the gri
 
 from __future__ import annotations
 
-import dataclasses
 import time
 from dataclasses import dataclass, field
 from typing import Callable, NamedTuple
@@ -16,6 +15,7 @@ import numpy as np
 
 from bearingsim.dynamics.multibody.crv import crv_from_rotation_vector, crv_to_matrix
 from bearingsim.dynamics.multibody.compiled import integrate_compiled
+from bearingsim.dynamics.multibody.results import IntegrationError
 from bearingsim.dynamics.multibody.settings import HHTSettings
 
 from . import layout
@@ -131,7 +131,7 @@ def simulate_bearing(params: BearingModelParams, start: dict, settings: HHTSetti
     # cache): timed apart, so that the integration's wall time is the integration's. Two steps
     # reach every kernel: residual, tangent, factorisation, solve, the loop.
     warm0 = time.perf_counter()
-    warm_up_compiled_loop(model, q0, v0, settings)
+    warm_up_compiled_loop(model, q0, v0, settings, duration)
     model = BearingModel(params)  # a fresh impact log and energy balance
     # the initial diagnostics come from the initial-acceleration evaluation
     model.evaluate(0.0, q0, v0, np.zeros(n), np.zeros(n), np.zeros(n))
@@ -161,18 +161,26 @@ def simulate_bearing(params: BearingModelParams, start: dict, settings: HHTSetti
 
 def load_kernels(params: BearingModelParams, start: dict, settings: HHTSettings) -> float:
     """Compile (or load from numba's cache) every kernel a run of `params` calls, with the
-    first two steps of the run; returns the seconds it took. The caller may hold a lock
+    first steps of the run (`warm_up_compiled_loop`); returns the seconds it took. The caller may hold a lock
     around it so that processes sharing a cache compile once (pipeline.kernel_cache)."""
     t0 = time.perf_counter()
     params = params.with_float32_residual()
     model = BearingModel(params)
     q0, v0 = initial_coordinates(params, start)
-    warm_up_compiled_loop(model, q0, v0, settings)
+    warm_up_compiled_loop(model, q0, v0, settings, 2.0 * settings.first_step)
     return time.perf_counter() - t0
 
 
-def warm_up_compiled_loop(model: BearingModel, q0, v0, settings: HHTSettings) -> None:
-    """Compile (or load from numba's cache) the time loop with two steps of the model; the
-    model's impact log and energy balance are left dirty."""
-    h = settings.first_step
-    integrate_compiled(model, 0.0, 2.0 * h, q0, v0, dataclasses.replace(settings, adaptive=False, min_step=h, max_step=h))
+def warm_up_compiled_loop(model: BearingModel, q0, v0, settings: HHTSettings, duration: float) -> None:
+    """Compile (or load from numba's cache) the time loop with the first steps of the run; the
+    model's impact log and energy balance are left dirty.
+
+    The steps are the run's own (same step control, so a first step that Newton cannot take
+    is cut as the run would cut it), over two first steps at most. Numba compiles the whole
+    loop at its first call, so a failure there has done its job: the run itself meets that
+    failure again and reports it with its time and what to try."""
+    horizon = min(2.0 * settings.first_step, duration)
+    try:
+        integrate_compiled(model, 0.0, horizon, q0, v0, settings)
+    except IntegrationError:
+        pass

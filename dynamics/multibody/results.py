@@ -25,11 +25,11 @@ class Result(enum.Enum):
 _HINTS = {
     Result.SUCCESSFUL: "",
     Result.NEWTON_DIVERGED: (
-        "lower solver.min_step, or check the model's tangents (K_t = dr/dq, C_t = dr/dv) "
+        "lower solver.first_step and solver.min_step, or check the model's tangents (K_t = dr/dq, C_t = dr/dv) "
         "against finite differences; use reuse_jacobian='newton' to rule out a stale matrix"),
     Result.NEWTON_MAX_ITER: (
-        "raise solver.max_newton_iter or solver.newton_tol, lower solver.min_step, or "
-        "improve the tangents"),
+        "raise solver.max_newton_iter or solver.newton_tol, lower solver.first_step and "
+        "solver.min_step, or improve the tangents"),
     Result.NAN_RESIDUAL: (
         "a force produced NaN/inf: check the initial state (penetrations, zero film "
         "thickness, division by a zero speed) and lower solver.first_step"),

@@ -123,7 +123,10 @@ def orbital_excursion(azimuth: np.ndarray, orbital_speed: np.ndarray, pitch_radi
     integrated term by term (the mean term is the cage speed and drops out). Returns (s at
     the balls [m], psi on a fine grid, s on that grid)."""
     az = np.asarray(azimuth, float)
-    rel = np.asarray(orbital_speed, float) / float(np.mean(orbital_speed)) - 1.0
+    speed = np.asarray(orbital_speed, float)
+    mean = float(np.mean(speed))
+    # rings at rest: the balls do not orbit, so none leads or lags the cage (s = 0, "free")
+    rel = speed / mean - 1.0 if mean != 0.0 else np.zeros_like(speed)
     Z = az.size
     order = np.argsort(np.mod(az, 2 * math.pi))
     az, rel = np.mod(az[order], 2 * math.pi), rel[order]

@@ -21,6 +21,11 @@ from pathlib import Path
 
 from ..runner import Stage, StageContext, StageOutcome
 
+class StageResultsDamaged(ValueError):
+    """A finished stage's files changed or went missing since it wrote them: `render` shows
+    no edited or partial result (a run recomputes the stage, render never re-solves)."""
+
+
 RENDER_SETTINGS = {"burn_zone_sectors": 360, "track_bins": [360, 96], "fe_warp_fraction": 0.06,
                    "paraview": "balls, cage, inner race, outer race with land heat"}
 
@@ -47,13 +52,20 @@ STAGE = Stage(
 
 
 def finished_upstream(run_dir: Path) -> dict[str, str]:
-    """name -> key of the upstream stages that finished in `run_dir` (manifest status done)."""
-    from ..artefacts import read_manifest
+    """name -> key of the upstream stages that finished in `run_dir` (manifest status done).
+    StageResultsDamaged when a file of one of them changed or is missing since it was written."""
+    from ..artefacts import cache_state, read_manifest
 
     keys = {}
     for name in STAGE.depends:
         manifest = read_manifest(Path(run_dir) / name)
         if manifest and manifest.get("status") == "done" and manifest.get("key"):
+            state, damaged = cache_state(Path(run_dir) / name, manifest["key"])
+            if state == "damaged":
+                raise StageResultsDamaged(
+                    f"{Path(run_dir) / name}: {', '.join(damaged[:5])} changed or went missing since the "
+                    f"{name} stage wrote it; render draws only results as computed. Recompute it with "
+                    f"`bearingsim run {Path(run_dir) / 'scene.toml'} --out {run_dir}`, which redraws the report")
             keys[name] = manifest["key"]
     return keys
 

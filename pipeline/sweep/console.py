@@ -73,10 +73,17 @@ def print_results(rows: list[dict], varied: list[str], console) -> None:
     """One line per point: its values, status, class and metal-contact fraction."""
     from rich.table import Table
 
+    from .table import short_run_warning
+
     errors = any(r.get("error") for r in rows)
     table = Table("point", *varied, "status", "cage class", "metal contact", *(["error"] if errors else []), box=None)
     for r in rows:
         metal = r.get("cage_metal_contact_fraction")
-        table.add_row(r["point_id"], *(str(r.get(k)) for k in varied), r["status"], r["cage_class"],
+        short = r.get("too_short_to_settle") in (True, "True")
+        table.add_row(r["point_id"], *(str(r.get(k)) for k in varied), r["status"],
+                      r["cage_class"] + (" (too short to settle)" if short else ""),
                       "" if metal is None else f"{metal:.3f}", *([(r.get("error") or "")[:60]] if errors else []))
     console.print(table)
+    warning = short_run_warning(rows)
+    if warning:
+        console.print(f"[bold yellow]warning:[/] {warning}", highlight=False, soft_wrap=True)

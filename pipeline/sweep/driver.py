@@ -16,22 +16,26 @@ and run again. The table is always rebuilt from the records on disk.
 from __future__ import annotations
 
 import dataclasses
+import json
+import logging
 import time
 import uuid
+import warnings
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
-from ..artefacts import atomic_write_json
+from ..artefacts import OutputRefused, atomic_write_json, atomic_write_text
 from ..scene import NAME_MAX, apply_overrides, check_name, read_scene_table, resolve
 from ..schema import SceneError
 from .point_runner import PointRequest, finished_record, run_point
 from .points import SweepPoint, expand, point_table, scene_hash
 from .spec import MAX_POINTS, SweepSection, build_sweep_section, check_size, with_command_line
-from .table import result_row, write_table
+from .table import result_row, short_run_warning, write_table
 
 PLAN_FILE, MAP_FILE = "sweep.json", "stability_map.png"
+SWEEP_MARKER = ".bearingsim-sweep"
 
 
 @dataclass(frozen=True)
@@ -115,7 +119,9 @@ def run_sweep(plan: SweepPlan, client, *, progress: Callable[[SweepStatus], None
               point_function: Callable[[PointRequest], dict] = run_point) -> list[dict | None]:
     """Run the plan's unfinished points on `client` (a distributed.Client); return one record
     per point, in plan order. Per-point failures are records, never exceptions. `client` is
-    not used (may be None) when every point has finished before."""
+    not used (may be None) when every point has finished before. OutputRefused when the sweep
+    directory is not bearingsim's (:func:`claim_sweep_directory`)."""
+    claim_sweep_directory(plan.sweep_dir)
     _write_plan(plan)
     records, todo = unfinished(plan, retry_failed)
     resumed = sum(1 for r in records.values() if r["status"] == "done")
@@ -234,16 +240,62 @@ def _rows(plan: SweepPlan, records: dict) -> list[dict]:
             for p, req in zip(plan.points, plan.requests)]
 
 
-def gather(plan: SweepPlan, records: list[dict | None]) -> dict[str, Path]:
-    """Write the results table and the stability map; returns {"table": ..., "map": ...}."""
+def gather(plan: SweepPlan, records: list[dict | None], warn: bool = True) -> dict[str, Path]:
+    """Write the results table and the stability map; returns {"table": ..., "map": ...}.
+    When points ran too short to settle, the map's title says so and (with `warn`) a Python
+    warning is issued."""
     from .stability_map import plot_stability_map
 
     rows = _rows(plan, {req.point_id: rec for req, rec in zip(plan.requests, records)})
     paths = write_table(rows, plan.sweep_dir)
     s = plan.section
+    short = short_run_warning(rows)
+    title = f"{plan.name}: cage motion\n(contours: metal-contact fraction)"
+    if short:
+        title += "\nRUN TOO SHORT TO SETTLE: classes show a start-up transient, not a regime"
+        if warn:
+            warnings.warn(f"sweep {plan.name}: {short}", stacklevel=2)
     out = plot_stability_map(rows, plan.varied, plan.sweep_dir / MAP_FILE, map_x=s.map_x, map_y=s.map_y,
-                             title=f"{plan.name}: cage motion\n(contours: metal-contact fraction)")
+                             title=title)
     return {"table": paths[0], **({"parquet": paths[1]} if len(paths) > 1 else {}), "map": out}
+
+
+def is_own_sweep_dir(sweep_dir: Path) -> bool:
+    """A directory bearingsim made a sweep directory: its marker, or (sweeps of older
+    versions) a sweep.json holding a plan."""
+    if (sweep_dir / SWEEP_MARKER).is_file():
+        return True
+    try:
+        plan = json.loads((sweep_dir / PLAN_FILE).read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return False
+    return isinstance(plan, dict) and {"name", "scene", "axes", "points"} <= set(plan)
+
+
+def claim_sweep_directory(sweep_dir: Path) -> None:
+    """Make sure `sweep_dir` may be written (new, empty or a sweep bearingsim wrote) and mark
+    it; anything else raises OutputRefused before a file is written: the table, the plan and
+    the map would replace a user's files of the same names."""
+    sweep_dir = Path(sweep_dir)
+    try:
+        if sweep_dir.exists() and not sweep_dir.is_dir():
+            raise OutputRefused(f"--out {sweep_dir}: exists and is not a directory; give a new or empty "
+                                f"directory, e.g. --out {sweep_dir.with_name(sweep_dir.name + '-sweep')}")
+        if sweep_dir.is_dir() and not is_own_sweep_dir(sweep_dir) and any(sweep_dir.iterdir()):
+            raise OutputRefused(
+                f"--out {sweep_dir}: the directory holds files that are not a bearingsim sweep (no "
+                f"{SWEEP_MARKER} marker); bearingsim never writes into a folder of yours, so that none of "
+                f"your files ({PLAN_FILE}, results.csv, {MAP_FILE}) is replaced. Give a new or empty "
+                f"directory, e.g. --out {sweep_dir / 'sweep'}")
+        if not (sweep_dir / SWEEP_MARKER).is_file():
+            atomic_write_text(sweep_dir / SWEEP_MARKER, "bearingsim sweep directory: its plan, table, map and "
+                                                         "points are replaced by bearingsim\n")
+    except OutputRefused:
+        raise
+    except (OSError, ValueError) as exc:
+        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
+        raise OutputRefused(f"--out {sweep_dir}: cannot use this directory ({reason}); give a writable "
+                            "directory") from None
 
 
 def _write_plan(plan: SweepPlan) -> None:
@@ -273,4 +325,10 @@ def dask_client(scheduler: str | None = None, workers: int = 2):
         return
     with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
                       dashboard_address=":0") as cluster, Client(cluster) as client:
-        yield client
+        try:
+            yield client
+        except KeyboardInterrupt:
+            # the cluster is closed on the way out: its warnings about the workers it stops
+            # ("still alive ... killing") are expected, not news to the user
+            logging.getLogger("distributed").setLevel(logging.CRITICAL)
+            raise

@@ -79,7 +79,7 @@ def run_point(request: PointRequest, stages=None) -> dict:
     done = finished_record(run_dir, request.scene_hash, request.target)
     if done is not None and done["status"] == "done":  # a rescheduled task that had finished
         return done
-    _remove_stale_temporaries(run_dir)
+    remove_stale_temporaries(run_dir)
     t0, cpu0 = time.perf_counter(), time.process_time()
     record: dict[str, Any] = {
         "point_id": request.point_id, "label": request.label,
@@ -128,9 +128,10 @@ def point_run_table(request: PointRequest) -> dict:
     return apply_overrides(request.table, [NO_FIGURES])
 
 
-def _remove_stale_temporaries(run_dir: Path) -> None:
+def remove_stale_temporaries(run_dir: Path) -> None:
     """Half-written stage directories (`.<stage>.*.tmp`) left by a worker killed while it ran
-    this point: a point runs on one worker at a time, so no live run owns them."""
+    this point: a point runs on one worker at a time, so no live run owns them (also called
+    once a local cluster stopped by an interruption has closed)."""
     import shutil
 
     for tmp in Path(run_dir).glob(".*.tmp"):

@@ -1,9 +1,10 @@
 """The sweep's results table: one row per point, from the points' records on disk.
 
 Columns: `point_id`, `status` (done | failed | pending), one column per varied scene key,
-`cage_class` and `risk` (:mod:`pipeline.sweep.classify`), the summary metrics of docs/scenes.md (with
-`burn_zone_sector` split into `burn_zone_start` / `burn_zone_end`), run counters,
-`warnings` (the run's own, joined by "; "), `error` (the message of a failed point) and
+`cage_class` and `risk` (:mod:`pipeline.sweep.classify`), `too_short_to_settle` (the
+point's run ended before its cage settled: its class is a transient's), the summary metrics of
+docs/scenes.md (with `burn_zone_sector` split into `burn_zone_start` / `burn_zone_end`), run
+counters, `warnings` (the run's own, joined by "; "), `error` (the message of a failed point) and
 `run_dir`. Angles are in degrees, azimuths 0–360 from +x towards +y (`summary.json` keeps
 rad). The CSV header carries each column's unit, `name [unit]` (`read_table` strips it);
 written as CSV, and as parquet too when pyarrow is installed.
@@ -72,6 +73,19 @@ def _section_classes() -> dict[str, type]:
             "speed": Speed, "hinge": Hinge, "solver": SolverSettings, "physics": Physics, "output": Output}
 
 
+SHORT_RUN = "run too short to settle"  # how summary.json's warnings begin for such a run
+
+
+def short_run_warning(rows: list[dict[str, Any]]) -> str | None:
+    """The sweep-wide warning when points ran too short to settle, else None."""
+    short = sum(1 for r in rows if r.get("too_short_to_settle") in (True, "True"))
+    if not short:
+        return None
+    return (f"{short} of {len(rows)} points ran too short to settle (fewer than 10 cage revolutions in the "
+            f"settled window): their classes describe a start-up transient, not a regime; lengthen "
+            f"solver.duration")
+
+
 def result_row(point, record: dict | None, run_dir: Path, limits: CageClassThresholds) -> dict[str, Any]:
     """One table row of `point` (a SweepPoint) from its record (None: not run yet)."""
     status = record.get("status", "failed") if record else "pending"
@@ -82,6 +96,9 @@ def result_row(point, record: dict | None, run_dir: Path, limits: CageClassThres
     row["risk"] = (risk_level(summary, limits, row["cage_class"])[0]
                    if summary is not None and row["cage_class"] in ("centred", "whirling", "pressed", "crushed", "chaotic")
                    else None)
+    # a class read from a transient is no regime: say so in the row itself
+    row["too_short_to_settle"] = (any(str(w).startswith(SHORT_RUN) for w in summary.get("warnings") or ())
+                                  if summary is not None else None)
     flat = dict(summary or {})
     sector = flat.pop("burn_zone_sector", None) or (None, None)
     flat["burn_zone_start"], flat["burn_zone_end"] = sector

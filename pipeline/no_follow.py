@@ -1,0 +1,42 @@
+"""Files that bearingsim appends to or locks in place (`run.log`, `.lock`), opened so that a
+link or a special file put there is refused instead of written through.
+
+Everything else in a run directory is written by an atomic rename (pipeline.artefacts),
+which replaces a link instead of following it; only files opened for appending or locking
+need this guard.
+"""
+
+from __future__ import annotations
+
+import os
+import stat
+from pathlib import Path
+
+from .artefacts import OutputRefused
+
+_FLAGS = os.O_RDWR | os.O_CREAT | os.O_APPEND | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_CLOEXEC", 0)
+
+
+def open_no_follow(path: Path, text: bool = True):
+    """Open `path` for appending (created if absent), never through a symbolic link and
+    only as a regular file; OutputRefused names the path and what to do otherwise."""
+    path = Path(path)
+    try:
+        fd = os.open(path, _FLAGS | getattr(os, "O_NONBLOCK", 0), 0o666)
+    except OSError as exc:
+        if path.is_symlink():
+            raise _refused(path, "is a symbolic link") from None
+        raise
+    try:
+        if not stat.S_ISREG(os.fstat(fd).st_mode):
+            raise _refused(path, "is not a regular file")
+        os.set_blocking(fd, True)
+        return os.fdopen(fd, "a+" if text else "a+b", encoding="utf-8" if text else None)
+    except BaseException:
+        os.close(fd)
+        raise
+
+
+def _refused(path: Path, what: str) -> OutputRefused:
+    return OutputRefused(f"{path} {what}; bearingsim never writes through a link or into a special "
+                         f"file: remove it, or give the run its own directory with --out")

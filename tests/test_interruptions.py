@@ -1,0 +1,91 @@
+"""Every interruption is logged and leaves no partial output: SIGTERM (a batch system, `timeout`)
+is handled like Ctrl-C — the interrupted stage's temporary folder is removed, run.log says so,
+the exit code is 143 (128 + SIGTERM) — and bad numeric options are messages, not tracebacks
+(docs/reliability.md)."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from bearingsim.pipeline.cli import app
+
+runner = CliRunner()
+
+
+def test_sigterm_during_simulate_is_logged_and_leaves_no_temporary(tmp_path):
+    out = tmp_path / "run"
+    proc = subprocess.Popen([sys.executable, "-c", "from bearingsim.pipeline.cli import main; main()",
+                             "simulate", "helicopter-b-given-hinge", "--out", str(out),
+                             "--set", "solver.duration=0.8", "--set", "output.figures=false"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        deadline = time.monotonic() + 300
+        while not list(out.glob(".simulate.*.tmp")) and proc.poll() is None and time.monotonic() < deadline:
+            time.sleep(0.2)
+        assert proc.poll() is None, proc.communicate()[1][-3000:]
+        time.sleep(1.0)  # inside the time loop
+        proc.send_signal(signal.SIGTERM)
+        _, err = proc.communicate(timeout=120)
+    finally:
+        proc.kill()
+    assert proc.returncode == 143, err[-3000:]
+    assert "interrupted (SIGTERM)" in err and "Traceback" not in err
+    assert "interrupted (SIGTERM)" in (out / "run.log").read_text()
+    assert not list(out.glob(".*.tmp")) and not (out / "simulate").exists()
+    assert (out / "quasistatic" / "stage.json").is_file()  # finished stages are kept
+
+
+@pytest.mark.parametrize("option, value", [("--window", "0"), ("--window", "nan"), ("--window", "-1"),
+                                           ("--wall-budget", "inf")])
+def test_stability_options_out_of_range_are_messages(option, value, tmp_path):
+    result = runner.invoke(app, ["stability", "high-moment", option, value, "--out", str(tmp_path / "s")])
+    assert result.exit_code == 2, result.output[-2000:]
+    assert f"{option}: is " in result.stderr and "positive finite time in seconds" in result.stderr
+
+
+def test_ctrl_c_during_a_sweep_says_how_to_continue(tmp_path, monkeypatch):
+    import bearingsim.pipeline.sweep.driver as driver
+
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    def interrupted_while_a_point_ran(plan, *args, **kwargs):
+        (Path(plan.requests[0].run_dir) / ".simulate.k1ll3d.tmp").mkdir(parents=True)
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(driver, "run_sweep", interrupted_while_a_point_ran)
+    result = runner.invoke(app, ["sweep", "helicopter-b-given-hinge", "--set", "solver.duration=0.002",
+                                 "--vary", "load.moment=1,2", "--out", str(tmp_path / "s"), "--workers", "1"])
+    assert result.exit_code == 130, result.output[-2000:]
+    assert "interrupted (Ctrl-C)" in result.stderr and "run the same command again" in result.stderr
+    assert not list((tmp_path / "s").rglob(".*.tmp"))  # the killed point's temporary is gone
+
+
+@pytest.mark.slow
+def test_ctrl_c_of_a_real_sweep_is_one_message(tmp_path):
+    """Ctrl-C reaches the whole process group, the workers included: one message, no traceback."""
+    out = tmp_path / "s"
+    proc = subprocess.Popen([sys.executable, "-c", "from bearingsim.pipeline.cli import main; main()",
+                             "sweep", "helicopter-b-given-hinge", "--set", "solver.duration=0.3",
+                             "--set", "output.figures=false", "--vary", "load.moment=100,200,300,400",
+                             "--out", str(out)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            start_new_session=True, preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    try:
+        deadline = time.monotonic() + 300
+        while not list(out.glob("points/*/.simulate.*.tmp")) and time.monotonic() < deadline:
+            time.sleep(0.2)
+        os.killpg(proc.pid, signal.SIGINT)
+        _, err = proc.communicate(timeout=120)
+    finally:
+        proc.kill()
+    assert proc.returncode == 130, err[-3000:]
+    assert "interrupted (Ctrl-C)" in err and "Traceback" not in err and "killing" not in err
+    assert not list(out.rglob(".*.tmp"))

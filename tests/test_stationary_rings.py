@@ -11,20 +11,20 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from bearingsim.dynamics.quasistatic.crush_screen import crush_screen
+from bearingsim.dynamics.quasistatic.crush_screen import CageClearances, LandFilm, crush_screen, excursion_of
 from bearingsim.pipeline.cli import app
 
 runner = CliRunner()
 Z = 22
 PSI = np.arange(Z) * 2 * math.pi / Z
 # helicopter-b-like cage values; only their finiteness matters at rest
-KW = dict(pitch_radius=0.0791, pocket_clearance=1.18e-3, guide_clearance=2.9e-4, land_radius=0.085,
-          land_length=0.01, lands=2, eps0=0.1, viscosity=0.01)
+CLEARANCES = CageClearances(pocket=1.18e-3, guide=2.9e-4)
+FILM = LandFilm(radius=0.085, length=0.01, lands=2, eps0=0.1, viscosity=0.01)
 
 
 def test_the_screen_of_balls_at_rest_is_free_and_finite():
     with np.errstate(all="raise"):  # no 0/0 anywhere on the way
-        r = crush_screen(PSI, np.zeros(Z), 0.0, **KW)
+        r = crush_screen(excursion_of(PSI, np.zeros(Z), 0.0791), 0.0, CLEARANCES, FILM)
     assert r.regime == "free" and r.required_eccentricity == 0.0 and r.film_push == 0.0
     assert np.all(r.excursion == 0.0) and r.excursion_peak_to_peak == 0.0 and r.crush_margin == 1.0
 

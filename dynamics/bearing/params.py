@@ -82,9 +82,7 @@ class BearingModelParams:
     def with_float32_residual(self, on: bool = True) -> "BearingModelParams":
         """A copy whose residual-only traction runs through the float32 passes (`on`) or not
         (dynamics/traction/fast.py): ~15 % off a time step, for callers whose tangent is the
-        model's own; the default float64 residual is the one to difference. Their viscosity
-        lookup takes 8-wide gathers where this CPU runs them faster (dynamics/simd_gather.py;
-        the same bits either way)."""
+        model's own; the default float64 residual is the one to difference."""
         return replace(self, traction=self.traction.with_float32_residual(on))
 
     def without(self, *parts: str) -> "BearingModelParams":

@@ -16,7 +16,7 @@ import math
 import numba
 import numpy as np
 
-from bearingsim.dynamics._kernel_options import NO_REFCOUNT
+from bearingsim.dynamics._speed.compile_policy import NO_REFCOUNT
 from bearingsim.dynamics.contact.hertz import TAB_KH, hermite, table_position
 from bearingsim.dynamics.contact.race import (
     OUT_ALPHA, OUT_DELTA, OUT_EX, OUT_EY, OUT_LEVER, OUT_N, OUT_P, OUT_SLIDE, OUT_SPIN,
@@ -77,8 +77,8 @@ RC_DN = RACE_ROW.slot("normal_turn")
 N_RC = RACE_ROW.size
 # A residual-only call clears only the slots it writes or reads: the two runs of slots between
 # the tangent-only fields (their descriptions end in "tangent only"), which the tangent pass
-# alone reads and a tangent call clears with the rest (the row's 87 slots for 44 contacts
-# were a memset of ~1 % of the time loop's samples, 2026-11-24)
+# alone reads and a tangent call clears with the rest (clearing the whole row for every
+# contact shows in a profile of the time loop)
 RC_RESIDUAL_SPANS = ((0, RC_KP), (RC_PB, RC_LOAD_SLOPE))
 # |T| grows like F_n (Coulomb) or roughly like the contact area, F_n^(2/3) (Eyring plateau)
 LOAD_EXPONENT_COULOMB, LOAD_EXPONENT_EYRING = 1.0, 2.0 / 3.0
@@ -204,8 +204,8 @@ def race_contact_normal(ball, race, is_outer, fp, ip, table, cbuf, carry, res, w
     if want_tangent:
         _contact_stiffness(k_n, F_el, delta, n, x_b, x_r, R_r, d_g, cbuf, res)
         if F_n > 0.0:
-            # r and c, not j: j is the table position the film's terms are read at below (it was
-            # reused here until 2026-11-24, so tangent calls read the film at interval 2)
+            # r and c, not j: j is the table position the film's terms are read at below
+            # (tests/test_source_checks.py guards against such a loop target)
             for r in range(3):
                 for c in range(3):
                     res[RC_CN + 3 * r + c] = c_n * n[r] * n[c]

@@ -2,9 +2,9 @@
 (docs/model.md §9, "Compiled loop").
 
 The Python loop (`time_loop.integrate`, `hht.HHTStepper`) reaches the problem and the linear
-solver through Python several times per step: for the reference bearing 140 µs per step against
-122 µs here, the same steps (unboxing the kernel's ~40 borrowed arrays per call, the loop's own
-bookkeeping, the accepted-step hook). A problem that offers its forces as a numba kernel runs
+solver through Python several times per step, which costs the reference bearing about a tenth of
+its run time (unboxing the kernel's ~40 borrowed arrays per call, the loop's own bookkeeping,
+the accepted-step hook). A problem that offers its forces as a numba kernel runs
 here: the same method, the same decisions (the numba pieces shared with the Python loop:
 `newmark_kinematics`, `hht_residual`, `newton_verdict`, `needs_refactor`,
 `scaled_difference_norm`, `proposed_step`) and so the same steps, in chunks of up to
@@ -26,8 +26,7 @@ What a problem supplies (`CompiledProblem`), with K and C in block-arrow form
     rows whose residual the kernel replaces by a prescribed velocity (`joints.py`).
 
 The kernel is called through its address because a dispatcher call links the kernel into the
-loop, where LLVM optimises it a second time (61 s of compilation for the bearing, 14 s this
-way). The hook is called through its dispatcher; numba cannot cache a function that keeps a
+loop, where LLVM optimises it a second time (four times the compile time for the bearing). The hook is called through its dispatcher; numba cannot cache a function that keeps a
 jitted function as a run-time value, so `hht_chunk`, which takes it, is inlined into one
 module-level wrapper per problem that passes its hook; the wrapper is cached like any other
 kernel.
@@ -226,22 +225,6 @@ def kernel_address(dispatcher, args) -> int:
     return int(cres.library.get_pointer_to_function(cres.fndesc.llvm_func_name))
 
 
-@intrinsic
-def as_bool(typingctx, flag):
-    """flag typed as bool, not Literal[bool]. A constant True or False is a type of its own to
-    numba: passed on to `call_kernel` it would not be the argument type of the overload
-    `kernel_address` took the address of, and passed to a jitted function it compiles that
-    function (and all it links in) once more. A jitted identity function does not do this: it
-    returns the literal type it was given."""
-    if not isinstance(flag, (nbtypes.Boolean, nbtypes.BooleanLiteral)):
-        return None
-
-    def codegen(context, builder, signature, args):
-        return context.cast(builder, args[0], signature.args[0], nbtypes.boolean)
-
-    return nbtypes.boolean(flag), codegen
-
-
 @numba.njit
 def _norm(ls, co, x, y, coef, q_a, q_b):
     return scaled_difference_norm(x, y, coef, q_a, q_b, co.weights, co.scales, ls.atol, ls.rtol, ls.use_max)
@@ -250,12 +233,14 @@ def _norm(ls, co, x, y, coef, q_a, q_b):
 # The loop's helpers below are inlined into `hht_chunk` in numba's IR (inline="always"). As
 # functions of their own, numba compiled each into a library with its callees linked in, and
 # LLVM optimised and emitted that code again at every level of the chain bearing_chunk ->
-# _attempt -> _newton -> _factor: bearing_chunk compiled in 19.4 s, 13.1 s inlined
-# (`python -m benchmarks.cold_start`, 2026-11-24, README). The steps taken are the same.
+# _attempt -> _newton -> _factor; inlined, the loop compiles in about two thirds of the time
+# (`python -m benchmarks.cold_start`, docs/performance.md). The steps taken are the same.
 @numba.njit(inline="always")
 def _factor(kernels, data, ls, co, w, t1, q, v, a, h):
     """Rebuild S = M + (1 - alpha)(gamma h C_t + beta h^2 K_t) at (t1, q, v, a) and factor it."""
-    call_kernel(kernels[0], (t1, q, v, a, data, as_bool(True), w.ma_t, w.g_t, w.diag, w.K, w.C))
+    # bool(True), not True: numba types a constant as a literal type of its own, which is not the
+    # argument type of the overload `kernel_address` took the address of
+    call_kernel(kernels[0], (t1, q, v, a, data, bool(True), w.ma_t, w.g_t, w.diag, w.K, w.C))
     c_v = (1.0 - ls.alpha) * ls.gamma * h
     assemble_iteration_blocks(w.K, w.C, co.mass, 1.0, c_v, (1.0 - ls.alpha) * ls.beta * h * h, w.S)
     for i in co.prescribed_rows:
@@ -279,7 +264,7 @@ def _newton(kernels, data, ls, co, w, t1, h, y, y1, fresh):
     floor = 100.0 * _norm(ls, co, q, w.zeros, 2.2e-16, q, q)
     for k in range(ls.max_newton_iter):
         newmark_kinematics(q, v, a, a1, h, ls.beta, ls.gamma, co.rotation_slots, dq1, q1, v1)
-        call_kernel(kernels[1], (t1, q1, v1, a1, data, as_bool(False), w.ma, g1, w.diag, w.K, w.C))
+        call_kernel(kernels[1], (t1, q1, v1, a1, data, bool(False), w.ma, g1, w.diag, w.K, w.C))
         w.counters[N_RESIDUALS] += 1
         r_max = hht_residual(w.ma, g1, g, ls.alpha, w.r)
         if r_max == math.inf:

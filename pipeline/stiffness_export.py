@@ -16,7 +16,7 @@ race and ground (the inner race sees K + diag(H_u, H_psi)).
 
 ROSS (`ross.BearingElement(n, kxx, cxx, kyy=, kxy=, kyx=, kzz=, frequency=)`, ROSS 2.x) takes
 kxx, kxy, kyx, kyy, kzz of the bearing rows, frequency = speed in rad/s, damping 0; it has no
-tilt terms (README "Stiffness export").
+tilt terms (docs/stiffness.md).
 """
 
 from __future__ import annotations

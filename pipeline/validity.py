@@ -41,7 +41,7 @@ STATIC_CAPACITY_PRESSURE = 4.2e9  # Pa
 PLASTIC_LIMIT_PRESSURE = 10.0e9  # Pa
 # The time averages of summary.json use the last half of the run: at least 10 samples there.
 MIN_SAMPLES = 20
-# Beyond this many steps (at max_step) a run takes days (~90 µs per step for 22 balls).
+# Beyond this many steps (at max_step) a run takes days.
 MAX_STEPS = 1e9
 STEP_WALL_TIME_PER_BALL = 90e-6 / 22  # s per step and ball, measured for helicopter-b
 # Doubles kept per time sample by the recorder (time, q, v, diagnostics, kinetic energy):

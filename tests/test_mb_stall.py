@@ -1,5 +1,5 @@
 """The integrator stops a run whose step control cycles through Newton failures
-(`multibody.results.NewtonStallWatch`, README *Accuracy and run time*)."""
+(`multibody.results.NewtonStallWatch`, docs/performance.md)."""
 
 import numpy as np
 import pytest

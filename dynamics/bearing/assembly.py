@@ -239,7 +239,7 @@ def _ball_tangents(v, model, bodies, rows, pocket_rows, q, K, C):
         for j in range(2):
             # the border offset is a run-time value: numba compiles a function once per literal
             # argument, and the constants INNER_BORDER and -1 at two call sites compiled
-            # _race_term and the four coupling kernels under it twice (cold start, README)
+            # _race_term and the four coupling kernels under it twice (cold start, docs/performance.md)
             off = INNER_BORDER if j == 0 else -1
             if rows[2 * k + j, RC_ACTIVE] > 0.0:
                 _race_term(k, off, rows[2 * k + j], inner if j == 0 else outer, Om_i, w_b, D, K, C)

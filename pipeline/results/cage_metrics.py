@@ -174,7 +174,7 @@ def _film_cumulative(x: np.ndarray, k: np.ndarray, drag: np.ndarray) -> np.ndarr
 
     One sine, cosine and arctangent per point: the antiderivative of 1/h below is odd in x and
     the mirrored (drag < 0) branch reads it at -x, so both branches share them (three times
-    as many were ~2 s of a 0.8 s run's post-processing)."""
+    as many would dominate a run's post-processing)."""
     s = np.sqrt(1.0 - k * k)
     beta = k / (1.0 + s)
     period = np.floor((x + math.pi) / (2.0 * math.pi))

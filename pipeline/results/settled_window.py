@@ -24,8 +24,8 @@ Rule (`detect_settled_window`):
    metal contact) read it, and a single late touch of the land hardly moves a block's mean or
    spread. Case b with a 9 x 18/22/28 traction rule had one at t = 0.074 s (eps 1.001, 14 µm
    of film, metal contact) in blocks whose mean and spread lay in the band of a slowly
-   drifting regime. The window started at one revolution, and the verdict reported that
-   touch as the settled regime's thinnest film (2026-11-24).
+   drifting regime. A window that started at one revolution reported that touch as the
+   settled regime's thinnest film.
 3. **Reference.** The blocks of the last half of the run are the regime. Each statistic of
    a block must lie within ``band_sigmas`` (3) standard deviations of the reference blocks'
    values around their mean (the centre: within 3 RMS distances of the mean centre), or

@@ -53,8 +53,7 @@ class Method:
 
 # the scene default's error control (each coordinate on its physical scale, M.99b, max norm): the
 # scene's own solver settings, which every row replaces onto, with adaptive steps at the shipped
-# rtol. A literal copy of those settings had drifted (min_step 1e-9 against the scenes' 1e-8;
-# the same steps on every row of the grid, 2026-11-24)
+# rtol; one definition, so that a copy cannot drift from the scenes' settings
 ADAPTIVE_DEFAULT = {"adaptive": True, "rtol": HHTSettings().rtol}
 
 

@@ -1,4 +1,9 @@
-"""Fast Eyring traction for the time loop: pole-centred quadrature, SIMD evaluation (docs/model.md §6.4).
+"""Fast traction for the time loop: pole-centred quadrature, SIMD evaluation (docs/model.md §6.4).
+
+The engine: it places the nodes, reads the viscosity table, sums the nodes' stresses and knows
+about vector widths and precision; the law comes from `dynamics.traction.laws`, given by its code
+in the `TractionRule`. The Eyring law, the default, has passes of its own (below); every other
+film law runs through one float64 pass of its response (`laws.dispatch.response`) per node (`_law_response`).
 
 Same physics and sign convention as `dynamics.traction.quadrature` (force and spin moment ON THE BALL,
 Jacobian d(F_x, F_y, M_z)/d(du0, dv0, w_s)); the nodes come from `dynamics.traction.nodes`
@@ -43,13 +48,15 @@ of 240 random operating points of the reference scene (tests/test_traction_fast.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import NamedTuple
 
 import numba
 import numpy as np
 
 from bearingsim.dynamics.lubrication import rheology
+from bearingsim.dynamics.traction import laws
+from bearingsim.dynamics.traction.laws import dispatch
 from bearingsim.dynamics._speed.aligned import CACHE_LINE, empty_aligned
 from bearingsim.dynamics._speed.compile_policy import NO_REFCOUNT, VEC
 from bearingsim.dynamics._speed.simd_math import log_array, log_array32
@@ -87,6 +94,8 @@ class TractionRule(NamedTuple):
     iwork32: np.ndarray    # (n_max,) int32 scratch of the residual-only passes
     eta_flat32: np.ndarray  # eta_table in float32, flattened (the residual-only passes' table)
     float32_residual: bool  # residual-only calls through the float32 passes (module docstring)
+    law: int = laws.EYRING  # the film law's code (`traction.laws`)
+    law_parameter: float = 0.0  # what the law's `stress_scale` takes (Eyring: tau0 [Pa])
 
     def with_float32_residual(self, on: bool = True) -> "TractionRule":
         """A copy whose residual-only calls take the float32 passes (`on`) or not."""
@@ -344,6 +353,44 @@ def _accumulate_force(nodes, values, n, a, b, du0, dv0, w_s, out):
     _store_force(out, Fx, Fy, Mz)
 
 
+@numba.njit(**VEC)
+def _law_response(law, k, r, n, g, c):
+    """(g, c) of film law `law` at every node (`laws.dispatch.response`): tau = g s, d tau/d s = g I + c s s^T."""
+    for m in range(n):
+        g[m], c[m] = dispatch.response(law, k[m], r[m])
+
+
+@numba.njit(**VEC)
+def _accumulate_response(nodes, g, c, n, a, b, du0, dv0, w_s, out):
+    """Sum tau = g s over the nodes into out[0:3] and its Jacobian, from d tau/d s = g I + c s s^T,
+    into out[3:12] (stress scale 1): the sums of `_accumulate` for any film law."""
+    X, Y, W = nodes.X, nodes.Y, nodes.W
+    Fx = Fy = Mz = 0.0
+    j00 = j01 = j02 = j11 = j12 = j20 = j21 = j22 = 0.0
+    for m in range(n):
+        xp, yp, sx, sy = _node_slip(X, Y, m, a, b, du0, dv0, w_s)
+        gm, cm, wgt = g[m], c[m], W[m]
+        tx, ty = gm * sx, gm * sy
+        axx, axy, ayy = gm + cm * sx * sx, cm * sx * sy, gm + cm * sy * sy
+        dtx_dw = -axx * yp + axy * xp
+        dty_dw = -axy * yp + ayy * xp
+        Fx -= wgt * tx
+        Fy -= wgt * ty
+        Mz -= wgt * (xp * ty - yp * tx)
+        j00 -= wgt * axx
+        j01 -= wgt * axy
+        j02 -= wgt * dtx_dw
+        j11 -= wgt * ayy
+        j12 -= wgt * dty_dw
+        j20 -= wgt * (xp * axy - yp * axx)
+        j21 -= wgt * (xp * ayy - yp * axy)
+        j22 -= wgt * (xp * dty_dw - yp * dtx_dw)
+    out[0], out[1], out[2] = Fx, Fy, Mz
+    out[3], out[4], out[5] = j00, j01, j02
+    out[6], out[7], out[8] = j01, j11, j12
+    out[9], out[10], out[11] = j20, j21, j22
+
+
 @numba.njit(**NO_REFCOUNT)
 def traction_fast(a, b, p_h, h, du0, dv0, w_s, tr, out, jacobian=True):
     """Eyring traction on the ball by pole-centred quadrature (docs/model.md §6.4, M.72–M.74).
@@ -375,6 +422,16 @@ def traction_fast(a, b, p_h, h, du0, dv0, w_s, tr, out, jacobian=True):
     # f_index (table position), r, k, x, z; 8 is asinh x
     nodes = _Nodes(work[0], work[1], work[2])
     n = place_nodes(a, b, du0, dv0, w_s, tr.rule, nodes.X, nodes.Y, nodes.W, work[3:8])
+    if tr.law != laws.EYRING:  # any other film law: one float64 pass of its response
+        stress = dispatch.stress_scale(tr.law, tr.law_parameter, p_h)
+        f_index, r, k, g, c = work[3], work[4], work[5], work[6], work[7]
+        _slip_and_table_index(nodes.X, nodes.Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / p_step, f_index, r)
+        _viscosity_lookup(f_index, n, eta_table, 1.0 / (stress * h), k)
+        _law_response(tr.law, k, r, n, g, c)
+        _accumulate_response(nodes, g, c, n, a, b, du0, dv0, w_s, out)
+        for m in range(12):
+            out[m] = out[m] * stress if (jacobian or m < 3) else 0.0
+        return flag
     if tr.float32_residual and not jacobian:  # the node values in float32 (module docstring)
         w32 = tr.work32
         values32 = _NodeValues(k=w32[2], r=w32[1], x=w32[3], z=w32[4], ash=w32[5])
@@ -436,6 +493,18 @@ class FastTraction:
     p_step: float  # [Pa]
     tau0: float  # Eyring stress [Pa]
     rule: np.ndarray  # packed quadrature rule, `traction_nodes.pack_rule`
+    law: int = laws.EYRING  # the film law's code (`traction.laws`); `with_law` sets it
+    law_parameter: float = float("nan")  # what its `stress_scale` takes (Eyring: tau0)
+
+    def with_law(self, name: str, parameter: float | None = None) -> "FastTraction":
+        """The same table and rule for the film law `name` of `laws.LAWS`, whose stress scale takes
+        `parameter` (Eyring: the lubricant's tau0 when None; limiting shear: Lambda [-])."""
+        law = laws.LAWS.get(name)
+        if law is None or not law.film:
+            raise ValueError(f"traction law {name!r}: choose a film law of {sorted(k for k, v in laws.LAWS.items() if v.film)}")
+        if parameter is None and law.code != laws.EYRING:
+            raise ValueError(f"traction law {name!r} needs its parameter")
+        return replace(self, law=law.code, law_parameter=self.tau0 if parameter is None else float(parameter))
 
     @classmethod
     def build(cls, lubricant, p_max: float = 5.0e9, n_table: int = 4096, n_radial: int = 10,
@@ -465,7 +534,7 @@ class FastTraction:
         eta = rheology.viscosity_array(p, lubricant.model_code, lubricant.rheology_params())
         table = np.ascontiguousarray(np.stack([eta, np.append(np.diff(eta), 0.0)], axis=1))
         return cls(eta_table=table, p_step=float(p[1] - p[0]),
-                   tau0=float(lubricant.eyring_stress),
+                   tau0=float(lubricant.eyring_stress), law_parameter=float(lubricant.eyring_stress),
                    rule=pack_rule(n_radial, tuple(n_angle), tuple(n_cone), tuple(n_far), float(far_ratio),
                                   tuple(edge), float(centre)))
 
@@ -498,7 +567,7 @@ class FastTraction:
         differences amplify, so only for callers with an analytic tangent (the time loop)
         (`TractionRule.with_float32_residual`)."""
         rule = TractionRule(self.eta_table, self.p_step, self.tau0, self.rule, *self.workspace(), *self.workspace32(),
-                            self.eta_table.astype(np.float32).ravel(), False)
+                            self.eta_table.astype(np.float32).ravel(), False, self.law, self.law_parameter)
         return rule.with_float32_residual(float32_residual)
 
     def evaluate(self, a, b, p_h, h, du0, dv0, w_s) -> tuple[np.ndarray, np.ndarray, int]:

@@ -166,9 +166,7 @@ def _run_solve_ivp(opts: dict, params, start, cfg: StudyConfig) -> dict:
     t0 = time.perf_counter()
     sparse = {"jac_sparsity": jac_sparsity(params.ball_count, params.has_cage, model.rotation_slots)} \
         if opts.get("sparse") else {}
-    # opts["solver_class"]: a subclass of scipy's solver (benchmarks/higher_order.py), else scipy's own
-    solver_class = opts.get("solver_class") or getattr(si, opts["method"])
-    solver = solver_class(rhs, 0.0, y0, cfg.window, rtol=opts["rtol"], atol=opts["atol"], **sparse)
+    solver = getattr(si, opts["method"])(rhs, 0.0, y0, cfg.window, rtol=opts["rtol"], atol=opts["atol"], **sparse)
     zero = np.zeros(n)
     while solver.status == "running":
         if time.perf_counter() - t0 > cfg.wall_budget:

@@ -350,9 +350,5 @@ def _dynamics_findings(scene) -> list[Finding]:
     return out
 
 
-# the checks after a stage live in their own module; one entry point for both
-from .result_checks import (annotate, failure_finding, null_absurd, quasistatic_findings,  # noqa: E402
-                            simulation_findings, stage_findings)
 
-__all__ = ["Finding", "ValidityError", "raise_errors", "scene_findings", "run_findings", "stage_findings",
-           "annotate", "failure_finding", "quasistatic_findings", "simulation_findings", "null_absurd"]
+__all__ = ["Finding", "ValidityError", "raise_errors", "scene_findings", "run_findings"]

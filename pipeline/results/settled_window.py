@@ -55,7 +55,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .cage_metrics import time_weights
+
+def time_weights(t: np.ndarray) -> np.ndarray:
+    """Trapezoidal quadrature weights of samples at times `t` (sum = t[-1] - t[0])."""
+    t = np.asarray(t, dtype=float)
+    if t.size < 2:
+        return np.ones_like(t)
+    w = np.zeros_like(t)
+    dt = np.diff(t)
+    w[:-1] += 0.5 * dt
+    w[1:] += 0.5 * dt
+    return w
+
 
 BLOCK_REVOLUTIONS = 0.5  # block length [cage revolutions]
 MIN_BLOCKS = 12  # at least this many blocks in a run (6 reference blocks)

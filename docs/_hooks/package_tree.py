@@ -1,9 +1,11 @@
-"""MkDocs hook: lay out the installed package's tree for the API reference.
+"""MkDocs hook (and a script): lay out the installed package's tree for static tools.
 
 pyproject.toml installs the repository's top-level folders as `bearingsim.*`, so the source tree
 has no `bearingsim/` folder and griffe (mkdocstrings) finds no `bearingsim.pipeline`. Before a
 build this hook links the folders into `.api_source/bearingsim/` as an install would place them,
-and mkdocs.yml points mkdocstrings there. Nothing is copied; the folder is rebuilt every time.
+and mkdocs.yml points mkdocstrings there. Type checkers and editors that read the source
+tree can use the same folder (docs/architecture.md): `python docs/_hooks/package_tree.py` lays it
+out without building the site. Nothing is copied; the folder is rebuilt every time.
 """
 
 from __future__ import annotations
@@ -27,3 +29,8 @@ def on_startup(**kwargs):
     (package / "__init__.py").symlink_to(ROOT / "pipeline" / "root_package" / "__init__.py")
     for name in SUBPACKAGES:
         (package / name).symlink_to(ROOT / name, target_is_directory=True)
+
+
+if __name__ == "__main__":
+    on_startup()
+    print(f"{TREE / 'bearingsim'}: links to the package's folders")

@@ -5,12 +5,11 @@ has no `bearingsim/` folder and griffe (mkdocstrings) finds no `bearingsim.pipel
 build this hook links the folders into `.api_source/bearingsim/` as an install would place them,
 and mkdocs.yml points mkdocstrings there. Type checkers and editors that read the source
 tree can use the same folder (docs/architecture.md): `python docs/_hooks/package_tree.py` lays it
-out without building the site. Nothing is copied; the folder is rebuilt every time.
+out without building the site. Nothing is copied, only linked.
 """
 
 from __future__ import annotations
 
-import shutil
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -19,17 +18,25 @@ SUBPACKAGES = ("pipeline", "dynamics", "fe_model", "meshes")
 
 
 def on_startup(**kwargs):
-    """Before any plugin reads its configuration: mkdocstrings keeps only search paths that exist."""
+    """Before any plugin reads its configuration: mkdocstrings keeps only search paths that exist.
+    Idempotent, and safe when two processes lay the tree out at once (tests run in parallel)."""
     package = TREE / "bearingsim"
-    if TREE.is_symlink() or (TREE.exists() and not (TREE / ".bearingsim-api-source").exists()):
+    marker = TREE / ".bearingsim-api-source"
+    if TREE.is_symlink() or (TREE.exists() and not marker.exists()):
         raise RuntimeError(f"{TREE} exists and was not made by this hook; remove it or move it away")
-    shutil.rmtree(TREE, ignore_errors=True)
-    package.mkdir(parents=True)
-    (TREE / ".bearingsim-api-source").write_text("made by docs/_hooks/package_tree.py\n")
-    (package / "__init__.py").symlink_to(ROOT / "pipeline" / "root_package" / "__init__.py")
-    for name in SUBPACKAGES:
-        (package / name).symlink_to(ROOT / name, target_is_directory=True)
-
+    package.mkdir(parents=True, exist_ok=True)
+    marker.write_text("made by docs/_hooks/package_tree.py\n")
+    links = {"__init__.py": ROOT / "pipeline" / "root_package" / "__init__.py",
+             **{name: ROOT / name for name in SUBPACKAGES}}
+    for name, target in links.items():
+        link = package / name
+        if link.is_symlink() and link.resolve() != target.resolve():
+            link.unlink()  # a tree laid out from another checkout
+        if not link.is_symlink():
+            try:
+                link.symlink_to(target, target_is_directory=target.is_dir())
+            except FileExistsError:  # another process made it just now
+                pass
 
 if __name__ == "__main__":
     on_startup()

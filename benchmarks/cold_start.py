@@ -1,4 +1,4 @@
-"""First-run cost of the numba kernels (README, Accuracy and run time).
+"""First-run cost of the numba kernels (docs/performance.md).
 
     python -m benchmarks.cold_start [SCENE]
 

@@ -1,4 +1,4 @@
-"""Do the shipped solver defaults give the statistics of a tight-tolerance run? (README, Accuracy and run time)
+"""Do the shipped solver defaults give the statistics of a tight-tolerance run? (docs/validation.md)
 
     python -m benchmarks.default_vs_reference [--cases helicopter-b helicopter-a] [--out DIR]
 

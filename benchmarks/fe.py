@@ -29,7 +29,7 @@ from bearingsim.fe_model import FEConfig, RingSeat, fit_hinge, identify_hinge, r
 from bearingsim.fe_model.identify import solve_perturbations
 
 REFERENCE = {"mesh_size": 0.0025, "edge_refinement": 0.02}  # axisymmetric P2, ~1.3M dofs
-PREVIOUS_3D = {"mesh_size": 0.030, "edge_refinement": 0.25}  # the 3-D default until 2026-11
+PREVIOUS_3D = {"mesh_size": 0.030, "edge_refinement": 0.25}  # the earlier 3-D default, for comparison
 
 
 def _peak_rss_gb() -> float:

@@ -1,9 +1,9 @@
 """Benchmark: the NVM film of 44 contacts, one libm call after another vs the vectorised batch.
 
 Run: python -m benchmarks.film
-Times `film.film_central_nvm_terms` called contact by contact (what each contact did before
-2026-11-24) against `film.film_central_nvm_batch` (what the time loop does now: each of the
-formula's 16 exp and log over all contacts in one pass, `dynamics.simd_math`), on 44
+Times `film.film_central_nvm_terms` called contact by contact against
+`film.film_central_nvm_batch` (what the time loop does: each of the formula's 16 exp and log
+over all contacts in one pass, `dynamics._speed.simd_math`), on 44
 contacts of the reference bearing (22 balls x inner and outer race) at random contact
 angles, loads and speeds; both inside a numba loop, minimum over 7 repeats. Prints the
 largest relative difference of the two as well. Pin to one core for steadier numbers:

@@ -1,4 +1,4 @@
-"""Where the wall time of an HHT-α step goes (README, Accuracy and run time).
+"""Where the wall time of an HHT-α step goes (docs/performance.md).
 
     taskset -c 1 python -m benchmarks.step_cost [SCENE] [--window 0.015] [--set KEY=VALUE ...]
 

@@ -15,8 +15,8 @@ between seat and flange, which the bearing does not see).
 How it is solved: the assembly, its clamp and its loads are axisymmetric and every load is
 Fourier mode 0 or 1 round the axis, so by default the model is the meridian section with
 quadratic triangles and two Fourier modes (`fe_model.axisymmetric`: an exact split of the 3-D
-problem; the default section mesh is within 0.04 % of the converged hinge, README "Accuracy
-and run time"). Each case is then a combination of three unit solutions (F_x and M_y in mode 1,
+problem; the default section mesh is within 0.04 % of the converged hinge, docs/performance.md,
+"FE identification"). Each case is then a combination of three unit solutions (F_x and M_y in mode 1,
 F_z in mode 0; F_y and M_x are F_x and M_y turned by 90 degrees). `solve_perturbations(...,
 model="3d")` solves the same problem on quadratic tetrahedra (`elasticity.py`) with one solve
 per case: the independent cross-check.

@@ -349,8 +349,8 @@ class Run:
 
     def stiffness(self, speeds_rpm: Iterable[float] | None = None, write: bool = True):
         """Bearing and hinge stiffness over inner-ring speeds (see
-        :func:`bearingsim.pipeline.stiffness_export.export_stiffness`)."""
-        from .stiffness_export import export_stiffness, stiffness_table
+        :func:`export_stiffness`)."""
+        from .stiffness_export import stiffness_table
 
         if write:
             return export_stiffness(self.scene, self.run_dir, speeds_rpm)
@@ -364,3 +364,26 @@ def open_run(run_dir: str | Path) -> Run:
     if not scene_file.is_file():
         raise FileNotFoundError(f"{run_dir} is not a run directory: it has no scene.toml")
     return Run(load_scene(scene_file), run_dir.absolute())
+
+
+# --- stiffness export ----------------------------------------------------------------------
+def export_stiffness(scene, run_dir: str | Path | None = None, speeds_rpm: Iterable[float] | float | None = None,
+                     *, progress=None) -> StiffnessTable:
+    """The stiffness table of `scene` written to `<run_dir>/stiffness/` (stiffness.csv,
+    stiffness.json). Runs (or reuses, by its cache key) the identify stage first when the
+    hinge is identified by FE. `scene`: a Scene or a scene name/path."""
+    from .artefacts import claim_run_directory, run_directory_lock
+    from .scene import Scene
+    from .stiffness_export import STIFFNESS_DIR, check_speeds, stiffness_table, table_inputs, write_stiffness_table
+
+    if not isinstance(scene, Scene):
+        scene = load_scene(scene)
+    run_dir = Path(run_dir) if run_dir is not None else Path("runs") / scene.name
+    check_speeds(speeds_rpm, scene)  # a bad list fails before the FE stage runs
+    if scene.hinge.source == "fe":
+        run(scene, run_dir, ["identify"], progress=progress)
+    table = stiffness_table(scene, speeds_rpm, identify_dir=run_dir / "identify")
+    claim_run_directory(run_dir)  # never write into a folder that is not a run directory
+    with run_directory_lock(run_dir):
+        write_stiffness_table(table, run_dir / STIFFNESS_DIR, table_inputs(scene, table))
+    return table

@@ -343,7 +343,8 @@ def stiffness(scene: SceneArg,
                   help=_literal("Inner-ring speeds [rev/min]: a,b,c or start:stop:count [default: the scene's speed.inner_rpm]."))] = None,
               out: OutOpt = None, set_: SetOpt = None) -> None:
     """Bearing (5x5) and hinge stiffness over inner-ring speeds: CSV + JSON for rotordynamics codes (ROSS)."""
-    from .stiffness_export import CSV_FILE, JSON_FILE, STIFFNESS_DIR, export_stiffness, parse_speeds
+    from .api import export_stiffness
+    from .stiffness_export import CSV_FILE, JSON_FILE, STIFFNESS_DIR, parse_speeds
 
     try:
         resolved = _load(scene, set_)

@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
-from . import validity
+from . import result_checks, validity
 from .artefacts import (atomic_write_json, cache_state, input_key, read_manifest, remove_stage_dir,
                         stage_files, staged_directory)
 from .provenance import code_version
@@ -199,18 +199,18 @@ def compute_stage(stage, scene, run_dir, key, up, progress) -> StageOutcome:
         try:
             info = stage.compute(ctx) or {}
         except Exception as exc:
-            finding = validity.failure_finding(stage.name, scene, exc)
+            finding = result_checks.failure_finding(stage.name, scene, exc)
             if finding is None:
                 raise
             log.error("stage %s: result outside the model's validity: %s", stage.name, finding.text)
             raise validity.ValidityError([finding]) from exc
         wall = time.perf_counter() - t0
-        findings = validity.stage_findings(stage.name, scene, tmp)
+        findings = result_checks.stage_findings(stage.name, scene, tmp)
         for f in findings:
             if f.level == "error":
                 log.error("stage %s: result outside the model's validity: %s", stage.name, f.text)
         validity.raise_errors(findings)  # a meaningless result is discarded with the temporary
-        validity.annotate(stage.name, tmp, findings)
+        result_checks.annotate(stage.name, tmp, findings)
         warnings = [f.to_json() for f in findings]
         atomic_write_json(tmp / "stage.json", {
             "stage": stage.name, "status": "done", "key": key, "upstream": up,

@@ -17,6 +17,7 @@ from typing import Any
 
 from bearingsim.dynamics import thermal as th
 from bearingsim.dynamics.geometry import BearingGeometry, CageGeometry, Material
+from bearingsim.dynamics.traction.laws import LAWS as TRACTION_LAWS
 
 from .scene_sections import (
     CatalogueBearing,
@@ -291,11 +292,12 @@ def resolve(table: dict, origin: str = "<table>") -> Scene:
         # docs/scenes.md: without [lubricant], contacts are dry; defaults fall back to the dry laws
         physics_table = {"traction": "coulomb", "cage_race": "dry", "ehd_film": False, **physics_table}
     physics = build(Physics, physics_table, "physics")
-    if physics.traction == "eyring" and lubricant is None:
-        raise SceneError("physics.traction", "'eyring' needs a [lubricant] table; give one, or set "
+    film_law = TRACTION_LAWS[physics.traction].film
+    if film_law and lubricant is None:
+        raise SceneError("physics.traction", f"{physics.traction!r} needs a [lubricant] table; give one, or set "
                                              "physics.traction = 'coulomb' (dry) or 'none'")
-    if physics.traction == "eyring" and not physics.ehd_film:
-        raise SceneError("physics.ehd_film", "false, but Eyring traction needs the EHD film "
+    if film_law and not physics.ehd_film:
+        raise SceneError("physics.ehd_film", f"false, but {physics.traction!r} traction needs the EHD film "
                                              "thickness; set it true or physics.traction = 'coulomb'")
     if physics.cage_race in ("hybrid", "hydrodynamic") and cage is not None and lubricant is None:
         raise SceneError("physics.cage_race", f"{physics.cage_race!r} needs a [lubricant] table "

@@ -70,7 +70,7 @@ def _sections():
         ("[solver]", SolverSettings, "Numerical settings of the dynamic run (docs/model.md §9)."),
         ("[physics]", Physics, "Which laws the contacts use and their parameters (docs/model.md §6–§8)."),
         ("[output]", Output, ""),
-        ("[sweep]", SweepSection, "How `bearingsim sweep` varies the scene (README, Parameter sweeps); it "
+        ("[sweep]", SweepSection, "How `bearingsim sweep` varies the scene (docs/sweeps.md); it "
                                   "changes no stage key. `vary` maps dotted keys to `\"start:stop:count\"` or "
                                   "lists; `points` lists explicit points for `mode = \"list\"`."),
         ("[sweep.thresholds]", CageClassThresholds, "Limits of the cage classes (pipeline/sweep/classify.py)."),

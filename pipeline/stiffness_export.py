@@ -23,7 +23,7 @@ the inner race it is not a constant coefficient, so it is not given as one (BEAR
 ROSS (`ross.BearingElement(n, kxx, cxx, kyy=, kxy=, kyx=, kzz=, frequency=)`, ROSS 2.x):
 `stiffness.json` holds its keyword arguments as numbers (`ross.bearing_element`, and
 `ross.hinge_element` for the hinge), so `rs.BearingElement(n=0, **doc["ross"]["bearing_element"])`
-needs nothing of bearingsim; it has no tilt terms (docs/outputs.md "ROSS").
+needs nothing of bearingsim; it has no tilt terms (docs/outputs.md "ROSS"; docs/stiffness.md).
 """
 
 from __future__ import annotations
@@ -239,14 +239,15 @@ def stiffness_table(scene, speeds_rpm: Iterable[float] | float | None = None, *,
     """Solve the quasi-static equilibrium of `scene` at each inner-ring speed [rev/min]
     [default: the scene's `speed.inner_rpm`] and tabulate the bearing's 5x5 stiffness with
     the hinge. `identify_dir`: the finished identify stage (needed for hinge.source = "fe")."""
-    from .api import load_scene
+    from .scene import apply_overrides, resolve
     from .stages.quasistatic import solve
 
     speeds = check_speeds(speeds_rpm, scene)
     hinge = hinge_of(scene, identify_dir)
     results, notes = [], []
     for rpm in speeds:
-        at_speed = scene if rpm == scene.speed.inner_rpm else load_scene(scene, {"speed.inner_rpm": float(rpm)})
+        at_speed = scene if rpm == scene.speed.inner_rpm else \
+            resolve(apply_overrides(scene.raw, [f"speed.inner_rpm={float(rpm)!r}"]), f"the scene at {rpm:g} rev/min")
         try:
             result = solve(at_speed)
         except RuntimeError as exc:  # QuasiStaticError: say at which speed of the list
@@ -269,7 +270,7 @@ def _validity_warnings(scene, result, rpm: float) -> tuple[str, ...]:
     """The quasistatic stage's own result checks (pipeline.validity): an error (e.g. a contact
     angle past the land at this speed) raises, naming the speed; warnings are returned."""
     from .schema import SceneError
-    from .validity import quasistatic_findings
+    from .result_checks import quasistatic_findings
 
     findings = quasistatic_findings(scene, result.to_json_dict())
     errors = [f for f in findings if f.level == "error"]
@@ -307,28 +308,6 @@ def table_inputs(scene, table: StiffnessTable) -> dict:
     return {"quasistatic": quasistatic_inputs(scene), "speeds_rpm": table.speeds_rpm.tolist(),
             "hinge": None if h is None else {"source": h["source"], "translational": np.asarray(h["translational"]).tolist(),
                                              "bending": np.asarray(h["bending"]).tolist()}}
-
-
-def export_stiffness(scene, run_dir: str | Path | None = None, speeds_rpm: Iterable[float] | float | None = None,
-                     *, progress=None) -> StiffnessTable:
-    """The stiffness table of `scene` written to `<run_dir>/stiffness/` (stiffness.csv,
-    stiffness.json). Runs (or reuses, by its cache key) the identify stage first when the
-    hinge is identified by FE. `scene`: a Scene or a scene name/path."""
-    from .api import load_scene, run
-    from .artefacts import claim_run_directory, run_directory_lock
-    from .scene import Scene
-
-    if not isinstance(scene, Scene):
-        scene = load_scene(scene)
-    run_dir = Path(run_dir) if run_dir is not None else Path("runs") / scene.name
-    check_speeds(speeds_rpm, scene)  # a bad list fails before the FE stage runs
-    if scene.hinge.source == "fe":
-        run(scene, run_dir, ["identify"], progress=progress)
-    table = stiffness_table(scene, speeds_rpm, identify_dir=run_dir / "identify")
-    claim_run_directory(run_dir)  # never write into a folder that is not a run directory
-    with run_directory_lock(run_dir):
-        write_stiffness_table(table, run_dir / STIFFNESS_DIR, table_inputs(scene, table))
-    return table
 
 
 def parse_speeds(text: str) -> list[float]:

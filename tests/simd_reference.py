@@ -1,4 +1,4 @@
-"""Exact references for the hand-written SIMD passes (tests only)."""
+"""Exact references for the float32 table lookup (tests only)."""
 
 from __future__ import annotations
 
@@ -17,7 +17,7 @@ def round_to_float32(x: Fraction) -> np.float32:
 
 
 def lerp_fma_reference(f_index: np.ndarray, flat: np.ndarray, inv_scale: float) -> np.ndarray:
-    """What `simd_gather.lerp_table32` must give, in float32: f = min(f_index, last), i = floor f,
+    """What `table_lookup.lerp_rows32` must give, in float32: f = min(f_index, last), i = floor f,
     fma(f - i, flat[2i + 1], flat[2i]) (one rounding of the exact value) times the float32 scale."""
     last = np.float32(flat.size // 2 - 1.000001)
     scale = np.float32(inv_scale)

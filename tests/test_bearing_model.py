@@ -201,7 +201,7 @@ def test_physics_switches_remove_the_film():
 
 def test_kernels_without_reference_counting_neither_leak_nor_drop_references(lubricated):
     """The force and tangent kernels compiled without numba's reference counting
-    (dynamics/_kernel_options.py) only borrow the caller's arrays: after many residual and
+    (dynamics/_speed/compile_policy.py) only borrow the caller's arrays: after many residual and
     tangent evaluations every array passed in has exactly the Python reference count it had
     before (a kernel returning a borrowed view, or keeping one, would change it by one per
     call; a dropped reference would free an array still in use)."""
@@ -372,8 +372,8 @@ def test_border_gyroscopic_moment_is_the_rigid_body_ones_bit_for_bit():
 
 def test_a_tangent_call_leaves_the_residual_and_the_films_as_they_are(lubricated):
     """The Newton matrix's evaluation (want_tangent) returns the same residual and diagnostics
-    as a residual-only one. Until 2026-11-24 a loop variable of the damping block shadowed the
-    race table position, and tangent calls read the film at the wrong contact angle."""
+    as a residual-only one. A loop variable of the damping block that shadowed the race table
+    position once made tangent calls read the film at the wrong contact angle."""
     params, _, model, q, v = lubricated
     n = model.n_dof
     results = []

@@ -10,6 +10,8 @@ import pytest
 from bearingsim.pipeline.results.cage_metrics import (
     burn_zone_histogram,
     burn_zone_sector,
+    CageSeries,
+    PocketImpacts,
     cage_summary,
     circular_spread,
     whirl_ratio,
@@ -63,8 +65,8 @@ def test_cage_summary_on_constructed_run():
     az = np.full_like(t, math.radians(30))
     power = np.where(eps > 1, 2.0, 0.0)
     xy = np.c_[1e-4 * np.cos(40 * t), 1e-4 * np.sin(40 * t)]
-    s = cage_summary(t, xy, speed, eps, az, power, np.full_like(t, 5e-5), np.arange(1.0, 11.0),
-                     settled_start=0.1)
+    s = cage_summary(CageSeries(t, xy, speed, eps, az, power, np.full_like(t, 5e-5)),
+                     PocketImpacts(np.arange(1.0, 11.0)), settled_start=0.1)
     assert s["cage_speed_mean"] == pytest.approx(130.0, rel=1e-3)
     assert s["cage_speed_variation"] == pytest.approx(0.02, rel=0.01)
     assert s["cage_metal_contact_fraction"] == pytest.approx(0.25, abs=2e-3)

@@ -1,4 +1,4 @@
-"""The force kernel compiles each contact law once (README, Accuracy and run time, *Cold start*).
+"""The force kernel compiles each contact law once (docs/performance.md, *Compiling*).
 
 numba compiles a function once per distinct argument type, and a literal constant at a call
 site (`True`, `0`, `-1`) is a type of its own: two call sites that pass `True` and `False`

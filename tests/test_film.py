@@ -105,7 +105,7 @@ def test_log_space_nvm_equals_the_direct_formula():
 
 def test_batch_nvm_equals_the_one_contact_kernel():
     # film_central_nvm_batch (the time loop: all contacts at once, exp and log vectorised in
-    # dynamics.simd_math) against film_central_nvm_terms, contact by contact, over the same
+    # dynamics._speed.simd_math) against film_central_nvm_terms, contact by contact, over the same
     # four regimes as above: the same formula, so agreement to rounding.
     rng = np.random.default_rng(17)
     logu = lambda lo, hi: np.exp(rng.uniform(math.log(lo), math.log(hi), n))  # noqa: E731

@@ -1,5 +1,5 @@
 """The integrator stops a run whose step control cycles through Newton failures
-(`multibody.results.NewtonStallWatch`, README *Accuracy and run time*)."""
+(`multibody.results.NewtonStallWatch`, docs/performance.md)."""
 
 import numpy as np
 import pytest
@@ -39,7 +39,7 @@ def test_counters_are_read_per_window_of_at_least_1000_steps():
 @pytest.mark.slow
 def test_undamped_hht_on_case_b_stops_with_the_time_and_what_to_try():
     """alpha = 0 (trapezoidal rule) falls into the cycle in case b's start-up while the cage rubs
-    its land: from 30.7 ms with 12-47 ns steps in one run (2 ms of it took 74 s on the dev box),
+    its land: from 30.7 ms with 12-47 ns steps in one run (hours for the 0.8 s of a run),
     from 19.4 ms with ~0.9 us steps in a run that differed from it only in the last bits (the
     first run after numba compiles, docs/model.md §9)."""
     from bearingsim.dynamics.bearing import BearingModel

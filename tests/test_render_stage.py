@@ -40,7 +40,7 @@ def _timeseries(scene, path):
     the land there with 100 W during the first 4 ms (a start-up crash). The summary is the
     simulate stage's own (cage_summary, cage_verdict): a 10 ms run is far shorter than a
     cage revolution, so the settled window is the capped last half, t >= 5 ms."""
-    from bearingsim.pipeline.results.cage_metrics import cage_summary
+    from bearingsim.pipeline.results.cage_metrics import CageSeries, GuideLand, PocketImpacts, cage_summary
     from bearingsim.pipeline.results.verdict import cage_verdict
 
     b, Z = scene.bearing, scene.bearing.ball_count
@@ -69,9 +69,10 @@ def _timeseries(scene, path):
     summary = {"duration": 0.01, "steps": 1234, "rejected_steps": 5, "newton_iterations": 2000,
                "factorizations": 7, "energy": {"drive": 1.0}}
     summary.update(cage_summary(
-        t, cage_xy, series["cage/speed"].data, series["cage_race/eccentricity_ratio"].data,
-        series["cage_race/contact_azimuth"].data, power, np.zeros(t.size), np.zeros(0),
-        film_power=series["cage_race/film_power"].data, guide_clearance=clearance, land_boundary=0.05))
+        CageSeries(t, cage_xy, series["cage/speed"].data, series["cage_race/eccentricity_ratio"].data,
+                   series["cage_race/contact_azimuth"].data, power, np.zeros(t.size),
+                   film_power=series["cage_race/film_power"].data),
+        PocketImpacts(np.zeros(0)), GuideLand(clearance, 0.05)))
     summary["verdict"] = cage_verdict(summary)
     return summary
 

@@ -10,7 +10,9 @@ import math
 import numpy as np
 import pytest
 
-from bearingsim.pipeline.results.cage_metrics import cage_summary, split_weights, time_weights
+from bearingsim.pipeline.results.cage_metrics import (
+    CageSeries, GuideLand, PocketImpacts, cage_summary, split_weights, time_weights,
+)
 from bearingsim.pipeline.results.settled_window import detect_settled_window
 
 C, EPS0, OMEGA = 2.9e-4, 0.05, 100.0  # m, -, rad/s: one cage revolution = 62.83 ms
@@ -35,8 +37,21 @@ def synthetic_run(eps, direction, t, friction=None, film_power=5.0, omega=OMEGA)
     }
 
 
+_SERIES = ("t", "cage_xy", "cage_speed", "eccentricity_ratio", "contact_azimuth", "friction_power", "inner_race_z",
+           "film_power", "min_film", "land_force", "metal_force")
+_LAND = {"guide_clearance": "clearance", "land_boundary": "boundary", "land_roughness": "roughness",
+         "land_film": "film", "land_speed": "speed"}
+
+
 def summary_of(run, **kw):
-    return cage_summary(**run, **kw)
+    """`cage_summary` of a run given as flat keywords (the series' names, impact_*, the land's
+    guide_clearance / land_*), as the synthetic runs here write them."""
+    flat = {**run, **kw}
+    series = CageSeries(**{k: flat.pop(k) for k in _SERIES if k in flat})
+    impacts = PocketImpacts(flat.pop("impact_peak_forces"), flat.pop("impact_times", None),
+                            flat.pop("impact_orbital_positions", None))
+    land = GuideLand(**{_LAND[k]: flat.pop(k) for k in list(flat) if k in _LAND})
+    return cage_summary(series, impacts, land, **flat)
 
 
 def crash_then_pressed(t, crash_end=0.08):

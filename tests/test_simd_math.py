@@ -1,11 +1,11 @@
-"""The array exp and logs of dynamics/simd_math.py against libm (math.exp, math.log) and
+"""The array exp and logs of dynamics/_speed/simd_math.py against libm (math.exp, math.log) and
 against their plain-Python twins (py_func)."""
 
 import math
 
 import numpy as np
 
-from bearingsim.dynamics.simd_math import EXP_MAX, EXP_MIN, exp_array, log_array, log_array32
+from bearingsim.dynamics._speed.simd_math import EXP_MAX, EXP_MIN, exp_array, log_array, log_array32
 
 
 def test_exp_array_matches_math_exp_and_its_range_ends():

@@ -3,7 +3,7 @@
 A `for` loop whose target rebinds a name the function assigned before, and which the function
 reads again after the loop, is how a race contact's tangent calls came to read the film at the
 wrong contact angle (the damping block's `for j in range(3)` overwrote the race table position
-`j`; fixed 2026-11-24, tests/test_bearing_model.py). numba kernels use short index names a lot,
+`j`; tests/test_bearing_model.py). numba kernels use short index names a lot,
 so the check covers the whole package.
 """
 

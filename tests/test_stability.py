@@ -100,8 +100,8 @@ def test_cli_rejects_an_unknown_case():
     assert result.exit_code == 2 and "high-moment" in result.output
 
 
-# Cases known to pass at the scene's own settings (10 ms window, measured; README
-# "Accuracy and run time"); dry contact is a documented refusal by the wall-clock budget.
+# Cases known to pass at the scene's own settings (10 ms window, measured;
+# docs/performance.md, *Stability suite*); dry contact is a documented refusal by the wall-clock budget.
 EXPECTED_PASS = tuple(c for c in CASES if c != "dry-contact")
 
 

@@ -24,12 +24,12 @@ from bearingsim.dynamics.lubrication.lubricant import load_builtin_lubricant
 from bearingsim.dynamics.traction.fast import (
     FLAG_NO_CONTACT, FLAG_OK, FLAG_PRESSURE_CLAMPED, FLAG_SLIP_CLAMPED, FLAG_UNVALIDATED, FastTraction, _accumulate,
     _Nodes, _NodeValues,
-    SMALL_ARG, _accumulate_force, _accumulate_force_g, _eyring_argument, _eyring_argument32,
-    _lerp_eyring_argument32, _slip_and_table_index, _slip_and_table_index32, _slip_and_table_row32,
-    _stress_factor32, _viscosity_lookup, _viscosity_lookup32, traction_fast,
+    SMALL_ARG, _accumulate_force, _accumulate_force_g, _eyring_argument,
+    _lerp_eyring_argument32, _slip_and_table_index, _slip_and_table_row32,
+    _stress_factor32, _viscosity_lookup, traction_fast,
 )
-from bearingsim.dynamics.simd_gather import pick_rows
-from bearingsim.dynamics.simd_math import log_array, log_array32
+from bearingsim.dynamics._speed.simd_math import log_array, log_array32
+from bearingsim.dynamics._speed.table_lookup import pick_rows
 from tests.simd_reference import lerp_fma_reference
 from tests.lubrication_points import (
     curvature_radii, E_EFF, hertz_ellipse, random_operating_points, rolling_speed,
@@ -142,7 +142,7 @@ def test_fast_matches_quadrature_with_the_pole_just_outside_the_edge(o156, fast)
 @pytest.mark.slow
 @pytest.mark.parametrize("seed", [2024, 7])
 def test_fast_matches_quadrature_on_240_random_points(o156, fast, seed):
-    # measured (default rule, 2026-11-21): F <= 0.74 %, M <= 0.76 %, J <= 1.4 % on each of these samples
+    # measured (default rule): F <= 0.74 %, M <= 0.76 %, J <= 1.4 % on each of these samples
     points = random_operating_points(240, seed=seed, lubricant=o156, film=film.film_central_nvm)
     _assert_agrees(o156, fast, points)
 
@@ -268,22 +268,21 @@ def test_passes_equal_their_py_funcs(o156, fast):
             # the float32 residual passes (py_funcs: math.sqrt of a float32 is a float64 there)
             work32, iwork32 = fast.workspace32()
             fi32, r32, k32, x32, z32, ash32 = work32
-            pick(_slip_and_table_index32)(X, Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / fast.p_step, fi32, r32)
+            eta_flat32 = fast.eta_table.astype(np.float32).ravel()
+            last = np.float32(eta_flat32.size // 2 - 1.000001)
+            row, picked = np.empty(n, dtype=np.uint32), np.empty(n, dtype=np.int64)
+            pick(_slip_and_table_row32)(X, Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / fast.p_step, last, row, fi32, r32)
             fi64 = np.empty_like(fi)  # (fi itself now holds log_array's exponents)
             pick(_slip_and_table_index)(X, Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / fast.p_step, fi64, np.empty_like(r))
             # float32 rounds the terms of s, not s: near the pole |s| is good to ~1e-7 of the terms
             terms = abs(du0) + abs(dv0) + abs(w_s) * b
             assert np.allclose(r32[:n], r[:n], rtol=2e-7, atol=2e-7 * terms)
-            assert np.allclose(fi32[:n], fi64[:n], rtol=2e-7, atol=1e-6)
-            eta_flat32 = fast.eta_table.astype(np.float32).ravel()
-            if twin:  # the compiled pass is LLVM IR (simd_gather.py): its twin is exact rational arithmetic
-                k32[:n] = lerp_fma_reference(fi32[:n], eta_flat32, 1.0 / (fast.tau0 * h))
-            else:
-                _viscosity_lookup32(fi32, n, eta_flat32, 1.0 / (fast.tau0 * h), k32, True)
+            assert np.allclose(row + fi32[:n], np.minimum(fi64[:n], float(last)), rtol=2e-7, atol=1e-6)
+            pick(pick_rows)(row, n, eta_flat32.view(np.int64), picked)
+            pick(_lerp_eyring_argument32)(picked, fi32, r32, n, 1.0 / (fast.tau0 * h), k32, x32, z32)
             # a float32 index near the table's end (4096) resolves 2^-12 of an interval, over which eta
             # changes by ~2.5 % (alpha p_step): ~6e-6 relative, far inside the table's own 1e-4
             assert np.allclose(k32[:n], k[:n], rtol=1e-5)
-            pick(_eyring_argument32)(k32, r32, n, x32, z32)
             pick(log_array32)(z32, n, fi32, iwork32, ash32)
             # d asinh(k r) = k dr/sqrt(1 + x^2) <= dr/r: the rounding of |s| near the pole passes through
             dash = np.abs(r32[:n] - r[:n]) / r[:n]
@@ -307,41 +306,28 @@ def test_passes_equal_their_py_funcs(o156, fast):
         assert np.any(residual32[:3] != full[:3])  # the float32 passes did run
 
 
-def test_row_pick_route_gives_the_bits_of_the_gathered_route(o156, fast):
-    """docs/model.md §6.4: without gathers the float32 residual splits the table position into
-    row and fraction in the slip pass, picks the rows in a pass of loads and interpolates in the
-    Eyring pass; g = asinh(x)/|s| has a pass of its own before the float64 sums. The same
-    operations as the gathered route (which keeps the separate index, lookup and Eyring passes),
-    so every contact must come out with the same bits, pass by pass and in the end."""
+def test_float32_passes_give_the_exact_table_lookup_and_stress_factor(o156, fast):
+    """docs/model.md §6.4: the float32 residual splits the table position into row and fraction
+    in the slip pass, picks the rows in a pass of loads and interpolates in the Eyring pass; g =
+    asinh(x)/|s| has a pass of its own before the float64 sums. On a contact with its pole inside
+    the ellipse: the interpolation is the fused multiply-add of exact arithmetic rounded once
+    (tests/simd_reference.py), and the g pass with its float64 sums gives the bits of the sums
+    that form g themselves."""
     points = random_operating_points(200, seed=31, lubricant=o156, film=film.film_central_nvm)
-    rule = fast.traction_rule(float32_residual=True)
-    gathered, picked = rule._replace(gather32=True), rule._replace(gather32=False)
-    out_g, out_p = np.empty(12), np.empty(12)
-    for a, b, p_h, h, du0, dv0, w_s in points:
-        traction_fast(a, b, p_h, h, du0, dv0, w_s, gathered, out_g, False)
-        traction_fast(a, b, p_h, h, du0, dv0, w_s, picked, out_p, False)
-        assert np.array_equal(out_g, out_p)
-    # pass by pass on one contact with its pole inside the ellipse (spin, slip)
     a, b, p_h, h, du0, dv0, w_s = points[0]
     work, iwork = fast.workspace()
     X, Y, W = work[0], work[1], work[2]
     n = traction_nodes.place_nodes(a, b, du0, dv0, w_s, fast.rule, X, Y, W, work[3:8])
     (fi, r, k, x, z, ash), iw = fast.workspace32()
-    _slip_and_table_index32(X, Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / fast.p_step, fi, r)
     eta_flat32 = fast.eta_table.astype(np.float32).ravel()
     last = np.float32(eta_flat32.size // 2 - 1.000001)
-    row, frac, r2 = np.empty(n, dtype=np.uint32), np.empty(n, dtype=np.float32), np.empty(n, dtype=np.float32)
-    _slip_and_table_row32(X, Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / fast.p_step, last, row, frac, r2)
-    f = np.minimum(fi[:n], last)
-    assert np.array_equal(row, f.astype(np.uint32)) and np.array_equal(frac, f - row.astype(np.float32))
-    assert np.array_equal(r2, r[:n])
-    _viscosity_lookup32(fi, n, eta_flat32, 1.0 / (fast.tau0 * h), k, False)
-    _eyring_argument32(k, r, n, x, z)
+    row = np.empty(n, dtype=np.uint32)
+    _slip_and_table_row32(X, Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / fast.p_step, last, row, fi, r)
     rows = np.empty(n, dtype=np.int64)
     pick_rows(row, n, eta_flat32.view(np.int64), rows)
-    k2, x2, z2 = (np.empty(n, dtype=np.float32) for _ in range(3))
-    _lerp_eyring_argument32(rows, frac, r2, n, 1.0 / (fast.tau0 * h), k2, x2, z2)
-    assert np.array_equal(k2, k[:n]) and np.array_equal(x2, x[:n]) and np.array_equal(z2, z[:n])
+    _lerp_eyring_argument32(rows, fi, r, n, 1.0 / (fast.tau0 * h), k, x, z)
+    position = row.astype(np.float32) + fi[:n]  # exact: i and f - i come from one float32 f
+    assert np.array_equal(k[:n], lerp_fma_reference(position, eta_flat32, 1.0 / (fast.tau0 * h)))
     log_array32(z, n, fi, iw, ash)
     force, force_g, g = np.empty(12), np.empty(12), np.empty(n, dtype=np.float32)
     _accumulate_force(_Nodes(X, Y, W), _NodeValues(k, r, x, z, ash), n, a, b, du0, dv0, w_s, force)
@@ -357,10 +343,10 @@ def test_row_pick_route_gives_the_bits_of_the_gathered_route(o156, fast):
 
 
 def test_scratch_on_a_cache_line_and_the_same_bits_at_any_offset(o156, fast):
-    """dynamics/aligned.py: the workspaces start every row on a cache line, and where a row
+    """dynamics/_speed/aligned.py: the workspaces start every row on a cache line, and where a row
     starts changes no bit of the traction (the vectorised passes do not peel for alignment),
     float32 residual and float64 with the Jacobian alike."""
-    from bearingsim.dynamics.aligned import CACHE_LINE
+    from bearingsim.dynamics._speed.aligned import CACHE_LINE
 
     rule = fast.traction_rule(float32_residual=True)
     for scratch in (rule.work, rule.iwork, rule.work32, rule.iwork32):

@@ -15,7 +15,7 @@ import math
 import pytest
 from typer.testing import CliRunner
 
-from bearingsim.pipeline import validity
+from bearingsim.pipeline import result_checks, validity
 from bearingsim.pipeline.cli import app
 from bearingsim.pipeline.scene import load_scene, read_scene_table, resolve
 from bearingsim.pipeline.schema import SceneError
@@ -178,19 +178,19 @@ def payload(pressure=2e9, angle=0.4, margin=1e-3, displacement=1e-5, balls=9):
 
 def test_result_checks_against_the_contact_model():
     s = load_scene("deep-groove-209")
-    assert validity.quasistatic_findings(s, payload()) == []
+    assert result_checks.quasistatic_findings(s, payload()) == []
     # ISO 76: 4.2 GPa is the static-rating pressure; 10 GPa the fully plastic limit of the steel
-    warned = validity.quasistatic_findings(s, payload(pressure=5e9))
+    warned = result_checks.quasistatic_findings(s, payload(pressure=5e9))
     assert [f.level for f in warned] == ["warning"] and "ISO 76" in warned[0].message
     # the load that brings p_max (∝ Q^(1/3)) back to 4.2 GPa: 8900 N x (4.2/5)^3 = 5275 N
     assert "load.radial <= 5275" in warned[0].message
-    assert [f.level for f in validity.quasistatic_findings(s, payload(pressure=12e9))] == ["error"]
-    assert [f.level for f in validity.quasistatic_findings(s, payload(angle=math.radians(100)))] == ["error"]
-    assert [f.level for f in validity.quasistatic_findings(s, payload(margin=-1e-4))] == ["warning"]
-    assert [f.level for f in validity.quasistatic_findings(s, payload(displacement=0.01))] == ["error"]
+    assert [f.level for f in result_checks.quasistatic_findings(s, payload(pressure=12e9))] == ["error"]
+    assert [f.level for f in result_checks.quasistatic_findings(s, payload(angle=math.radians(100)))] == ["error"]
+    assert [f.level for f in result_checks.quasistatic_findings(s, payload(margin=-1e-4))] == ["warning"]
+    assert [f.level for f in result_checks.quasistatic_findings(s, payload(displacement=0.01))] == ["error"]
     broken = payload()
     broken["inner_race"]["tilt"] = [None, 0.0]
-    assert [f.level for f in validity.quasistatic_findings(s, broken)] == ["error"]
+    assert [f.level for f in result_checks.quasistatic_findings(s, broken)] == ["error"]
 
 
 def test_issue_case_radial_1e9_is_refused_with_the_reason(tmp_path):
@@ -227,11 +227,11 @@ def test_issue_case_high_moment_warns_on_console_log_and_json(tmp_path):
 def test_absurd_summary_values_are_nulled_and_flagged(tmp_path):
     s = load_scene("helicopter-b-given-hinge")
     summary = {"duration": 0.8, "cage_speed_mean": 1e302, "energy": {"drive": 1.0}, "list": [1.0, -1e200]}
-    findings = validity.simulation_findings(s, summary)
+    findings = result_checks.simulation_findings(s, summary)
     assert [f.level for f in findings] == ["warning"]
     assert "cage_speed_mean" in findings[0].message and "list[1]" in findings[0].message
     (tmp_path / "summary.json").write_text(json.dumps(summary))
-    validity.annotate("simulate", tmp_path, findings)
+    result_checks.annotate("simulate", tmp_path, findings)
     data = json.loads((tmp_path / "summary.json").read_text())
     assert data["cage_speed_mean"] is None and data["list"] == [1.0, None] and data["validity"]
 
@@ -258,12 +258,12 @@ def test_crush_screen_is_flagged_when_balls_sit_in_the_unloaded_zone():
     s = load_scene("deep-groove-209")
     loaded = payload()
     loaded["cage_screen"] = {"regime": "pressed"}
-    assert validity.quasistatic_findings(s, loaded) == []
+    assert result_checks.quasistatic_findings(s, loaded) == []
     zone = copy.deepcopy(loaded)
     for ball in zone["balls"][:3]:
         ball["inner_load"] = ball["outer_load"] = 50.0  # mean (3 x 50 + 6 x 1000) / 9 = 683 N; 50 < 68.3
-    warned = validity.quasistatic_findings(s, zone)
+    warned = result_checks.quasistatic_findings(s, zone)
     assert [f.level for f in warned] == ["warning"]
     assert "3 of 9 balls in the unloaded zone" in warned[0].message and "'pressed'" in warned[0].message
     del zone["cage_screen"]  # no cage, no screen: nothing to flag
-    assert validity.quasistatic_findings(s, zone) == []
+    assert result_checks.quasistatic_findings(s, zone) == []

@@ -15,12 +15,11 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from bearingsim.dynamics._kernel_options import NO_REFCOUNT
+from bearingsim.dynamics._speed.compile_policy import NO_REFCOUNT
 from bearingsim.dynamics.contact.pocket import (
     P_OUT_APPROACH, P_OUT_DFN_DRATE, P_OUT_FRICTION_POWER, P_OUT_IN_CONTACT,
 )
 from bearingsim.dynamics.lubrication.film import film_central_nvm_batch
-from bearingsim.dynamics.multibody.compiled import as_bool
 from bearingsim.dynamics.multibody.crv import crv_to_matrix_into, skew
 from bearingsim.dynamics.multibody.hinge import add_hinge_force, hinge_energy, hinge_forces
 from bearingsim.dynamics.multibody.joints import prescribe_velocity_residual
@@ -80,8 +79,8 @@ def evaluate_bearing_residual(t, q, v, a, model, want_tangent, ma, g, diag, K, C
     residual bit for bit, compiled without reference counting (`NO_REFCOUNT`), for the
     residual-only calls of every Newton iteration. The tangent branches of `_evaluate` allocate;
     with want_tangent the constant False here numba prunes them before typing. `_evaluate`
-    passes the flag on to the kernels it calls through `as_bool`, so that they are compiled
-    once for both force kernels (tests/test_compile_specialisations.py)."""
+    passes the flag on to the kernels it calls as `bool(want_tangent)`, a plain bool rather than
+    numba's type of the constant, so that they are compiled once for both force kernels (tests/test_compile_specialisations.py)."""
     return _evaluate(t, q, v, a, model, False, ma, g, diag, K, C)
 
 
@@ -100,7 +99,7 @@ def _evaluate(t, q, v, a, model, want_tangent, ma, g, diag, K, C):
             M.F[:] = 0.0
             M.B[:] = 0.0
     # the model's scratch (`bundles.ResidualWork`), not fresh arrays: ~16 allocations per call
-    # with their reference counts were ~5 % of a run's time (perf, 2026-11-24)
+    # with their reference counts would show in a profile of the run
     work = model.work
     o_i = BALL_DOF * Z
     R_i = work.R_inner
@@ -125,7 +124,7 @@ def _evaluate(t, q, v, a, model, want_tangent, ma, g, diag, K, C):
         loads.M_cage[i] = 0.0
     rows = work.rows  # one row per ball-race contact: inner 2k, outer 2k + 1
     pocket_rows = work.pocket_rows
-    _ball_forces(q, v, model, bodies, work.scratch, rows, pocket_rows, g, diag, loads, as_bool(want_tangent))
+    _ball_forces(q, v, model, bodies, work.scratch, rows, pocket_rows, g, diag, loads, bool(want_tangent))
     if want_tangent:
         _ball_tangents(v, model, bodies, rows, pocket_rows, q, K, C)
     return _border(t, v, model, bodies, loads, ma, g, diag, K.B, C.B, want_tangent)
@@ -137,12 +136,12 @@ def _ball_forces(q, v, model, bodies, scratch, rows, pocket_rows, g, diag, loads
     race and the cage (`loads`) and diag; the contact rows (with their tangent ingredients
     when want_tangent) stay in rows (2k inner, 2k + 1 outer) and, with a cage, pocket_rows
     for the tangent pass. Allocation-free and without reference counting
-    (dynamics/_kernel_options.py): this loop, with its per-ball views, is the hot path of
+    (dynamics/_speed/compile_policy.py): this loop, with its per-ball views, is the hot path of
     every residual.
 
     Three passes: every ball–race contact's geometry and normal load (`race_contact_normal`);
     the NVM film of all of them at once (`film.film_central_nvm_batch`, whose exp and log
-    vectorise over the contacts: ~1 us instead of ~6 us for the 44 of the reference bearing);
+    vectorise over the contacts);
     then each contact's traction and wrenches (`race_contact_forces`) and each ball's pockets.
     """
     fp, ip, races, cage = model.fp, model.ip, model.races, model.cage
@@ -225,8 +224,8 @@ def _ball_forces(q, v, model, bodies, scratch, rows, pocket_rows, g, diag, loads
 # (inline="always": one caller each, the same compiler flags). Compiled as functions of their
 # own, each was a library with its callees linked in, optimised and emitted again by LLVM in
 # every caller up the chain. With the literal specialisations below gone as well,
-# evaluate_bearing compiles in 47-49 s instead of 68-70 s (`python -m benchmarks.cold_start`,
-# 2026-11-24, README). `_ball_forces`, the residual's hot loop, keeps its own flags
+# evaluate_bearing compiles in about two thirds of the time (`python -m benchmarks.cold_start`,
+# docs/performance.md). `_ball_forces`, the residual's hot loop, keeps its own flags
 # (NO_REFCOUNT) and is not inlined.
 @numba.njit(cache=True, inline="always")
 def _ball_tangents(v, model, bodies, rows, pocket_rows, q, K, C):
@@ -240,7 +239,7 @@ def _ball_tangents(v, model, bodies, rows, pocket_rows, q, K, C):
         for j in range(2):
             # the border offset is a run-time value: numba compiles a function once per literal
             # argument, and the constants INNER_BORDER and -1 at two call sites compiled
-            # _race_term and the four coupling kernels under it twice (cold start, README)
+            # _race_term and the four coupling kernels under it twice (cold start, docs/performance.md)
             off = INNER_BORDER if j == 0 else -1
             if rows[2 * k + j, RC_ACTIVE] > 0.0:
                 _race_term(k, off, rows[2 * k + j], inner if j == 0 else outer, Om_i, w_b, D, K, C)
@@ -349,7 +348,7 @@ def _border(t, v, model, bodies, loads, ma, g, diag, Kb, Cb, want_tangent):
 
     The residual terms are written without temporaries (`mtv_into` into the model's scratch, and
     `rigid_body.gyroscopic_moment`'s arithmetic on scalars, so the same bits): ~30 small arrays
-    per call were ~4 % of a run. The tangent blocks, needed at a refactorisation only, keep the
+    per call would show in a profile of the run. The tangent blocks, needed at a refactorisation only, keep the
     array helpers, and reuse the material moments the residual computed."""
     fp, ip, hinge, work = model.fp, model.ip, model.hinge, model.work
     inner, cage = bodies.inner, bodies.cage
@@ -411,7 +410,7 @@ def _border(t, v, model, bodies, loads, ma, g, diag, Kb, Cb, want_tangent):
             jres = work.journal_row
             cage_block = slice(CAGE_BORDER, CAGE_BORDER + CAGE_DOF)
             power = journal_forces(cage, bodies.outer, model.cage.journal, jres, work.journal_squeeze, g, o_c,
-                                   as_bool(want_tangent), Kb[cage_block, cage_block], Cb[cage_block, cage_block])
+                                   bool(want_tangent), Kb[cage_block, cage_block], Cb[cage_block, cage_block])
             journal_diag(jres, diag)
             diag[DG_P_DISS] -= power
     drive = prescribe_velocity_residual(o_i + 5, v, fp[FP_OMEGA_I], 1.0, ma, g)

@@ -2,7 +2,7 @@
 
 numba accepts NamedTuples of arrays and floats as arguments and builds them inside kernels;
 attribute access compiles to a field load, and a bundle of borrowed arrays needs no
-reference counting, so the kernels compiled without it (dynamics/_kernel_options.py) take
+reference counting, so the kernels compiled without it (dynamics/_speed/compile_policy.py) take
 them too. A call passes the same arrays as before, now under their names; the hot per-contact
 kernels get only the small bundles they read (a body, a race table, the traction rule).
 

@@ -7,7 +7,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from bearingsim.dynamics._kernel_options import NO_REFCOUNT
+from bearingsim.dynamics._speed.compile_policy import NO_REFCOUNT
 from bearingsim.dynamics.journal.hybrid import (
     J_OUT_CONTACT_AZIMUTH, J_OUT_DF_DOMEGA_CAGE, J_OUT_DF_DPOS, J_OUT_DF_DVEL,
     J_OUT_DT_DOMEGA_CAGE, J_OUT_DT_DPOS, J_OUT_DT_DVEL, J_OUT_EPS, J_OUT_FILM_POWER, J_OUT_FORCE,
@@ -51,7 +51,7 @@ def pocket_tangent(k, x_b, cage, pp, pres, K, C):
     """Tangent blocks of ball k's pocket contact (result row `pres` of `pocket_forces`) into
     K and C (`linear_solvers.Blocks`); x_b: the ball centre, cage: `bundles.Body`. Kept
     apart from the force so that a residual-only evaluation does not pass the tangent
-    blocks (~0.25 us a call)."""
+    blocks."""
     n = pres[P_OUT_NORMAL:P_OUT_NORMAL + 3]
     p = pres[P_OUT_POINT:P_OUT_POINT + 3]
     nn = np.outer(n, n)

@@ -13,7 +13,7 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
-from bearingsim.dynamics._kernel_options import NO_REFCOUNT
+from bearingsim.dynamics._speed.compile_policy import NO_REFCOUNT
 from bearingsim.dynamics.contact.pocket import N_POCKET_OUT, P_BALL_RADIUS, P_POCKET_RADIUS
 from bearingsim.dynamics.journal.hybrid import N_JOURNAL_OUT
 from bearingsim.dynamics.journal.squeeze_film import N_SQUEEZE_OUT
@@ -142,8 +142,8 @@ class _Kernel:
     `evaluate_bearing_residual` (the same residual bit for bit, without reference counting)
     for residual-only ones.
 
-    numba's per-call type dispatch costs ~6 us for the nested bundles (it types every array
-    of every tuple in Python), more than a tenth of a residual; after the first call this
+    numba's per-call type dispatch types every array of every nested bundle in Python, more
+    than a tenth of a residual; after the first call this
     calls the compiled overload directly (`Dispatcher.get_overload`), which unboxes the
     arguments without typing them. Its unboxing does not check an array's dtype or layout, so
     the state arrays, the only arguments that change between calls, are checked here

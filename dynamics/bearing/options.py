@@ -10,6 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from bearingsim.dynamics.field_checks import check_fields
+from bearingsim.dynamics.traction.laws import LAWS
 
 
 @dataclass(frozen=True)
@@ -19,8 +20,14 @@ class ModelOptions:
     ehd_film: bool = field(default=True, metadata={
         "doc": "compute the EHD central film of every ball-race contact (needs [lubricant])"})
     traction: str = field(default="eyring", metadata={
-        "choices": ("eyring", "coulomb", "none"),
-        "doc": "ball-race traction: Eyring lubricant (film needed), Coulomb (dry) or none"})
+        "choices": tuple(LAWS),
+        "doc": "ball-race traction law (dynamics/traction/laws): " + "; ".join(
+            f"'{name}' {law.doc}" + (" (needs [lubricant] and the film)" if law.film else "")
+            for name, law in LAWS.items())})
+    limiting_shear_coefficient: float = field(default=0.075, metadata={
+        "unit": "-", "gt": 0.0, "le": 0.5,
+        "doc": "Lambda of traction = 'limiting-shear': limiting shear stress over pressure (Bair & Winer 1979: "
+               "0.05-0.1), taken at the mean Hertz pressure"})
     cage_race: str = field(default="hybrid", metadata={
         "choices": ("hybrid", "hydrodynamic", "dry", "none"),
         "doc": "cage-land law: hybrid film/metal (paper eqs. 25-31), film only, metal only, or no contact"})

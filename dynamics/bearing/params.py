@@ -10,6 +10,7 @@ import numpy as np
 
 from bearingsim.dynamics.geometry import BearingGeometry, CageGeometry, Material, effective_modulus
 from bearingsim.dynamics.traction.fast import TractionRule, unused_traction_rule
+from bearingsim.dynamics.traction.laws import EYRING, LAWS
 
 from . import layout
 from .bundles import HingeArrays, RaceTables
@@ -28,12 +29,12 @@ FP_ETA0, FP_ALPHA_P = 20, 21               # lubricant at its temperature: eta0 
 FP_MIN_FILM, FP_MU_DRY, FP_ZETA = 22, 23, 24
 FP_V_REG = 25                              # regularisation speed of Coulomb traction [m/s]
 FP_T_LOAD_STEP, FP_MY_STEP = 26, 27        # from t >= FP_T_LOAD_STEP [s] the moment is FP_MY_STEP [N m]
-N_FP = 28
+FP_LOAD_EXPONENT = 28                      # |T| ~ F_n^e at fixed slip: the traction law's load exponent
+N_FP = 29
 
 # --- integer switches ip ------------------------------------------------------------------
 IP_Z, IP_TRACTION, IP_FILM, IP_CAGE, IP_JOURNAL, IP_HINGE, IP_GYRO = 0, 1, 2, 3, 4, 5, 6
 N_IP = 7
-TRACTION_NONE, TRACTION_COULOMB, TRACTION_EYRING = 0, 1, 2
 FILM_NONE, FILM_NVM, FILM_HD = 0, 1, 2
 # the parts of the model a study may switch off (`BearingModelParams.without`)
 SWITCHES = {"traction": IP_TRACTION, "film": IP_FILM, "cage": IP_CAGE, "journal": IP_JOURNAL,
@@ -82,9 +83,7 @@ class BearingModelParams:
     def with_float32_residual(self, on: bool = True) -> "BearingModelParams":
         """A copy whose residual-only traction runs through the float32 passes (`on`) or not
         (dynamics/traction/fast.py): ~15 % off a time step, for callers whose tangent is the
-        model's own; the default float64 residual is the one to difference. Their viscosity
-        lookup takes 8-wide gathers where this CPU runs them faster (dynamics/simd_gather.py;
-        the same bits either way)."""
+        model's own; the default float64 residual is the one to difference."""
         return replace(self, traction=self.traction.with_float32_residual(on))
 
     def without(self, *parts: str) -> "BearingModelParams":
@@ -144,20 +143,25 @@ def build_model_params(
     ip = np.zeros(N_IP, dtype=np.int64)
     ip[IP_Z] = Z
     ip[IP_GYRO] = int(options.gyroscopic)
-    ip[IP_TRACTION] = {"none": TRACTION_NONE, "coulomb": TRACTION_COULOMB, "eyring": TRACTION_EYRING}[options.traction]
+    law = LAWS[options.traction]
+    ip[IP_TRACTION] = law.code
+    fp[FP_LOAD_EXPONENT] = law.load_exponent
     traction = unused_traction_rule()
     if lubricant is not None:
         fp[FP_ETA0], fp[FP_ALPHA_P] = lubricant.eta0, lubricant.alpha_star
         if options.ehd_film:
             ip[IP_FILM] = FILM_HD if options.film_formula == "hamrock-dowson" else FILM_NVM
-        elif options.traction == "eyring":
-            raise ValueError("Eyring traction needs the EHD film (ehd_film = True)")
-        if options.traction == "eyring":
+        elif law.film:
+            raise ValueError(f"{options.traction} traction needs the EHD film (ehd_film = True)")
+        if law.film:
             from bearingsim.dynamics.traction.fast import FastTraction
 
-            traction = FastTraction.build(lubricant).traction_rule()
-    elif options.traction == "eyring":
-        raise ValueError("Eyring traction needs a lubricant; use traction 'coulomb' for dry contacts")
+            fast = FastTraction.build(lubricant)
+            if law.code != EYRING:
+                fast = fast.with_law(options.traction, options.limiting_shear_coefficient)
+            traction = fast.traction_rule()
+    elif law.film:
+        raise ValueError(f"{options.traction} traction needs a lubricant; use traction 'coulomb' for dry contacts")
     pocket, journal, psi, clearance = np.zeros(1), np.zeros(1), np.zeros(Z), float("nan")
     if cage is not None:
         pocket, journal, clearance = _cage_params(bearing, cage, ball, race, cage_material, lubricant, options, fp, ip)

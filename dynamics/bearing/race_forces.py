@@ -16,21 +16,23 @@ import math
 import numba
 import numpy as np
 
-from bearingsim.dynamics._kernel_options import NO_REFCOUNT
+from bearingsim.dynamics._speed.compile_policy import NO_REFCOUNT
 from bearingsim.dynamics.contact.hertz import TAB_KH, hermite, table_position
 from bearingsim.dynamics.contact.race import (
     OUT_ALPHA, OUT_DELTA, OUT_EX, OUT_EY, OUT_LEVER, OUT_N, OUT_P, OUT_SLIDE, OUT_SPIN,
     OUT_SRR, OUT_U_SUM, ball_race_contact_kernel,
 )
 from bearingsim.dynamics.lubrication.film import FILM_BATCH_ROWS, film_central_nvm_terms, film_hamrock_dowson
+from bearingsim.dynamics.traction import laws
 from bearingsim.dynamics.traction.fast import traction_fast
+from bearingsim.dynamics.traction.laws.coulomb import coulomb_traction
 
 from .bundles import ContactScratch
 from .channels import Channel, RowLayout
 from .params import (
     FP_ALPHA_P, FP_D, FP_DI, FP_DM, FP_DO, FP_E_EFF, FP_ETA0, FP_MB, FP_MIN_FILM,
-    FP_MU_DRY, FP_RI, FP_RO, FP_V_REG, FP_ZETA, FILM_HD, FILM_NONE,
-    FILM_NVM, IP_FILM, IP_TRACTION, TRACTION_COULOMB, TRACTION_EYRING,
+    FP_LOAD_EXPONENT, FP_MU_DRY, FP_RI, FP_RO, FP_V_REG, FP_ZETA, FILM_HD, FILM_NONE,
+    FILM_NVM, IP_FILM, IP_TRACTION,
 )
 from .race_table import TAB_FILM, TAB_SEMI_AXES, curvature_radii_kernel
 
@@ -77,34 +79,10 @@ RC_DN = RACE_ROW.slot("normal_turn")
 N_RC = RACE_ROW.size
 # A residual-only call clears only the slots it writes or reads: the two runs of slots between
 # the tangent-only fields (their descriptions end in "tangent only"), which the tangent pass
-# alone reads and a tangent call clears with the rest (the row's 87 slots for 44 contacts
-# were a memset of ~1 % of the time loop's samples, 2026-11-24)
+# alone reads and a tangent call clears with the rest (clearing the whole row for every
+# contact shows in a profile of the time loop)
 RC_RESIDUAL_SPANS = ((0, RC_KP), (RC_PB, RC_LOAD_SLOPE))
-# |T| grows like F_n (Coulomb) or roughly like the contact area, F_n^(2/3) (Eyring plateau)
-LOAD_EXPONENT_COULOMB, LOAD_EXPONENT_EYRING = 1.0, 2.0 / 3.0
 N_CONTACT_SCRATCH = 27
-
-
-@numba.njit(**NO_REFCOUNT)
-def _coulomb(F_n, a_x, b_y, du0, dv0, w_s, mu, v_reg, out):
-    """Regularised Coulomb traction on the ball: T = -mu F_n s/sqrt(|s|^2 + v_reg^2) and a
-    spin moment -mu F_n r_s w_s r_s/sqrt((w_s r_s)^2 + v_reg^2), r_s = (3 pi/16) sqrt(a b)
-    (Johnson, Contact Mechanics, 1985, §5.8: the spin moment of a Hertzian circle under
-    full sliding is 3 pi mu P a / 16). out[0:3] = T, out[3:12] = dT/ds row-major."""
-    g2 = du0 * du0 + dv0 * dv0 + v_reg * v_reg
-    g = math.sqrt(g2)
-    f = mu * F_n / g
-    out[0], out[1] = -f * du0, -f * dv0
-    out[3] = -f * (1.0 - du0 * du0 / g2)
-    out[4] = f * du0 * dv0 / g2
-    out[6] = out[4]
-    out[7] = -f * (1.0 - dv0 * dv0 / g2)
-    r_s = 3.0 * math.pi / 16.0 * math.sqrt(a_x * b_y)
-    ws = w_s * r_s
-    gs = math.sqrt(ws * ws + v_reg * v_reg)
-    out[2] = -mu * F_n * r_s * ws / gs
-    out[11] = -mu * F_n * r_s * r_s * v_reg * v_reg / (gs * gs * gs)
-    out[5] = out[8] = out[9] = out[10] = 0.0
 
 
 # What one contact carries from `race_contact_normal` to `race_contact_forces`: the Hertz
@@ -204,8 +182,8 @@ def race_contact_normal(ball, race, is_outer, fp, ip, table, cbuf, carry, res, w
     if want_tangent:
         _contact_stiffness(k_n, F_el, delta, n, x_b, x_r, R_r, d_g, cbuf, res)
         if F_n > 0.0:
-            # r and c, not j: j is the table position the film's terms are read at below (it was
-            # reused here until 2026-11-24, so tangent calls read the film at interval 2)
+            # r and c, not j: j is the table position the film's terms are read at below
+            # (tests/test_source_checks.py guards against such a loop target)
             for r in range(3):
                 for c in range(3):
                     res[RC_CN + 3 * r + c] = c_n * n[r] * n[c]
@@ -248,16 +226,16 @@ def race_contact_forces(ball, race, fp, ip, traction, cbuf, tbuf, carry, h, res,
     F_n, F_el, delta, delta_dot, k_n = carry[CA_FN], carry[CA_FEL], carry[CA_DELTA], carry[CA_DDOT], carry[CA_KN]
     mode = ip[IP_TRACTION]
     # traction T = tbuf[0:3] and dT/ds = tbuf[3:12] (row-major), on the ball
-    if mode == TRACTION_EYRING:
-        res[RC_FLAG] = traction_fast(a_x, b_y, p_max, h, du0, dv0, w_s, traction, tbuf, want_tangent)
-    elif mode == TRACTION_COULOMB:
-        _coulomb(F_n, a_x, b_y, du0, dv0, w_s, fp[FP_MU_DRY], fp[FP_V_REG], tbuf)
-    else:
+    if mode == laws.COULOMB:
+        coulomb_traction(F_n, a_x, b_y, du0, dv0, w_s, fp[FP_MU_DRY], fp[FP_V_REG], tbuf)
+    elif mode == laws.NONE:
         tbuf[:] = 0.0
+    else:  # a film law: the traction engine, whose rule carries the law
+        res[RC_FLAG] = traction_fast(a_x, b_y, p_max, h, du0, dv0, w_s, traction, tbuf, want_tangent)
     _wrenches(res, n, p, x_b, x_r, cbuf, F_n, tbuf, want_tangent)
-    if want_tangent and F_n > 0.0 and mode != 0:
-        expo = LOAD_EXPONENT_EYRING if mode == TRACTION_EYRING else LOAD_EXPONENT_COULOMB
-        res[RC_LOAD_SLOPE] = expo * k_n / F_n
+    if want_tangent and F_n > 0.0 and mode != laws.NONE:
+        # |T| ~ F_n^e at fixed slip (`laws.TractionLaw.load_exponent`)
+        res[RC_LOAD_SLOPE] = fp[FP_LOAD_EXPONENT] * k_n / F_n
     for i in range(3):
         res[RC_N + i] = n[i]
         res[RC_EX + i] = cbuf[OUT_EX + i]

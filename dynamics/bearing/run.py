@@ -151,8 +151,6 @@ def simulate_bearing(params: BearingModelParams, start: dict, settings: HHTSetti
                                        "factorizations", "residual_evaluations", "min_step_accepts",
                                        "wall_time")}
     stats["kernel_load_time"] = kernel_load_time
-    # which viscosity lookup this CPU took (dynamics/simd_gather.py): run time only, same results
-    stats["viscosity_lookup"] = "gathered" if params.traction.gather32 else "rows picked"
     kinetic = 0.5 * (rec.v * rec.v) @ model.mass
     return BearingRun(t=rec.t, q=rec.q, v=rec.v, diag=rec.diag, impacts=model.impact_log(),
                       energy=model.energy, kinetic=kinetic, stats=stats, ball_count=params.ball_count,

@@ -50,9 +50,9 @@ def slip_map(ex, ey, n, r, R, out):
 def add_congruent(out, A, J, B, sign):
     """out += sign A^T J B for small dense A (k x na), J (k x k), B (k x nb), out (na x nb).
 
-    Loops without allocation: as numba's `@` each product of these 3 x 6 maps was a BLAS call
-    with a fresh result (~0.2 us), and a tangent evaluation of the reference bearing made ~700
-    of them (2026-11-24, `python -m benchmarks.contacts`: tangent blocks 468 of the 528 us)."""
+    Loops without allocation: as numba's `@` each product of these 3 x 6 maps is a BLAS call
+    with a fresh result, and a tangent evaluation of the reference bearing makes ~700 of them
+    (`python -m benchmarks.contacts`)."""
     k, na = A.shape
     nb = B.shape[1]
     for j in range(nb):

@@ -40,7 +40,7 @@ import math
 import numba
 import numpy as np
 
-from bearingsim.dynamics._kernel_options import NO_REFCOUNT
+from bearingsim.dynamics._speed.compile_policy import NO_REFCOUNT
 
 # --- parameter vector layout -----------------------------------------------------------
 P_BALL_RADIUS = 0  # r_b [m]

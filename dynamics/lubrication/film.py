@@ -30,8 +30,8 @@ import math
 
 import numba
 
-from bearingsim.dynamics._kernel_options import VEC
-from bearingsim.dynamics.simd_math import exp_array, log_array
+from bearingsim.dynamics._speed.compile_policy import VEC
+from bearingsim.dynamics._speed.simd_math import exp_array, log_array
 
 
 @numba.njit(cache=True)
@@ -83,7 +83,7 @@ def film_central_nvm(F, Rx, Ry, E_eff, eta0, alpha_p, u_s):
     surface speeds). Returns 0 when F <= 0 or u_s <= 0 (no contact / no entrainment).
 
     It works with logarithms: every power x^p becomes exp(p ln x) on logarithms taken once
-    (~21 exp/log instead of ~20 pow; measured 0.23 us instead of 0.32 us a call). The time loop
+    (~21 exp/log instead of ~20 pow, which cost more). The time loop
     takes the same formula for all its contacts at once (`film_central_nvm_batch`).
     `nvm_central_dimensionless` is the direct, readable form; tests hold the two equal to
     rounding. Split in two so that a caller with fixed
@@ -153,8 +153,8 @@ def film_central_nvm_batch(F, Rx, u_s, ln_RI0, ln_EI0, h00_m4, ln_RP0, ln_EP0, n
     E_eff, eta0, alpha_p as there. Agrees with it to ~1e-14 relative (tests/test_film.py).
 
     The same formula, its 16 exp and log taken for every contact in one vectorised pass each
-    (`dynamics.simd_math`) instead of one libm call after the other: 44 contacts of the
-    reference bearing in ~1.1 us instead of ~6.0 us (`python -m benchmarks.film`).
+    (`_speed.simd_math`) instead of one libm call after the other, several times faster for
+    the 44 contacts of the reference bearing (`python -m benchmarks.film`, docs/performance.md).
     work: (FILM_BATCH_ROWS, >= 5n) float64, iwork: (>= 5n,) int64 scratch.
     """
     arg, lns, x, ex, y, ey, t = work[0], work[1], work[2], work[3], work[4], work[5], work[6]

@@ -4,9 +4,9 @@ numpy asks the kernel for transparent huge pages on every array of 4 MB or more
 (madvise(MADV_HUGEPAGE)). Where the kernel's THP `defrag` setting is `madvise` (the default of
 most Linux distributions), the first write to each 2 MB page of such an array then waits for
 the kernel to compact memory into a free huge page. The step-end records of a 0.8 s run of the
-reference bearing are ≈ 400 MB written a row at a time inside the time loop: on this project's
-machine their first touch cost 1.1–1.6 s of a ≈ 12 s integration, against ≈ 0.15 s in 4 KiB
-pages (`benchmarks/output_buffers.py`). An anonymous memory map is zero-filled like
+reference bearing are ≈ 400 MB written a row at a time inside the time loop, so that first
+touch can cost a tenth of the integration, ten times what it costs in 4 KiB pages
+(docs/performance.md). An anonymous memory map is zero-filled like
 `np.zeros`, but numpy does not advise it, so it is backed by ordinary pages on every platform.
 """
 

@@ -2,9 +2,9 @@
 (docs/model.md §9, "Compiled loop").
 
 The Python loop (`time_loop.integrate`, `hht.HHTStepper`) reaches the problem and the linear
-solver through Python several times per step: for the reference bearing 140 µs per step against
-122 µs here, the same steps (unboxing the kernel's ~40 borrowed arrays per call, the loop's own
-bookkeeping, the accepted-step hook). A problem that offers its forces as a numba kernel runs
+solver through Python several times per step, which costs the reference bearing about a tenth of
+its run time (unboxing the kernel's ~40 borrowed arrays per call, the loop's own bookkeeping,
+the accepted-step hook). A problem that offers its forces as a numba kernel runs
 here: the same method, the same decisions (the numba pieces shared with the Python loop:
 `newmark_kinematics`, `hht_residual`, `newton_verdict`, `needs_refactor`,
 `scaled_difference_norm`, `proposed_step`) and so the same steps, in chunks of up to
@@ -26,8 +26,7 @@ What a problem supplies (`CompiledProblem`), with K and C in block-arrow form
     rows whose residual the kernel replaces by a prescribed velocity (`joints.py`).
 
 The kernel is called through its address because a dispatcher call links the kernel into the
-loop, where LLVM optimises it a second time (61 s of compilation for the bearing, 14 s this
-way). The hook is called through its dispatcher; numba cannot cache a function that keeps a
+loop, where LLVM optimises it a second time (four times the compile time for the bearing). The hook is called through its dispatcher; numba cannot cache a function that keeps a
 jitted function as a run-time value, so `hht_chunk`, which takes it, is inlined into one
 module-level wrapper per problem that passes its hook; the wrapper is cached like any other
 kernel.
@@ -59,7 +58,8 @@ from .problem import check_problem, checked_error_scales
 from .results import IntegrationError, NewtonStallWatch, Result, Solution, SolverStats
 from .sampling import Samples, StepEnds, hermite_fill
 from .settings import HHTSettings, JacobianReuse
-from .step_control import proposed_step, scaled_difference_norm
+from .step_control import AT_MIN_STEP, LAST_STEP_STRETCH, MACHINE_EPSILON, NEWTON_FLOOR, proposed_step, \
+    scaled_difference_norm
 
 # float state (`Work.state`)
 S_T, S_H, S_H_PREV, S_ETA, S_H_FACTORED, S_STALE, S_NEXT_RECORD, S_T_LOGGED, S_T_FAIL, S_H_FAIL = range(10)
@@ -108,11 +108,14 @@ class LoopSettings(NamedTuple):
 def loop_settings(s: HHTSettings, t0: float, t1: float) -> LoopSettings:
     n_fixed = 0 if s.adaptive else max(1, int(round((t1 - t0) / s.first_step)))
     return LoopSettings(
-        s.alpha, s.beta, s.gamma, s.rtol, s.atol, s.newton_tol, s.residual_tol, s.refactor_rate,
-        s.refactor_step_ratio, s.safety, s.min_factor, s.max_factor, s.min_step, s.max_step,
-        s.newton_failure_factor, float(t0), float(t1), n_fixed, bool(s.adaptive), s.error_norm == "max",
-        s.newton_test == "estimate", s.predictor == "linear", s.reuse_jacobian is JacobianReuse.NEWTON,
-        s.reuse_jacobian is JacobianReuse.ADAPTIVE, int(s.max_newton_iter))
+        alpha=s.alpha, beta=s.beta, gamma=s.gamma, rtol=s.rtol, atol=s.atol, newton_tol=s.newton_tol,
+        residual_tol=s.residual_tol, refactor_rate=s.refactor_rate, refactor_step_ratio=s.refactor_step_ratio,
+        safety=s.safety, min_factor=s.min_factor, max_factor=s.max_factor, min_step=s.min_step,
+        max_step=s.max_step, newton_failure_factor=s.newton_failure_factor, t0=float(t0), t1=float(t1),
+        n_fixed=n_fixed, adaptive=bool(s.adaptive), use_max=s.error_norm == "max",
+        estimate_test=s.newton_test == "estimate", linear_predictor=s.predictor == "linear",
+        full_newton=s.reuse_jacobian is JacobianReuse.NEWTON,
+        keep_across_steps=s.reuse_jacobian is JacobianReuse.ADAPTIVE, max_newton_iter=int(s.max_newton_iter))
 
 
 class Coordinates(NamedTuple):
@@ -226,22 +229,6 @@ def kernel_address(dispatcher, args) -> int:
     return int(cres.library.get_pointer_to_function(cres.fndesc.llvm_func_name))
 
 
-@intrinsic
-def as_bool(typingctx, flag):
-    """flag typed as bool, not Literal[bool]. A constant True or False is a type of its own to
-    numba: passed on to `call_kernel` it would not be the argument type of the overload
-    `kernel_address` took the address of, and passed to a jitted function it compiles that
-    function (and all it links in) once more. A jitted identity function does not do this: it
-    returns the literal type it was given."""
-    if not isinstance(flag, (nbtypes.Boolean, nbtypes.BooleanLiteral)):
-        return None
-
-    def codegen(context, builder, signature, args):
-        return context.cast(builder, args[0], signature.args[0], nbtypes.boolean)
-
-    return nbtypes.boolean(flag), codegen
-
-
 @numba.njit
 def _norm(ls, co, x, y, coef, q_a, q_b):
     return scaled_difference_norm(x, y, coef, q_a, q_b, co.weights, co.scales, ls.atol, ls.rtol, ls.use_max)
@@ -250,12 +237,14 @@ def _norm(ls, co, x, y, coef, q_a, q_b):
 # The loop's helpers below are inlined into `hht_chunk` in numba's IR (inline="always"). As
 # functions of their own, numba compiled each into a library with its callees linked in, and
 # LLVM optimised and emitted that code again at every level of the chain bearing_chunk ->
-# _attempt -> _newton -> _factor: bearing_chunk compiled in 19.4 s, 13.1 s inlined
-# (`python -m benchmarks.cold_start`, 2026-11-24, README). The steps taken are the same.
+# _attempt -> _newton -> _factor; inlined, the loop compiles in about two thirds of the time
+# (`python -m benchmarks.cold_start`, docs/performance.md). The steps taken are the same.
 @numba.njit(inline="always")
 def _factor(kernels, data, ls, co, w, t1, q, v, a, h):
     """Rebuild S = M + (1 - alpha)(gamma h C_t + beta h^2 K_t) at (t1, q, v, a) and factor it."""
-    call_kernel(kernels[0], (t1, q, v, a, data, as_bool(True), w.ma_t, w.g_t, w.diag, w.K, w.C))
+    # bool(True), not True: numba types a constant as a literal type of its own, which is not the
+    # argument type of the overload `kernel_address` took the address of
+    call_kernel(kernels[0], (t1, q, v, a, data, bool(True), w.ma_t, w.g_t, w.diag, w.K, w.C))
     c_v = (1.0 - ls.alpha) * ls.gamma * h
     assemble_iteration_blocks(w.K, w.C, co.mass, 1.0, c_v, (1.0 - ls.alpha) * ls.beta * h * h, w.S)
     for i in co.prescribed_rows:
@@ -276,10 +265,10 @@ def _newton(kernels, data, ls, co, w, t1, h, y, y1, fresh):
     f = w.factors
     rebuild = False
     corr_prev = math.inf
-    floor = 100.0 * _norm(ls, co, q, w.zeros, 2.2e-16, q, q)
+    floor = NEWTON_FLOOR * _norm(ls, co, q, w.zeros, MACHINE_EPSILON, q, q)
     for k in range(ls.max_newton_iter):
         newmark_kinematics(q, v, a, a1, h, ls.beta, ls.gamma, co.rotation_slots, dq1, q1, v1)
-        call_kernel(kernels[1], (t1, q1, v1, a1, data, as_bool(False), w.ma, g1, w.diag, w.K, w.C))
+        call_kernel(kernels[1], (t1, q1, v1, a1, data, bool(False), w.ma, g1, w.diag, w.K, w.C))
         w.counters[N_RESIDUALS] += 1
         r_max = hht_residual(w.ma, g1, g, ls.alpha, w.r)
         if r_max == math.inf:
@@ -375,7 +364,7 @@ def hht_chunk(kernels, accepted, data, hook, ls, co, w, out, max_steps):
         if taken >= max_steps:
             break
         if ls.adaptive:
-            if t + 1.05 * h >= ls.t1:  # land on t1 without leaving a sliver of a step
+            if t + LAST_STEP_STRETCH * h >= ls.t1:  # land on t1 without leaving a sliver of a step
                 h = ls.t1 - t
         else:
             h = (ls.t1 - ls.t0) / ls.n_fixed
@@ -385,14 +374,14 @@ def hht_chunk(kernels, accepted, data, hook, ls, co, w, out, max_steps):
         if result != _OK:
             c[N_REJECTED] += 1
             c[N_NEWTON_FAILURES] += 1
-            if not ls.adaptive or h <= ls.min_step * (1.0 + 1e-9):
+            if not ls.adaptive or h <= ls.min_step * AT_MIN_STEP:
                 st[S_T_FAIL], st[S_H_FAIL] = t, h
                 st[S_T], st[S_H] = t, h
                 return FAILED + result
             h = max(h * ls.newton_failure_factor, ls.min_step)
             continue
         if ls.adaptive and err > 1.0:
-            if h > ls.min_step * (1.0 + 1e-9):
+            if h > ls.min_step * AT_MIN_STEP:
                 c[N_REJECTED] += 1
                 h = proposed_step(h, err, ls.safety, ls.min_factor, ls.max_factor, ls.min_step, ls.max_step)
                 continue
@@ -419,10 +408,12 @@ def new_work(n: int, diag: np.ndarray, K: Blocks, C: Blocks) -> Work:
     """Zeroed state and scratch for a problem of n unknowns whose kernel fills diag, K and C."""
     Z, m, nb = K.E.shape
     S = BlockArrowMatrix.zeros(Z, m, nb).blocks()
-    factors = Factors(np.zeros((Z, m, m)), np.zeros((Z, m), dtype=np.int64), np.zeros((Z, m, m)), np.zeros((Z, m, nb)),
-                      np.zeros((Z, nb, m)), np.zeros((nb, nb)), np.zeros(nb, dtype=np.int64))
-    return Work(np.zeros((2, 5, n)), *(np.zeros(n) for _ in range(7)), diag, K, C, S, factors,
-                np.zeros(10), np.zeros(11, dtype=np.int64))
+    factors = Factors(LU_D=np.zeros((Z, m, m)), piv_D=np.zeros((Z, m), dtype=np.int64), Dinv_T=np.zeros((Z, m, m)),
+                      F_T=np.zeros((Z, m, nb)), DinvE_T=np.zeros((Z, nb, m)), schur=np.zeros((nb, nb)),
+                      piv_S=np.zeros(nb, dtype=np.int64))
+    return Work(Y=np.zeros((2, 5, n)), ma=np.zeros(n), r=np.zeros(n), da=np.zeros(n), zeros=np.zeros(n),
+                da_prev=np.zeros(n), ma_t=np.zeros(n), g_t=np.zeros(n), diag=diag, K=K, C=C, S=S, factors=factors,
+                state=np.zeros(10), counters=np.zeros(11, dtype=np.int64))
 
 
 def _samples(sampler, n: int) -> Samples:

@@ -182,7 +182,7 @@ def update_configuration(q_n, dq, rotation_slots, q_out):
     dq holds the material rotation increment [rad] and R(c_{n+1}) = R(c_n) R(crv(dq)).
     The arithmetic of `crv_from_rotation_vector` and `crv_compose`, on scalars: this runs in
     every Newton iteration, inside the time loop that works without numba's reference counting
-    (dynamics/_kernel_options.py), where a small array per call cost more than the sums.
+    (dynamics/_speed/compile_policy.py), where a small array per call cost more than the sums.
     """
     for i in range(q_n.shape[0]):
         q_out[i] = q_n[i] + dq[i]

@@ -23,7 +23,7 @@ from .crv import update_configuration
 from .newton import IterationMatrix
 from .results import Result, SolverStats
 from .settings import HHTSettings, JacobianReuse
-from .step_control import scaled_difference_norm
+from .step_control import MACHINE_EPSILON, NEWTON_FLOOR, scaled_difference_norm
 
 
 @numba.njit(cache=True)
@@ -184,7 +184,7 @@ class HHTStepper:
         rebuild = False
         corr_prev = math.inf
         # Corrections below the round-off of q cannot shrink further: count them as converged.
-        floor = 100.0 * self._norm(y.q, self._zeros, 2.2e-16, y.q, y.q)
+        floor = NEWTON_FLOOR * self._norm(y.q, self._zeros, MACHINE_EPSILON, y.q, y.q)
         for k in range(s.max_newton_iter):
             newmark_kinematics(y.q, y.v, y.a, y1.a, h, beta, gamma, self.rotation_slots,
                                y1.dq, y1.q, y1.v)

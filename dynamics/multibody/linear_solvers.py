@@ -29,7 +29,7 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
-from bearingsim.dynamics._kernel_options import NO_REFCOUNT
+from bearingsim.dynamics._speed.compile_policy import NO_REFCOUNT
 
 
 @numba.njit(cache=True)
@@ -147,11 +147,10 @@ def block_arrow_solve(Dinv_T, F_T, DinvE_T, S, piv_S, rhs, x):
     x_k = D_k^-1 b_k, x_b = S^-1 (b_b - sum_k F_k x_k), x_k -= (D_k^-1 E_k) x_b, each product
     as a sum of columns over the transposed blocks: the inner loops then run over a contiguous
     row with independent sums that vectorise, where dot products of 6 or 12 terms were chains
-    of dependent additions (2.0 against 3.2 us per solve for Z = 22, m = 6, nb = 12,
-    2026-11-24; numba's `@` allocates and calls BLAS per block, which cost more still).
-    Blocks of one rigid body (m = 6) take a copy of the loops compiled with m known, which
-    LLVM unrolls without remainder loops: the same sums in the same order, so the same bits,
-    in 1.2 instead of 2.1 us (benchmarks/block_arrow.py, AMD EPYC, 2026-11-24).
+    of dependent additions (numba's `@` allocates and calls BLAS per block, which costs more
+    still). Blocks of one rigid body (m = 6) take a copy of the loops compiled with m known,
+    which LLVM unrolls without remainder loops: the same sums in the same order, so the same
+    bits, in less time (benchmarks/block_arrow.py, docs/performance.md).
     """
     if Dinv_T.shape[1] == RIGID_BODY_BLOCK:
         _block_arrow_solve_m(Dinv_T, F_T, DinvE_T, S, piv_S, rhs, x, RIGID_BODY_BLOCK)

@@ -52,7 +52,7 @@ class NewtonStallWatch:
     """Stops a run whose step control has locked into a cycle of Newton failures.
 
     With too little numerical damping for a stiff contact (HHT-α with `alpha` = 0 in case b while
-    the cage rubs its land in the start-up; README, *Accuracy and run time*), Newton fails at a
+    the cage rubs its land in the start-up; docs/performance.md), Newton fails at a
     step h, succeeds at h/4, the controller grows the step back to h, and so on: one failure
     every other accepted step (steps of 12–47 ns in one run: 0.8 s would take hours). `check` is
     called with the running counters every WINDOW accepted steps or more; when the failures

@@ -23,6 +23,12 @@ import numba
 
 from .settings import HHTSettings
 
+# Shared by both time loops (time_loop.py, compiled.py), so that they take the same steps:
+LAST_STEP_STRETCH = 1.05  # a step that would end within 5 % of t1 is stretched to land on it
+AT_MIN_STEP = 1.0 + 1e-9  # h <= min_step * AT_MIN_STEP counts as the minimum step (its rounding)
+MACHINE_EPSILON = 2.2e-16  # float64 rounding, relative
+NEWTON_FLOOR = 100.0  # Newton's corrections below NEWTON_FLOOR x the round-off of q have converged
+
 
 @numba.njit(cache=True)
 def scaled_difference_norm(x, y, coef, q_a, q_b, weights, scales, atol, rtol, use_max):

@@ -19,7 +19,7 @@ from .linear_solvers import DenseSolver
 from .problem import check_problem, checked_error_scales
 from .results import IntegrationError, NewtonStallWatch, Result, Solution, SolverStats
 from .settings import HHTSettings
-from .step_control import next_step
+from .step_control import AT_MIN_STEP, LAST_STEP_STRETCH, next_step
 
 
 def initial_acceleration(problem, solver, t0: float, q0, v0) -> tuple[np.ndarray, np.ndarray]:
@@ -79,7 +79,7 @@ def integrate(problem, t0: float, t1: float, q0, v0, settings: HHTSettings | Non
     n_fixed = max(1, int(round((t1 - t0) / h))) if not settings.adaptive else 0
     while t < t1 and (settings.adaptive or stats.steps < n_fixed):
         if settings.adaptive:
-            if t + 1.05 * h >= t1:  # land on t1 without leaving a sliver of a step
+            if t + LAST_STEP_STRETCH * h >= t1:  # land on t1 without leaving a sliver of a step
                 h = t1 - t
         else:
             h = (t1 - t0) / n_fixed
@@ -87,14 +87,14 @@ def integrate(problem, t0: float, t1: float, q0, v0, settings: HHTSettings | Non
         if result is not Result.SUCCESSFUL:
             stats.rejected_steps += 1
             stats.newton_failures += 1
-            if not settings.adaptive or h <= settings.min_step * (1.0 + 1e-9):
+            if not settings.adaptive or h <= settings.min_step * AT_MIN_STEP:
                 stats.wall_time = time.perf_counter() - wall0
                 where = "at the minimum step" if settings.adaptive else "at the fixed step"
                 raise IntegrationError(t, h, f"{result.value} {where}", result.hint)
             h = max(h * settings.newton_failure_factor, settings.min_step)
             continue
         if settings.adaptive and err > 1.0:
-            if h > settings.min_step * (1.0 + 1e-9):
+            if h > settings.min_step * AT_MIN_STEP:
                 stats.rejected_steps += 1
                 h = next_step(h, err, settings)
                 continue

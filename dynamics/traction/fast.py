@@ -1,35 +1,35 @@
-"""Fast Eyring traction for the time loop: pole-centred quadrature, SIMD evaluation (docs/model.md §6.4).
+"""Fast traction for the time loop: pole-centred quadrature, SIMD evaluation (docs/model.md §6.4).
+
+The engine: it places the nodes, reads the viscosity table, sums the nodes' stresses and knows
+about vector widths and precision; the law comes from `dynamics.traction.laws`, given by its code
+in the `TractionRule`. The Eyring law, the default, has passes of its own (below); every other
+film law runs through one float64 pass of its response (`laws.dispatch.response`) per node (`_law_response`).
 
 Same physics and sign convention as `dynamics.traction.quadrature` (force and spin moment ON THE BALL,
 Jacobian d(F_x, F_y, M_z)/d(du0, dv0, w_s)); the nodes come from `dynamics.traction.nodes`
 (rules centred on the spin pole, 200-320 nodes). What makes it fast is how the nodes are
 evaluated: in short passes over contiguous scratch arrays that LLVM vectorises (numba
 `fastmath`, `error_model="numpy"` so that `/` carries no zero-division branch), with
-asinh(x) = log(x + sqrt(1 + x^2)) and a branch-free log of our own (`dynamics.simd_math`)
-because numba's `math.log` is a scalar libm call that blocks vectorisation (no SVML in this
-llvmlite). The viscosity table lookup is a gather that LLVM leaves scalar; the float32 passes
-read it eight nodes at a time through `dynamics.simd_gather` where the CPU's gathers pay, and
-elsewhere split the table position into row and fraction in the slip pass, pick the rows in a
-pass of loads (`simd_gather.pick_rows`) and interpolate in the Eyring pass (the same bits either
-way). g = asinh(x)/|s| has a float32 pass of its own, so the float64 sums only multiply and add.
+asinh(x) = log(x + sqrt(1 + x^2)) and a branch-free log of our own (`_speed.simd_math`)
+because numba's `math.log` is a scalar libm call that blocks vectorisation. The viscosity table
+lookup is a gather that LLVM leaves scalar; the float32 passes split the table position into
+row and fraction in the slip pass, pick the rows in a pass of loads (`_speed.table_lookup`)
+and interpolate in the Eyring pass. g = asinh(x)/|s| has a float32 pass of its own, so the
+float64 sums only multiply and add.
 
 Square roots and divisions share one unit that neither wider vectors nor fast-math speed up;
 they set the cost. Where their rounding is harmless they run in float32, which that unit
 serves about three times faster. A rule built with `float32_residual` (what the time loop
 uses) evaluates residual-only calls (`jacobian=False`, the loop's common call) with every
 node value in float32 -- pressure index, sliding speed, viscosity (a float32 copy of the
-table), Eyring argument, z = x + sqrt(1 + x^2) and its log (`_slip_and_table_index32`,
-`_viscosity_lookup32`, `_eyring_argument32`, `simd_math.log_array32`) -- and only the nodes'
-positions, weights and the sums in float64. The force moves by less than 1e-6 of tau0 times
-the contact area from the float64 path, far inside the quadrature's 2 %. One width
-throughout matters: passes that converted between float64 and float32 ran 4 lanes wide,
-and converting only the roots and the log paid little (2026-11-23); with the values in
-float32 the residual of the reference bearing took 0.93 of its time (2026-11-24, both
-versions' residual kernels timed alternately in one process, case b 20 ms in; that
-comparison favours the newer side by ~3 %, `benchmarks/residual_ab.py`). The
-Jacobian stays float64 (its x/sqrt(1 + x^2) - asinh x cancels to -x^3/3 for small x), and so
-does every call of a default rule: a force with rounding steps of 1e-7 is no input for
-finite differences (scipy's solve_ivp, finite-difference tangents and their tests).
+table), Eyring argument, z = x + sqrt(1 + x^2) and its log -- and only the nodes' positions,
+weights and the sums in float64. The force moves by less than 1e-6 of tau0 times the contact
+area from the float64 path, far inside the quadrature's 2 %. One width throughout matters:
+passes that convert between float64 and float32 vectorise half as wide. The Jacobian stays
+float64 (its x/sqrt(1 + x^2) - asinh x cancels to -x^3/3 for small x), and so does every call
+of a default rule: a force with rounding steps of 1e-7 is no input for finite differences
+(scipy's solve_ivp, finite-difference tangents and their tests). docs/performance.md gives
+the cost of both paths.
 
 Viscosity comes from a table of eta on a uniform pressure grid (linear interpolation;
 relative error ~1e-4 with 4096 points to 5 GPa), built once per lubricant and temperature
@@ -43,30 +43,24 @@ Accuracy against the (128, 1024) quadrature of `dynamics.traction.quadrature`, d
 of 240 random operating points of the reference scene (tests/test_traction_fast.py, -m slow):
 |dF|/|F| <= 0.74 %, |dM_z|/max(|M_z|, |F| b) <= 0.76 %, max|dJ|/max|J| <= 1.4 %; edge cases
 (slip 1e-5 and 0.3, pure spin, pure roll, 20 N, pole at 0.97 / 1.03 ellipse radii) <= 0.7 %.
-Cost on the 2-core dev box (`python -m benchmarks.traction --quick`, one core, 40 random points,
-2026-11-24, this version and the one before back to back): 1.48 us per contact with the
-Jacobian; without it 0.79 us with the node values in float32, against 0.90 us when only the
-roots and the log were float32 (and 1.25 us in float64, 2026-11-23). The AMD box of
-2026-11-21 ran the float64 passes ~2.4x faster. On the AMD EPYC of 2026-11-24 (afternoon), without gathers:
-0.76-0.77 us with the rows picked and g in its own pass, against 0.86 us before (the same bits).
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import NamedTuple
 
 import numba
 import numpy as np
 
 from bearingsim.dynamics.lubrication import rheology
-from bearingsim.dynamics._kernel_options import NO_REFCOUNT, VEC
-from bearingsim.dynamics.aligned import CACHE_LINE, empty_aligned
-from bearingsim.dynamics.simd_gather import (
-    gather_pays, last_position32, lerp_picked32, lerp_table32, pick_rows, split_position32,
-)
-from bearingsim.dynamics.simd_math import log_array, log_array32
+from bearingsim.dynamics.traction import laws
+from bearingsim.dynamics.traction.laws import dispatch
+from bearingsim.dynamics._speed.aligned import CACHE_LINE, empty_aligned
+from bearingsim.dynamics._speed.compile_policy import NO_REFCOUNT, VEC
+from bearingsim.dynamics._speed.simd_math import log_array, log_array32
+from bearingsim.dynamics._speed.table_lookup import last_position32, lerp_picked32, pick_rows, split_position32
 from bearingsim.dynamics.traction.nodes import max_nodes, pack_rule, place_nodes
 
 FLAG_OK = 0
@@ -100,20 +94,19 @@ class TractionRule(NamedTuple):
     iwork32: np.ndarray    # (n_max,) int32 scratch of the residual-only passes
     eta_flat32: np.ndarray  # eta_table in float32, flattened (the residual-only passes' table)
     float32_residual: bool  # residual-only calls through the float32 passes (module docstring)
-    gather32: bool = False  # their viscosity lookup by 8-wide gathers (simd_gather.py; the same bits)
+    law: int = laws.EYRING  # the film law's code (`traction.laws`)
+    law_parameter: float = 0.0  # what the law's `stress_scale` takes (Eyring: tau0 [Pa])
 
     def with_float32_residual(self, on: bool = True) -> "TractionRule":
-        """A copy whose residual-only calls take the float32 passes (`on`), their viscosity
-        lookup by gathers where this CPU runs them faster (`simd_gather.gather_pays`; the same
-        results either way)."""
-        return self._replace(float32_residual=bool(on), gather32=bool(on) and gather_pays())
+        """A copy whose residual-only calls take the float32 passes (`on`) or not."""
+        return self._replace(float32_residual=bool(on))
 
 
 def unused_traction_rule() -> TractionRule:
     """A placeholder of the right types for a model without Eyring traction."""
     return TractionRule(np.zeros((2, 2)), 0.0, 0.0, np.zeros(1), np.zeros((1, 1)), np.zeros(1, dtype=np.int64),
                         np.zeros((_WORK32_ROWS, 1), dtype=np.float32), np.zeros(1, dtype=np.int32),
-                        np.zeros(4, dtype=np.float32), False, False)
+                        np.zeros(4, dtype=np.float32), False)
 
 
 class _Nodes(NamedTuple):
@@ -161,28 +154,12 @@ def _node_index_and_speed32(Xm, Ym, scale, a32, b32, du32, dv32, ws32):
 
 
 @numba.njit(**VEC)
-def _slip_and_table_index32(X, Y, n, a, b, p_h, du0, dv0, w_s, inv_p_step, f_index, r):
-    """`_slip_and_table_index` in float32 into float32 f_index and r: a float32 root costs a
-    third of a float64 one on the divider (2026-11-23, 0.39 vs 1.05 ns per root), and a pass in
-    one width vectorises twice as wide as one that converts. Rounding: 6e-8 of p and of the
-    terms of s (|du0| + |w_s| b), so near the spin pole, where they cancel, |s| is good to
-    ~1e-7 (|du0| + |dv0| + |w_s| b) rather than relatively; the force still moves by < 1e-6
-    of tau0 pi a b (tests/test_traction_fast.py)."""
-    scale = np.float32(p_h * inv_p_step)
-    a32, b32, du32, dv32, ws32 = np.float32(a), np.float32(b), np.float32(du0), np.float32(dv0), np.float32(w_s)
-    for m in range(n):
-        f_index[m], r[m] = _node_index_and_speed32(X[m], Y[m], scale, a32, b32, du32, dv32, ws32)
-
-
-@numba.njit(**VEC)
 def _viscosity_lookup(f_index, n, eta_table, inv_tau0_h, k):
     """k[m] = eta(p)/(tau0 h) [s/m] by linear interpolation (scalar: gathers do not vectorise).
 
-    eta_table rows are (eta_i, eta_(i+1) - eta_i): one row is one 16-byte load, ~20 % faster
-    than reading eta_i and eta_(i+1) from a plain table (2026-11-21, 240 nodes: 157 vs 200 ns).
-    The table is read as one flat array with an unsigned index (f >= 0): a signed index makes
-    numba wrap negative values, a compare and add per node (2026-11-24, 240 random contacts:
-    ~55 of ~240 ns per contact).
+    eta_table rows are (eta_i, eta_(i+1) - eta_i): one row is one 16-byte load rather than two
+    reads from a plain table. The table is read as one flat array with an unsigned index
+    (f >= 0): a signed index makes numba wrap negative values, a compare and add per node.
     """
     last = eta_table.shape[0] - 1.000001
     flat = eta_table.reshape(eta_table.size)  # a view: row i is flat[2i], flat[2i + 1]
@@ -203,27 +180,11 @@ def _eyring_argument(k, r, n, x, z):
         z[m] = xm + math.sqrt(1.0 + xm * xm)
 
 
-@numba.njit(**NO_REFCOUNT)
-def _viscosity_lookup32(f_index, n, eta_flat32, inv_tau0_h, k, gather):
-    """`_viscosity_lookup` in float32: f_index, k and the table (`TractionRule.eta_flat32`, the
-    rows (eta_i, eta_(i+1) - eta_i) flattened, relative 6e-8 against the table's own 1e-4), by
-    8-wide gathers or one node at a time (`gather`; the same bits, dynamics/simd_gather.py)."""
-    lerp_table32(f_index, n, eta_flat32, inv_tau0_h, k, gather)
-
-
-@numba.njit(**VEC)
-def _eyring_argument32(k, r, n, x, z):
-    """`_eyring_argument` in float32 for a residual-only evaluation (k, r, x, z all float32; asinh x
-    = ln z then to ~1e-7 absolute). Not for the Jacobian, whose (x/sqrt(1 + x^2) - asinh x)
-    cancels to x^3/3 for small x."""
-    for m in range(n):
-        x[m], z[m] = _eyring_node32(k[m], r[m])
-
-
 @numba.njit(cache=True, inline="always")
 def _eyring_node32(km, rm):
     """A node's Eyring argument x = min(k |s|, EYRING_ARG_MAX) and z = x + sqrt(1 + x^2)
-    (asinh x = ln z), in float32: the float32 passes' one definition of them."""
+    (asinh x = ln z), in float32 (k, r float32; asinh x = ln z then to ~1e-7 absolute). Not for
+    the Jacobian, whose (x/sqrt(1 + x^2) - asinh x) cancels to x^3/3 for small x."""
     xm = min(km * rm, np.float32(EYRING_ARG_MAX))
     return xm, xm + math.sqrt(np.float32(1.0) + xm * xm)
 
@@ -266,10 +227,14 @@ def _store_force(out, Fx, Fy, Mz):
 
 @numba.njit(**VEC)
 def _slip_and_table_row32(X, Y, n, a, b, p_h, du0, dv0, w_s, inv_p_step, last, row, frac, r):
-    """`_slip_and_table_index32` with the table position f = min(index, last) split at once into
-    its row i = floor f (uint32) and the fraction f - i (float32) by `simd_gather.split_position32`,
-    as `lerp_table32` splits it (the same operations, so the same bits). Done here, in a pass
-    that vectorises, the split leaves the lookup only its loads (`simd_gather.pick_rows`)."""
+    """`_slip_and_table_index` in float32, with the table position f = min(index, last) split at
+    once into its row i = floor f (uint32) and the fraction f - i (float32)
+    (`table_lookup.split_position32`); r float32. Done here, in a pass that vectorises, the split
+    leaves the lookup only its loads (`table_lookup.pick_rows`). A float32 root costs about a
+    third of a float64 one on the divider, and a pass in one width vectorises twice as wide as
+    one that converts. Rounding: 6e-8 of p and of the terms of s (|du0| + |w_s| b), so near the
+    spin pole, where they cancel, |s| is good to ~1e-7 (|du0| + |dv0| + |w_s| b) rather than
+    relatively; the force still moves by < 1e-6 of tau0 pi a b (tests/test_traction_fast.py)."""
     scale = np.float32(p_h * inv_p_step)
     a32, b32, du32, dv32, ws32 = np.float32(a), np.float32(b), np.float32(du0), np.float32(dv0), np.float32(w_s)
     for m in range(n):
@@ -279,9 +244,9 @@ def _slip_and_table_row32(X, Y, n, a, b, p_h, du0, dv0, w_s, inv_p_step, last, r
 
 @numba.njit(**VEC)
 def _lerp_eyring_argument32(picked, frac, r, n, inv_tau0_h, k, x, z):
-    """k = fma(f - i, eta_(i+1) - eta_i, eta_i) / (tau0 h) from the picked rows (as
-    `lerp_table32`: the same bits), then the Eyring argument x = k |s| and z as
-    `_eyring_argument32`, in one pass."""
+    """k = fma(f - i, eta_(i+1) - eta_i, eta_i) / (tau0 h) from the picked rows
+    (`table_lookup.lerp_picked32`), then the Eyring argument x = k |s| and z
+    (`_eyring_node32`), in one pass."""
     pair = picked.view(np.float32)  # (eta_i, eta_(i+1) - eta_i) per node
     scale = np.float32(inv_tau0_h)
     for m in range(n):
@@ -294,8 +259,7 @@ def _lerp_eyring_argument32(picked, frac, r, n, inv_tau0_h, k, x, z):
 def _stress_factor32(k, r, x, ash, n, g):
     """g = asinh(x)/|s| per node in float32 (tau/tau0 = g s), k (1 - x^2/6) below SMALL_ARG:
     the float32 part of `_accumulate_force`, in a pass of its own, so that the sums' float64
-    loop carries no division, selection or conversions of four arrays (2026-11-24, AMD EPYC: the node
-    chain of a contact 0.84 of its time with the row pick)."""
+    loop carries no division, selection or conversions of four arrays."""
     small_arg, one, sixth = np.float32(SMALL_ARG), np.float32(1.0), np.float32(1.0 / 6.0)
     for m in range(n):
         g[m] = _stress_factor(k[m], r[m], x[m], ash[m], small_arg, one, sixth)
@@ -389,6 +353,44 @@ def _accumulate_force(nodes, values, n, a, b, du0, dv0, w_s, out):
     _store_force(out, Fx, Fy, Mz)
 
 
+@numba.njit(**VEC)
+def _law_response(law, k, r, n, g, c):
+    """(g, c) of film law `law` at every node (`laws.dispatch.response`): tau = g s, d tau/d s = g I + c s s^T."""
+    for m in range(n):
+        g[m], c[m] = dispatch.response(law, k[m], r[m])
+
+
+@numba.njit(**VEC)
+def _accumulate_response(nodes, g, c, n, a, b, du0, dv0, w_s, out):
+    """Sum tau = g s over the nodes into out[0:3] and its Jacobian, from d tau/d s = g I + c s s^T,
+    into out[3:12] (stress scale 1): the sums of `_accumulate` for any film law."""
+    X, Y, W = nodes.X, nodes.Y, nodes.W
+    Fx = Fy = Mz = 0.0
+    j00 = j01 = j02 = j11 = j12 = j20 = j21 = j22 = 0.0
+    for m in range(n):
+        xp, yp, sx, sy = _node_slip(X, Y, m, a, b, du0, dv0, w_s)
+        gm, cm, wgt = g[m], c[m], W[m]
+        tx, ty = gm * sx, gm * sy
+        axx, axy, ayy = gm + cm * sx * sx, cm * sx * sy, gm + cm * sy * sy
+        dtx_dw = -axx * yp + axy * xp
+        dty_dw = -axy * yp + ayy * xp
+        Fx -= wgt * tx
+        Fy -= wgt * ty
+        Mz -= wgt * (xp * ty - yp * tx)
+        j00 -= wgt * axx
+        j01 -= wgt * axy
+        j02 -= wgt * dtx_dw
+        j11 -= wgt * ayy
+        j12 -= wgt * dty_dw
+        j20 -= wgt * (xp * axy - yp * axx)
+        j21 -= wgt * (xp * ayy - yp * axy)
+        j22 -= wgt * (xp * dty_dw - yp * dtx_dw)
+    out[0], out[1], out[2] = Fx, Fy, Mz
+    out[3], out[4], out[5] = j00, j01, j02
+    out[6], out[7], out[8] = j01, j11, j12
+    out[9], out[10], out[11] = j20, j21, j22
+
+
 @numba.njit(**NO_REFCOUNT)
 def traction_fast(a, b, p_h, h, du0, dv0, w_s, tr, out, jacobian=True):
     """Eyring traction on the ball by pole-centred quadrature (docs/model.md §6.4, M.72–M.74).
@@ -420,21 +422,27 @@ def traction_fast(a, b, p_h, h, du0, dv0, w_s, tr, out, jacobian=True):
     # f_index (table position), r, k, x, z; 8 is asinh x
     nodes = _Nodes(work[0], work[1], work[2])
     n = place_nodes(a, b, du0, dv0, w_s, tr.rule, nodes.X, nodes.Y, nodes.W, work[3:8])
+    if tr.law != laws.EYRING:  # any other film law: one float64 pass of its response
+        stress = dispatch.stress_scale(tr.law, tr.law_parameter, p_h)
+        f_index, r, k, g, c = work[3], work[4], work[5], work[6], work[7]
+        _slip_and_table_index(nodes.X, nodes.Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / p_step, f_index, r)
+        _viscosity_lookup(f_index, n, eta_table, 1.0 / (stress * h), k)
+        _law_response(tr.law, k, r, n, g, c)
+        _accumulate_response(nodes, g, c, n, a, b, du0, dv0, w_s, out)
+        for m in range(12):
+            out[m] = out[m] * stress if (jacobian or m < 3) else 0.0
+        return flag
     if tr.float32_residual and not jacobian:  # the node values in float32 (module docstring)
         w32 = tr.work32
         values32 = _NodeValues(k=w32[2], r=w32[1], x=w32[3], z=w32[4], ash=w32[5])
-        if tr.gather32:  # the table position through memory, read by 8-wide gathers
-            _slip_and_table_index32(nodes.X, nodes.Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / p_step, w32[0], values32.r)
-            _viscosity_lookup32(w32[0], n, tr.eta_flat32, 1.0 / (tau0 * h), values32.k, True)
-            _eyring_argument32(values32.k, values32.r, n, values32.x, values32.z)
-        else:  # row and fraction at once, the rows picked in a pass of their own (the same bits)
-            row = tr.iwork32.view(np.uint32)
-            _slip_and_table_row32(nodes.X, nodes.Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / p_step,
-                                  last_position32(tr.eta_flat32), row, w32[0], values32.r)
-            picked = tr.iwork  # the float64 path's int64 scratch, free here
-            pick_rows(row, n, tr.eta_flat32.view(np.int64), picked)
-            _lerp_eyring_argument32(picked, w32[0], values32.r, n, 1.0 / (tau0 * h), values32.k, values32.x,
-                                    values32.z)
+        # row and fraction at once, the rows picked in a pass of their own (`_speed.table_lookup`)
+        row = tr.iwork32.view(np.uint32)
+        _slip_and_table_row32(nodes.X, nodes.Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / p_step,
+                              last_position32(tr.eta_flat32), row, w32[0], values32.r)
+        picked = tr.iwork  # the float64 path's int64 scratch, free here
+        pick_rows(row, n, tr.eta_flat32.view(np.int64), picked)
+        _lerp_eyring_argument32(picked, w32[0], values32.r, n, 1.0 / (tau0 * h), values32.k, values32.x,
+                                values32.z)
         log_array32(values32.z, n, w32[0], tr.iwork32, values32.ash)  # row 0 is spent: the exponents
         _stress_factor32(values32.k, values32.r, values32.x, values32.ash, n, w32[0])  # and now g
         _accumulate_force_g(nodes, w32[0], n, a, b, du0, dv0, w_s, out)
@@ -485,6 +493,18 @@ class FastTraction:
     p_step: float  # [Pa]
     tau0: float  # Eyring stress [Pa]
     rule: np.ndarray  # packed quadrature rule, `traction_nodes.pack_rule`
+    law: int = laws.EYRING  # the film law's code (`traction.laws`); `with_law` sets it
+    law_parameter: float = float("nan")  # what its `stress_scale` takes (Eyring: tau0)
+
+    def with_law(self, name: str, parameter: float | None = None) -> "FastTraction":
+        """The same table and rule for the film law `name` of `laws.LAWS`, whose stress scale takes
+        `parameter` (Eyring: the lubricant's tau0 when None; limiting shear: Lambda [-])."""
+        law = laws.LAWS.get(name)
+        if law is None or not law.film:
+            raise ValueError(f"traction law {name!r}: choose a film law of {sorted(k for k, v in laws.LAWS.items() if v.film)}")
+        if parameter is None and law.code != laws.EYRING:
+            raise ValueError(f"traction law {name!r} needs its parameter")
+        return replace(self, law=law.code, law_parameter=self.tau0 if parameter is None else float(parameter))
 
     @classmethod
     def build(cls, lubricant, p_max: float = 5.0e9, n_table: int = 4096, n_radial: int = 10,
@@ -514,7 +534,7 @@ class FastTraction:
         eta = rheology.viscosity_array(p, lubricant.model_code, lubricant.rheology_params())
         table = np.ascontiguousarray(np.stack([eta, np.append(np.diff(eta), 0.0)], axis=1))
         return cls(eta_table=table, p_step=float(p[1] - p[0]),
-                   tau0=float(lubricant.eyring_stress),
+                   tau0=float(lubricant.eyring_stress), law_parameter=float(lubricant.eyring_stress),
                    rule=pack_rule(n_radial, tuple(n_angle), tuple(n_cone), tuple(n_far), float(far_ratio),
                                   tuple(edge), float(centre)))
 
@@ -526,12 +546,12 @@ class FastTraction:
     @property
     def _row_length(self) -> int:
         """max_nodes rounded up to whole cache lines of float32: every scratch row then starts on
-        a line when the array does (`aligned.py`)."""
+        a line when the array does (`_speed.aligned`)."""
         lanes = CACHE_LINE // 4
         return -(-self.max_nodes // lanes) * lanes
 
     def workspace(self) -> tuple[np.ndarray, np.ndarray]:
-        """Fresh scratch (work, iwork) for one thread, each row on a cache line (`aligned.py`)."""
+        """Fresh scratch (work, iwork) for one thread, each row on a cache line (`_speed.aligned`)."""
         return empty_aligned((_WORK_ROWS, self._row_length)), empty_aligned(self._row_length, np.int64)
 
     def workspace32(self) -> tuple[np.ndarray, np.ndarray]:
@@ -547,7 +567,7 @@ class FastTraction:
         differences amplify, so only for callers with an analytic tangent (the time loop)
         (`TractionRule.with_float32_residual`)."""
         rule = TractionRule(self.eta_table, self.p_step, self.tau0, self.rule, *self.workspace(), *self.workspace32(),
-                            self.eta_table.astype(np.float32).ravel(), False, False)
+                            self.eta_table.astype(np.float32).ravel(), False, self.law, self.law_parameter)
         return rule.with_float32_residual(float32_residual)
 
     def evaluate(self, a, b, p_h, h, du0, dv0, w_s) -> tuple[np.ndarray, np.ndarray, int]:

@@ -27,7 +27,8 @@ eta(p)|s| ~ tau0 h, a feature of width ~0.06 in u at p_h ~ 2 GPa).
 Every rule writes nodes (X, Y) in the scaled plane (X = x/a, Y = y/b; the unit disc) and the
 area weight W [m^2] (sum of W = pi a b up to the rule's error). Kernels use no libm
 trigonometry per ray (angles of the inside rule are fixed and precomputed; the cone rule
-rotates one direction by a Taylor-series sin/cos): ~20 ns per libm call x 24 rays was 2.6 us.
+rotates one direction by a Taylor-series sin/cos): a libm call per ray cost more than the rest
+of the rule.
 """
 
 from __future__ import annotations
@@ -37,7 +38,7 @@ import math
 import numba
 import numpy as np
 
-from bearingsim.dynamics._kernel_options import VEC
+from bearingsim.dynamics._speed.compile_policy import VEC
 
 ANGLE_MAP_BETA = 0.3  # strength of the 4-fold angular stretch of the inside rule
 
@@ -57,8 +58,8 @@ def pole_position(a, b, du0, dv0, w_s):
 
 
 # Packed rule: one contiguous float64 array, a header of counts and offsets, then blocks.
-# (A tuple of 13 arrays cost ~0.5 us more per call, and indexing one array at runtime offsets
-# did not vectorise; sliced views of the blocks do.)
+# (A tuple of 13 arrays costs more per call to unbox, and indexing one array at runtime offsets
+# does not vectorise; sliced views of the blocks do.)
 H_N_RADIAL, H_FAR_RATIO, H_EDGE_IN, H_EDGE_OUT = 0, 1, 2, 3
 H_N_IN, H_O_IN, H_N_IN_EDGE, H_O_IN_EDGE, H_O_RADIAL = 4, 5, 6, 7, 8
 H_N_CONE, H_O_CONE, H_N_CONE_EDGE, H_O_CONE_EDGE, H_N_FAR, H_O_FAR = 9, 10, 11, 12, 13, 14
@@ -158,8 +159,7 @@ def nodes_inside(a, b, PU, PV, rule, n_angle, o_angle, X, Y, W, ray):
         RW[j] = wscale * R * R * dpsi[j]
     X0 = PU * inv_A
     # one output array per loop nest, indexed flat: LLVM vectorises each with one store stream
-    # (one loop writing X, Y and W through row slices took 0.75-0.99 ns a node, these three
-    # 0.64-0.66; 2026-11-24, AMD EPYC, 151 contacts of `benchmarks/traction.py`'s sample)
+    # (one loop writing X, Y and W through row slices was slower; docs/performance.md)
     for i in range(n_r):
         o = i * n_angle
         Si = S[i]
@@ -199,7 +199,7 @@ def _cone_edges(A, PU, PV, P_scaled):
     plane, normalised. mid lies half-way from the first edge to the second, counter-clockwise:
     perpendicular to their difference, which stays well conditioned when the edges are almost
     opposite (|P| -> 1). Rotations instead of angles: one libm call (atan2) where angles took
-    six (asin, three atan2, cos, sin: ~0.1 us a cone contact)."""
+    six (asin, three atan2, cos, sin)."""
     inv_P = 1.0 / P_scaled
     sb = min(inv_P, 1.0)
     cb = math.sqrt(max(1.0 - sb * sb, 0.0))

@@ -1,8 +1,9 @@
-"""Isothermal Eyring traction of an EHD point contact, by quadrature (docs/model.md §6.4).
+"""Isothermal traction of an EHD point contact, by quadrature (docs/model.md §6.4): the reference
+the fast engine is tested against, for every film law of `dynamics.traction.laws`.
 
 Local shear stress (§6.4), uniform film h (the central film, §6.3), Hertzian pressure
 p(x, y) = p_h sqrt(1 - (x/a)^2 - (y/b)^2), local low-shear viscosity eta(p) from
-`dynamics.lubrication.rheology`::
+`dynamics.lubrication.rheology`; for the Eyring law (the default)::
 
     tau = tau0 asinh(eta(p) |s| / (tau0 h)) s/|s|,   s = (du0 - w_s y, dv0 + w_s x)
 
@@ -34,38 +35,22 @@ import numba
 import numpy as np
 
 from bearingsim.dynamics.lubrication import rheology
-
-# Below this Eyring argument x = k r the series of asinh is used: it keeps tiny slips exact
-# (relative error ~x^6/40 < 1e-25) where asinh(x)/x would lose digits to cancellation.
-_SERIES_X = 1e-4
-
-
-@numba.njit(cache=True, inline="always")
-def eyring_response(k, r):
-    """(g, c) with tau = g s and d tau/d s = g I + c s s^T, for tau0 = 1.
-
-    k = eta/(tau0 h) [s/m], r = |s| [m/s]. g = asinh(k r)/r [s/m],
-    c = (k r/sqrt(1+(kr)^2) - asinh(k r))/r^3 [s^3/m^3] (c s s^T stays bounded as r -> 0).
-    """
-    x = k * r
-    if x < _SERIES_X:
-        x2 = x * x
-        return k * (1.0 - x2 / 6.0), k * k * k * (-1.0 / 3.0 + 0.3 * x2)
-    ash = math.asinh(x)
-    return ash / r, (x / math.sqrt(1.0 + x * x) - ash) / (r * r * r)
-
+from bearingsim.dynamics.traction import laws
+from bearingsim.dynamics.traction.laws import dispatch
 
 @numba.njit(cache=True)
-def traction_on_grid(a, b, h, tau0, du0, dv0, w_s, eta_u, u_weight, cos_t, sin_t, rho_u):
+def traction_on_grid(a, b, h, tau0, du0, dv0, w_s, eta_u, grid, law=laws.EYRING):
     """Traction force, spin moment and Jacobian on a polar quadrature grid (docs/model.md §6.4).
 
-    a, b [m] semi-axes (x = entrainment), h [m] film, tau0 [Pa] Eyring stress,
-    du0, dv0 [m/s] sliding velocity (ball - race) at the centre, w_s [rad/s] spin.
-    Grid (contiguous float64): eta_u[i] = eta(p_h u_i) [Pa.s], u_weight[i] = w_i u_i
-    (Gauss weight times the Jacobian u), rho_u[i] = sqrt(1 - u_i^2), cos_t/sin_t of the
-    uniform angles. Returns (F_x, F_y, M_z, J) with F [N], M_z [N.m] on the ball and
-    J[3, 3] = d(F_x, F_y, M_z)/d(du0, dv0, w_s).
+    a, b [m] semi-axes (x = entrainment), h [m] film, tau0 [Pa] the law's stress scale (the
+    Eyring stress, or tau_L: `laws.dispatch.stress_scale`), du0, dv0 [m/s] sliding velocity (ball -
+    race) at the centre, w_s [rad/s] spin, law: a film law's code (`laws`). eta_u[i] =
+    eta(p_h u_i) [Pa.s]; grid = (u_weight, cos_t, sin_t, rho_u), contiguous float64:
+    u_weight[i] = w_i u_i (Gauss weight times the Jacobian u), cos_t/sin_t of the uniform
+    angles, rho_u[i] = sqrt(1 - u_i^2). Returns (F_x, F_y, M_z, J) with F [N], M_z [N.m] on
+    the ball and J[3, 3] = d(F_x, F_y, M_z)/d(du0, dv0, w_s).
     """
+    u_weight, cos_t, sin_t, rho_u = grid
     n_t = cos_t.shape[0]
     area = a * b * 2.0 * math.pi / n_t
     Fx = 0.0
@@ -81,7 +66,7 @@ def traction_on_grid(a, b, h, tau0, du0, dv0, w_s, eta_u, u_weight, cos_t, sin_t
             sx = du0 - w_s * y
             sy = dv0 + w_s * x
             r = math.sqrt(sx * sx + sy * sy)
-            g, c = eyring_response(k, r)
+            g, c = dispatch.response(law, k, r)
             tx = g * sx
             ty = g * sy
             Fx -= wi * tx
@@ -120,16 +105,19 @@ def quadrature_grid(n_u: int, n_theta: int) -> tuple[np.ndarray, np.ndarray, np.
 
 
 def traction_quadrature(
-    a: float, b: float, p_h: float, h: float, tau0: float, model: int, params: np.ndarray,
+    a: float, b: float, p_h: float, h: float, shear, model: int, params: np.ndarray,
     du0: float, dv0: float, w_s: float, n_u: int = 48, n_theta: int = 256,
 ) -> tuple[float, float, float, np.ndarray]:
     """Reference traction (F_x [N], F_y [N], M_z [N.m], J[3,3]) on the ball (docs/model.md §6.4).
 
-    a, b [m], p_h [Pa] maximum Hertz pressure, h [m] central film, tau0 [Pa], rheology
-    `model`/`params` from `Lubricant.model_code` / `rheology_params()`, du0, dv0 [m/s],
-    w_s [rad/s]. The default grid (48 x 256) is converged to < 1e-4 relative over the
-    operating range of the reference scene (tests/test_traction.py).
+    a, b [m], p_h [Pa] maximum Hertz pressure, h [m] central film; shear: the Eyring stress
+    tau0 [Pa], or (law, parameter) for any film law of `laws` (parameter as that law's
+    `stress_scale` takes it); rheology `model`/`params` from `Lubricant.model_code` /
+    `rheology_params()`, du0, dv0 [m/s], w_s [rad/s]. The default grid (48 x 256) is converged
+    to < 1e-4 relative over the operating range of the reference scene (tests/test_traction.py).
     """
+    law, parameter = (laws.EYRING, float(shear)) if np.ndim(shear) == 0 else (int(shear[0]), float(shear[1]))
     u, u_weight, rho_u, cos_t, sin_t = quadrature_grid(n_u, n_theta)
     eta_u = rheology.viscosity_array(p_h * u, model, params)
-    return traction_on_grid(a, b, h, tau0, du0, dv0, w_s, eta_u, u_weight, cos_t, sin_t, rho_u)
+    stress = dispatch.stress_scale(law, parameter, p_h)
+    return traction_on_grid(a, b, h, stress, du0, dv0, w_s, eta_u, (u_weight, cos_t, sin_t, rho_u), law)

@@ -70,23 +70,14 @@ Keys written by `cage_summary` (SI units; time means are trapezoidal over the wi
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
+from .settled_window import detect_settled_window, time_weights
+
 DEFAULT_LAND_ROUGHNESS = 1.0e-6  # m, composite RMS roughness of cage rim and land (module docstring)
 BURN_SECTORS = 360
-
-
-def time_weights(t: np.ndarray) -> np.ndarray:
-    """Trapezoidal quadrature weights of samples at times `t` (sum = t[-1] - t[0])."""
-    t = np.asarray(t, dtype=float)
-    if t.size < 2:
-        return np.ones_like(t)
-    w = np.zeros_like(t)
-    dt = np.diff(t)
-    w[:-1] += 0.5 * dt
-    w[1:] += 0.5 * dt
-    return w
 
 
 def split_weights(t: np.ndarray, start: float | None) -> tuple[np.ndarray, np.ndarray]:
@@ -174,7 +165,7 @@ def _film_cumulative(x: np.ndarray, k: np.ndarray, drag: np.ndarray) -> np.ndarr
 
     One sine, cosine and arctangent per point: the antiderivative of 1/h below is odd in x and
     the mirrored (drag < 0) branch reads it at -x, so both branches share them (three times
-    as many were ~2 s of a 0.8 s run's post-processing)."""
+    as many would dominate a run's post-processing)."""
     s = np.sqrt(1.0 - k * k)
     beta = k / (1.0 + s)
     period = np.floor((x + math.pi) / (2.0 * math.pi))
@@ -353,46 +344,66 @@ def _window_metrics(t, w, eps, metal, offset_az, force_norm, film) -> dict:
     }
 
 
-def cage_summary(
-    t: np.ndarray,
-    cage_xy: np.ndarray,
-    cage_speed: np.ndarray,
-    eccentricity_ratio: np.ndarray,
-    contact_azimuth: np.ndarray,
-    friction_power: np.ndarray,
-    inner_race_z: np.ndarray,
-    impact_peak_forces: np.ndarray,
-    sectors: int = BURN_SECTORS,
-    *,
-    impact_times: np.ndarray | None = None,
-    impact_orbital_positions: np.ndarray | None = None,
-    film_power: np.ndarray | None = None,
-    min_film: np.ndarray | None = None,
-    land_force: np.ndarray | None = None,
-    metal_force: np.ndarray | None = None,
-    guide_clearance: float | None = None,
-    land_boundary: float = 0.05,
-    land_roughness: float = DEFAULT_LAND_ROUGHNESS,
-    land_film: bool = True,
-    land_speed: float = 0.0,
-    settled_start: float | None = None,
-) -> dict:
-    """The cage, land and impact keys of `summary.json` (module docstring).
+@dataclass(frozen=True)
+class CageSeries:
+    """The series `cage_summary` reads, at the sample times `t` [s]: `cage_xy` (n, 2) [m],
+    `cage_speed` [rad/s], `eccentricity_ratio` [-], `contact_azimuth` [rad], `friction_power`
+    (metal) [W], `inner_race_z` [m], and optionally `film_power` [W] and `min_film` [m] of the
+    land film, `land_force` (n, 2) [N], `metal_force` [N]."""
 
-    Series at the sample times `t` [s]: `cage_xy` (n, 2) [m], `cage_speed` [rad/s],
-    `eccentricity_ratio` [-], `contact_azimuth` [rad], `friction_power` (metal) [W],
-    `inner_race_z` [m], and optionally `film_power` [W] and `min_film` [m] of the land film,
-    `land_force` (n, 2) [N], `metal_force` [N]. Impacts: `impact_peak_forces` [N] with their
-    `impact_times` [s] and `impact_orbital_positions` [rad] (without times, every impact
-    counts as settled). `guide_clearance` C [m] (None: from the series), `land_boundary`
-    eps0 [-] of the hybrid law (0 for the hydrodynamic model), `land_roughness` sigma [m]
-    (composite RMS roughness of cage rim and land); `land_film` False for a land model
-    without film (dry contact only: no film layer, no film keys); `land_speed` [rad/s] the
-    guiding race's speed (the film is dragged by cage and land together, which sets the
-    cavitated side of the film heat). `settled_start` [s] overrides the
-    detected end of the start-up (tests, comparisons).
-    """
-    from .settled_window import detect_settled_window
+    t: np.ndarray
+    cage_xy: np.ndarray
+    cage_speed: np.ndarray
+    eccentricity_ratio: np.ndarray
+    contact_azimuth: np.ndarray
+    friction_power: np.ndarray
+    inner_race_z: np.ndarray
+    film_power: np.ndarray | None = None
+    min_film: np.ndarray | None = None
+    land_force: np.ndarray | None = None
+    metal_force: np.ndarray | None = None
+
+
+@dataclass(frozen=True)
+class PocketImpacts:
+    """Pocket impacts: `peak_forces` [N] with their `times` [s] and `orbital_positions` [rad]
+    (without times, every impact counts as settled)."""
+
+    peak_forces: np.ndarray
+    times: np.ndarray | None = None
+    orbital_positions: np.ndarray | None = None
+
+
+@dataclass(frozen=True)
+class GuideLand:
+    """The guiding land: `clearance` C [m] (None: from the series), `boundary` eps0 [-] of the
+    hybrid law (0 for the hydrodynamic model), `roughness` sigma [m] (composite RMS roughness
+    of cage rim and land); `film` False for a land model without film (dry contact only: no
+    film layer, no film keys); `speed` [rad/s] the guiding race's speed (the film is dragged
+    by cage and land together, which sets the cavitated side of the film heat)."""
+
+    clearance: float | None = None
+    boundary: float = 0.05
+    roughness: float = DEFAULT_LAND_ROUGHNESS
+    film: bool = True
+    speed: float = 0.0
+
+
+def cage_summary(series: CageSeries, impacts: PocketImpacts, land: GuideLand = GuideLand(), *,
+                 sectors: int = BURN_SECTORS, settled_start: float | None = None) -> dict:
+    """The cage, land and impact keys of `summary.json` (module docstring), from the cage's
+    `series`, the pocket `impacts` and the guiding `land`; `sectors` of the burn-zone
+    histograms; `settled_start` [s] overrides the detected end of the start-up (tests,
+    comparisons)."""
+    t, cage_xy, cage_speed = series.t, series.cage_xy, series.cage_speed
+    eccentricity_ratio, contact_azimuth, friction_power = series.eccentricity_ratio, series.contact_azimuth, \
+        series.friction_power
+    inner_race_z, film_power, min_film = series.inner_race_z, series.film_power, series.min_film
+    land_force, metal_force = series.land_force, series.metal_force
+    impact_peak_forces, impact_times, impact_orbital_positions = impacts.peak_forces, impacts.times, \
+        impacts.orbital_positions
+    guide_clearance, land_boundary, land_roughness = land.clearance, land.boundary, land.roughness
+    land_film, land_speed = land.film, land.speed
 
     t = np.asarray(t, dtype=float)
     xy = np.asarray(cage_xy, dtype=float)[:, :2]

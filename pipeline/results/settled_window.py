@@ -24,8 +24,8 @@ Rule (`detect_settled_window`):
    metal contact) read it, and a single late touch of the land hardly moves a block's mean or
    spread. Case b with a 9 x 18/22/28 traction rule had one at t = 0.074 s (eps 1.001, 14 µm
    of film, metal contact) in blocks whose mean and spread lay in the band of a slowly
-   drifting regime. The window started at one revolution, and the verdict reported that
-   touch as the settled regime's thinnest film (2026-11-24).
+   drifting regime. A window that started at one revolution reported that touch as the
+   settled regime's thinnest film.
 3. **Reference.** The blocks of the last half of the run are the regime. Each statistic of
    a block must lie within ``band_sigmas`` (3) standard deviations of the reference blocks'
    values around their mean (the centre: within 3 RMS distances of the mean centre), or
@@ -55,7 +55,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .cage_metrics import time_weights
+
+def time_weights(t: np.ndarray) -> np.ndarray:
+    """Trapezoidal quadrature weights of samples at times `t` (sum = t[-1] - t[0])."""
+    t = np.asarray(t, dtype=float)
+    if t.size < 2:
+        return np.ones_like(t)
+    w = np.zeros_like(t)
+    dt = np.diff(t)
+    w[:-1] += 0.5 * dt
+    w[1:] += 0.5 * dt
+    return w
+
 
 BLOCK_REVOLUTIONS = 0.5  # block length [cage revolutions]
 MIN_BLOCKS = 12  # at least this many blocks in a run (6 reference blocks)

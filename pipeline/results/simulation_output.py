@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from ..artefacts import atomic_write_text
-from .cage_metrics import DEFAULT_LAND_ROUGHNESS, cage_summary
+from .cage_metrics import DEFAULT_LAND_ROUGHNESS, CageSeries, GuideLand, PocketImpacts, cage_summary
 from .summary_keys import summary_units
 from .verdict import cage_verdict
 from .timeseries import Series, write_timeseries
@@ -132,20 +132,18 @@ def _summary_and_figures(out_dir: Path, scene, params, start, run, series: dict[
                "integration_wall_time": stats.pop("wall_time"), **stats,
                "energy": run.energy, "kinematic_cage_speed": float(start["cage_angular_speed"])}
     if params.has_cage:
+        impacts = run.impacts if len(run.impacts) else np.zeros((0, 4))
         summary.update(cage_summary(
-            run.t, series["cage/position"].data[:, :2], series["cage/speed"].data,
-            series["cage_race/eccentricity_ratio"].data, series["cage_race/contact_azimuth"].data,
-            series["cage_race/friction_power"].data, series["inner_race/position"].data[:, 2],
-            run.impacts[:, 3] if len(run.impacts) else np.zeros(0),
-            impact_times=run.impacts[:, 0] if len(run.impacts) else np.zeros(0),
-            impact_orbital_positions=run.impacts[:, 2] if len(run.impacts) else np.zeros(0),
-            film_power=series["cage_race/film_power"].data, min_film=series["cage_race/min_film"].data,
-            land_force=series["cage_race/force"].data, metal_force=series["cage_race/metal_force"].data,
-            guide_clearance=params.guide_clearance, land_boundary=land_boundary(scene),
-            land_roughness=land_roughness(scene), land_film=scene.physics.cage_race in ("hybrid", "hydrodynamic"),
-            land_speed=guide_land_speed(scene)))
+            CageSeries(run.t, series["cage/position"].data[:, :2], series["cage/speed"].data,
+                       series["cage_race/eccentricity_ratio"].data, series["cage_race/contact_azimuth"].data,
+                       series["cage_race/friction_power"].data, series["inner_race/position"].data[:, 2],
+                       film_power=series["cage_race/film_power"].data, min_film=series["cage_race/min_film"].data,
+                       land_force=series["cage_race/force"].data, metal_force=series["cage_race/metal_force"].data),
+            PocketImpacts(impacts[:, 3], times=impacts[:, 0], orbital_positions=impacts[:, 2]),
+            GuideLand(params.guide_clearance, land_boundary(scene), land_roughness(scene),
+                      film=scene.physics.cage_race in ("hybrid", "hydrodynamic"), speed=guide_land_speed(scene))))
         summary.update(_non_guiding(run.t, series, scene))
-        if summary["non_guiding_gap_min"] < 0.0:
+        if summary.get("non_guiding_gap_min", 0.0) < 0.0:
             summary["warnings"].append(
                 f"the cage touches the non-guiding land ({100 * summary['non_guiding_contact_fraction']:.2g} % of the "
                 f"run, gap down to {summary['non_guiding_gap_min'] * 1e6:.0f} µm): the model applies no force there")

@@ -27,7 +27,7 @@ _API = {
     "Run": "bearingsim.pipeline.api",
     "NamedArray": "bearingsim.pipeline.results.named_arrays",
     "TimeSeries": "bearingsim.pipeline.results.named_arrays",
-    "export_stiffness": "bearingsim.pipeline.stiffness_export",
+    "export_stiffness": "bearingsim.pipeline.api",
     "stiffness_table": "bearingsim.pipeline.stiffness_export",
     "StiffnessTable": "bearingsim.pipeline.stiffness_export",
     "Scene": "bearingsim.pipeline.scene",

@@ -31,7 +31,7 @@ from pathlib import Path
 import numpy as np
 
 QUANTITIES = ("H_u_xx", "H_u_yy", "H_u_zz", "H_psi_x", "H_psi_y")
-PREVIOUS_3D = {"mesh_size": 0.030, "edge_refinement": 0.25}  # the 3-D default until 2026-11
+PREVIOUS_3D = {"mesh_size": 0.030, "edge_refinement": 0.25}  # the earlier 3-D default, for comparison
 
 
 def mesh_grid(quick: bool, fine: bool = False) -> list[tuple[str, int, float, float | None]]:

@@ -53,8 +53,7 @@ class Method:
 
 # the scene default's error control (each coordinate on its physical scale, M.99b, max norm): the
 # scene's own solver settings, which every row replaces onto, with adaptive steps at the shipped
-# rtol. A literal copy of those settings had drifted (min_step 1e-9 against the scenes' 1e-8;
-# the same steps on every row of the grid, 2026-11-24)
+# rtol; one definition, so that a copy cannot drift from the scenes' settings
 ADAPTIVE_DEFAULT = {"adaptive": True, "rtol": HHTSettings().rtol}
 
 
@@ -167,9 +166,7 @@ def _run_solve_ivp(opts: dict, params, start, cfg: StudyConfig) -> dict:
     t0 = time.perf_counter()
     sparse = {"jac_sparsity": jac_sparsity(params.ball_count, params.has_cage, model.rotation_slots)} \
         if opts.get("sparse") else {}
-    # opts["solver_class"]: a subclass of scipy's solver (benchmarks/higher_order.py), else scipy's own
-    solver_class = opts.get("solver_class") or getattr(si, opts["method"])
-    solver = solver_class(rhs, 0.0, y0, cfg.window, rtol=opts["rtol"], atol=opts["atol"], **sparse)
+    solver = getattr(si, opts["method"])(rhs, 0.0, y0, cfg.window, rtol=opts["rtol"], atol=opts["atol"], **sparse)
     zero = np.zeros(n)
     while solver.status == "running":
         if time.perf_counter() - t0 > cfg.wall_budget:

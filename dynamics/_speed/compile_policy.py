@@ -1,13 +1,11 @@
-"""numba options for the allocation-free kernels of the residual: no reference counting.
+"""Compile policy of the numba kernels, defined once: caching, reference counting, fast-math.
 
 numba keeps a reference count on every array a function receives or slices (a view) and
 updates it with an atomic add inside a non-inlined call (NRT_incref / NRT_decref); its
-pruning pass leaves most of these in place across calls. In the force kernel of the
-reference bearing they took ~28 % of all samples (perf profile of
-`python -m benchmarks.contacts`, 2026-11-21; the kernel went from 75 to 50 us with
-this option). Kernels that allocate nothing and return no array need none of it. The
-compiled time loop (`bearing.model.bearing_chunk`) and the block-arrow solve use it too: the
-loop's views of its state arrays had the same cost, 12.5 % of a run's samples (2026-11-24).
+pruning pass leaves most of these in place across calls, and in the force kernel of the
+reference bearing they were the largest single cost in a profile (docs/performance.md).
+Kernels that allocate nothing and return no array need none of it (`NO_REFCOUNT`). The
+compiled time loop (`bearing.model.bearing_chunk`) and the block-arrow solve use it too.
 
 With `_nrt=False` numba refuses to compile an allocation, an array return, or a call to
 a function that returns an array, so these kernels can only borrow the caller's arrays
@@ -19,7 +17,7 @@ checks that the arrays passed through the model keep their reference counts.
 
 NO_REFCOUNT = {"cache": True, "_nrt": False}
 
-# The vectorised passes over arrays (dynamics/simd_math.py, traction/nodes.py, traction/fast.py,
+# The vectorised passes over arrays (dynamics/_speed/simd_math.py, traction/nodes.py, traction/fast.py,
 # the film batch): fast-math so that LLVM vectorises their loops and reductions, without
 # nnan/ninf because callers hold inf in some lanes (`traction.nodes.pole_position` returns inf
 # for "no pole", which must compare correctly), and numpy's error model so that `/` carries no

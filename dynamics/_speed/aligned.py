@@ -3,10 +3,8 @@
 numpy hands out arrays aligned to 16 bytes, so the 64-byte vectors of the traction's node passes
 (AVX-512: eight float64 or sixteen float32 lanes) start at a random offset in a cache line, and
 a misaligned vector load reads two lines. Which offset an array gets depends on the process's
-allocation history. Over the work-precision window of case b (rtol 1e-7, one process, the
-traction scratch placed at each offset in turn, 4 alternated rounds, AMD EPYC, 2026-11-24) the
-offsets 0, 16, 32 and 48 bytes took 0.549, 0.568, 0.553 and 0.560 s (the fastest run of each).
-On a line, every process gets the fastest of these. Alignment changes no result: the compiled
+allocation history, and so would the run time (docs/performance.md); on a line, every process
+gets the fastest offset. Alignment changes no result: the compiled
 loops do not peel for it, so every sum runs in the same order at any offset
 (tests/test_traction_fast.py).
 """

@@ -1,0 +1,144 @@
+"""The shape of the product code (docs/contributing.md, docs/architecture.md), read with `ast`:
+no import cycles, function-level imports included; the import directions between the packages;
+at most 12 parameters a function.
+
+Import cycles through function-level imports hide from a module-level import graph, and a
+function of 21 parameters is a bundle that was never named; both were found in review, so this
+test reads every import statement and every signature of the installed packages.
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[1]
+PACKAGES = {"pipeline": "bearingsim.pipeline", "dynamics": "bearingsim.dynamics", "fe_model": "bearingsim.fe_model",
+            "meshes": "bearingsim.meshes"}
+MAX_PARAMETERS = 12
+# Known excess, to be cut down: each entry must still exceed the limit (so the list only shrinks).
+PARAMETER_DEBT = {
+    "dynamics/quasistatic/solver.py solve_quasistatic",  # the loads and switches of one solve
+    "dynamics/journal/hybrid.py journal_parameters",
+    "dynamics/bearing/params.py build_model_params",
+    "dynamics/lubrication/film.py film_central_nvm_batch",  # a numba kernel: arrays of the batch
+    "dynamics/traction/fast.py _slip_and_table_row32",  # a numba pass: the contact's floats
+    "dynamics/multibody/compiled.py integrate_compiled",
+    "pipeline/cli.py sweep",  # a typer command: one parameter per command-line option
+}
+# which package may import which (docs/architecture.md)
+ALLOWED = {"pipeline": {"pipeline", "fe_model", "dynamics", "meshes"}, "fe_model": {"fe_model", "meshes"},
+           "dynamics": {"dynamics"}, "meshes": {"meshes"}}
+
+
+def module_name(path: Path) -> str:
+    rel = path.relative_to(REPO)
+    if rel.parts[:2] == ("pipeline", "root_package"):
+        parts = ["bearingsim", *rel.parts[2:]]
+    else:
+        parts = [*PACKAGES[rel.parts[0]].split("."), *rel.parts[1:]]
+    parts[-1] = parts[-1].removesuffix(".py")
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+def product_modules(root: Path = REPO) -> dict[str, Path]:
+    return {module_name(p): p for top in PACKAGES for p in sorted((root / top).rglob("*.py"))}
+
+
+def imports_of(name: str, path: Path, source: str, known: set[str]) -> set[str]:
+    """Every bearingsim module `source` imports, at any depth (functions included)."""
+    package = name.split(".") if path.name == "__init__.py" else name.split(".")[:-1]
+    found = set()
+    for node in ast.walk(ast.parse(source)):
+        if isinstance(node, ast.Import):
+            found |= {alias.name for alias in node.names}
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = package[:len(package) - (node.level - 1)]
+                target = ".".join(base + ([node.module] if node.module else []))
+            else:
+                target = node.module or ""
+            found.add(target)
+            found |= {f"{target}.{alias.name}" for alias in node.names}
+    return {m for m in found if m in known and m != name}
+
+
+def import_graph(modules: dict[str, Path]) -> dict[str, set[str]]:
+    known = set(modules)
+    return {name: imports_of(name, path, path.read_text(encoding="utf-8"), known) for name, path in modules.items()}
+
+
+def cycles(graph: dict[str, set[str]]) -> list[list[str]]:
+    """Strongly connected components of more than one module (Tarjan)."""
+    index, low, stack, on_stack, found = {}, {}, [], set(), []
+
+    def visit(v):
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on_stack.add(v)
+        for w in sorted(graph[v]):
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on_stack:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            component = []
+            while True:
+                w = stack.pop()
+                on_stack.discard(w)
+                component.append(w)
+                if w == v:
+                    break
+            if len(component) > 1:
+                found.append(sorted(component))
+
+    for v in sorted(graph):
+        if v not in index:
+            visit(v)
+    return found
+
+
+def long_signatures(path: Path) -> list[tuple[str, int]]:
+    """(function name, parameter count) of every function of more than MAX_PARAMETERS
+    (self and cls not counted; *args and **kwargs neither)."""
+    out = []
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            a = node.args
+            names = [x.arg for x in a.posonlyargs + a.args + a.kwonlyargs]
+            if names and names[0] in ("self", "cls"):
+                names = names[1:]
+            if len(names) > MAX_PARAMETERS:
+                out.append((node.name, len(names)))
+    return out
+
+
+def test_the_checks_find_a_cycle_and_a_long_signature(tmp_path):
+    graph = {"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}
+    assert cycles(graph) == [["a", "b", "c"]]
+    source = "def f():\n    from .b import g\n"
+    assert imports_of("bearingsim.pipeline.a", Path("a.py"), source, {"bearingsim.pipeline.b"}) == {"bearingsim.pipeline.b"}
+    long = tmp_path / "m.py"
+    long.write_text("def f(" + ", ".join(f"x{i}" for i in range(13)) + "):\n    pass\n"
+                    "def g(self, " + ", ".join(f"x{i}" for i in range(12)) + "):\n    pass\n")
+    assert long_signatures(long) == [("f", 13)]
+
+
+def test_no_import_cycles():
+    assert cycles(import_graph(product_modules())) == []
+
+
+def test_import_directions():
+    wrong = []
+    for name, deps in import_graph(product_modules()).items():
+        top = name.split(".")[1] if name.count(".") else "pipeline"  # bearingsim itself: the API's top
+        wrong += [f"{name} -> {d}" for d in sorted(deps) if d.split(".")[1] not in ALLOWED[top]]
+    assert wrong == []
+
+
+def test_functions_take_at_most_twelve_parameters():
+    found = {f"{path.relative_to(REPO)} {name}": n for path in product_modules().values()
+             for name, n in long_signatures(path)}
+    assert sorted(set(found) - PARAMETER_DEBT) == [], "new functions of more than 12 parameters: use named bundles"
+    assert sorted(PARAMETER_DEBT - set(found)) == [], "fixed: remove them from PARAMETER_DEBT"

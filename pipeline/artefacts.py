@@ -26,17 +26,14 @@ from dataclasses import asdict, is_dataclass
 from pathlib import Path
 from typing import Any, Iterator
 
+from .no_follow import OutputRefused, open_no_follow  # noqa: F401 - OutputRefused is re-exported
+
 MANIFEST = "stage.json"
 RUN_MARKER = ".bearingsim-run"
 SCENE_HEADER = "# Resolved scene"  # first line of the scene.toml a run directory holds
 STALE_TEMPORARY_AGE_S = 3600.0
 # what atomic writes and staged directories leave behind when a process is killed
 _TEMPORARY = re.compile(r"^\..+(\.tmp|\.old-\d+)$")
-
-
-class OutputRefused(OSError):
-    """bearingsim will not write here: the path is not its own, not a directory, or not
-    writable. The message names the path and what to do (exit code 2: a bad option)."""
 
 
 # --- permissions -----------------------------------------------------------------------
@@ -348,7 +345,6 @@ def run_directory_lock(run_dir: Path) -> Iterator[None]:
     except ImportError:  # pragma: no cover - not POSIX
         yield
         return
-    from .no_follow import open_no_follow
 
     run_dir.mkdir(parents=True, exist_ok=True)
     with open_no_follow(run_dir / ".lock") as handle:

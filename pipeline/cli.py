@@ -323,7 +323,8 @@ def tolerances(scene: SceneArg,
 def warmup(scenes: Annotated[Optional[list[str]], typer.Argument(
         help=_literal("Scenes to compile for (files or built-in names) [default: every built-in scene]."))] = None) -> None:
     """Compile the force kernels once for this machine (container images, cluster nodes): later runs start warm."""
-    from .kernel_cache import cache_directory, warm_up
+    from .kernel_cache import cache_directory
+    from .warmup import warm_up
 
     def report(row: dict) -> None:
         err_console.print(f"  {row['scene']:<28} {row['status']}"

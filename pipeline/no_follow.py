@@ -12,7 +12,11 @@ import os
 import stat
 from pathlib import Path
 
-from .artefacts import OutputRefused
+
+class OutputRefused(OSError):
+    """bearingsim will not write here: the path is not its own, not a directory, or not
+    writable. The message names the path and what to do (exit code 2: a bad option)."""
+
 
 _FLAGS = os.O_RDWR | os.O_CREAT | os.O_APPEND | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_CLOEXEC", 0)
 

@@ -335,7 +335,7 @@ def resolve(table: dict, origin: str = "<table>") -> Scene:
     operating = operating_parts(nominal, temperatures, expansion)
     scene = dataclasses.replace(scene, bearing=operating.bearing, cage=operating.cage, materials=operating.materials)
     if "tolerances" in table:
-        from .tolerances import build_tolerance_spec
+        from .tolerance_spec import build_tolerance_spec
 
         scene = dataclasses.replace(scene, tolerances=build_tolerance_spec(table["tolerances"], scene))
     return scene

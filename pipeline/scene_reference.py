@@ -136,7 +136,7 @@ def section_table(cls) -> str:
 
 def tolerance_section() -> str:
     """`[tolerances]`: not a dataclass but a table of quantities (pipeline/tolerances.py)."""
-    from .tolerances import MAX_SAMPLES, QUANTITIES
+    from .tolerance_spec import MAX_SAMPLES, QUANTITIES
 
     rows = ["## [tolerances]\n",
             "Tolerance stacks for the crush probability (docs/model.md §10.2; `bearingsim tolerances`; also "

@@ -56,26 +56,28 @@ def _exclusive(path: Path):
 
 
 def ensure_compiled(scene, compile_kernels, configuration: str | None = None) -> float:
-    """Run `compile_kernels()` (which compiles or loads the scene's kernels) under the cache's
+    """Call `compile_kernels()` (which compiles or loads the scene's kernels) under the cache's
     lock unless another process already did it for this configuration (default: the scene's
     dynamic-run configuration; "quasistatic" for the quasi-static solver's kernels, which the
     physics options do not select); returns the seconds spent here (waiting included), 0 when
     the marker was there."""
+    t0 = time.perf_counter()
     cache = cache_directory()
     if cache is None:
-        return compile_kernels()
+        compile_kernels()
+        return time.perf_counter() - t0
     key = configuration or kernel_configuration(scene)
     marker = cache / f".compiled-{key}"
     if marker.exists():
         return 0.0
-    t0 = time.perf_counter()
     cache.mkdir(parents=True, exist_ok=True)
     with _exclusive(cache / LOCK_FILE):
         if not marker.exists():
-            seconds = compile_kernels()
+            t1 = time.perf_counter()
+            compile_kernels()
             marker.touch()
             _note(cache, f"{time.strftime('%Y-%m-%dT%H:%M:%S')} pid {os.getpid()} compiled configuration {key} "
-                         f"of scene {scene.name} in {seconds:.1f} s")
+                         f"of scene {scene.name} in {time.perf_counter() - t1:.1f} s")
     return time.perf_counter() - t0
 
 

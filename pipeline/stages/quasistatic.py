@@ -37,23 +37,15 @@ def quasistatic_inputs(scene: Scene) -> dict:
     }
 
 
-def _timed(fn) -> float:
-    import time
-
-    t0 = time.perf_counter()
-    fn()
-    return time.perf_counter() - t0
-
-
 def compute(ctx: StageContext) -> dict:
     from ..figures.worker import draw
 
     from ..kernel_cache import ensure_compiled
 
     ctx.progress("solving equilibrium", 0.0)
-    first = []  # on a cold cache the first solve compiles, once per machine (pipeline.kernel_cache)
-    ensure_compiled(ctx.scene, lambda: _timed(lambda: first.append(solve(ctx.scene))), "quasistatic")
-    result = first[0] if first else solve(ctx.scene)
+    solved = []  # on a cold cache the first solve compiles, once per machine (pipeline.kernel_cache)
+    ensure_compiled(ctx.scene, lambda: solved.append(solve(ctx.scene)), "quasistatic")
+    result = solved[0] if solved else solve(ctx.scene)
     payload = result.to_json_dict()
     screen = screen_payload(ctx.scene, result)
     if screen is not None:

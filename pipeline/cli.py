@@ -296,18 +296,24 @@ def tolerances(scene: SceneArg,
                samples: Annotated[Optional[int], typer.Option("--samples", help="Stacks to sample (100 to 1 000 000).")] = None,
                seed: Annotated[Optional[int], typer.Option("--seed", help="Seed of the sampling (reproducible).")] = None,
                json_: Annotated[bool, typer.Option("--json", help="Print the analysis as one JSON object on stdout.")] = False,
-               out: OutOpt = None, force: ForceOpt = False, set_: SetOpt = None) -> None:
+               out: Annotated[Optional[Path], typer.Option("--out", help=_literal(
+                   "Run directory [default: runs/<scene name>-tolerances/, apart from the scene's own run, "
+                   "whose dynamic results a changed quasi-static stage would make stale]."))] = None,
+               force: ForceOpt = False, set_: SetOpt = None) -> None:
     """Crush probability over tolerance stacks: P(free/pressed/crushed), margin distribution, drivers."""
     from .stages.quasistatic import SAMPLES_FILE, TOLERANCE_FIGURE
     from .tolerance_report import print_tolerances, tolerance_overrides
 
     try:
         overrides = list(set_ or []) + tolerance_overrides(tolerance_file, samples, seed)
-        if _load(scene, overrides).tolerances is None:
+        resolved = _load(scene, overrides)
+        if resolved.tolerances is None:
             raise SceneError("tolerances", "the scene has no [tolerances] table: give one in the scene or with "
                                            "--tolerances FILE (docs/scenes.md, section [tolerances])")
     except SceneError as exc:
         _fail(EXIT_SCENE, f"scene: {explain(exc)}")
+    if out is None:
+        out = Path("runs") / f"{resolved.name}-tolerances"
     run_dir, result = _quasistatic_result(scene, overrides, out, force, json_)
     if json_:
         from .artefacts import dumps_json

@@ -45,34 +45,38 @@ def sample_deviations(spec: ToleranceSpec, samples: int | None = None, seed: int
     return {d.name: d.sample(np.random.default_rng(streams[index[d.name]]), n) for d in spec.deviations}
 
 
+def _deviation(dev: dict[str, np.ndarray], n: int):
+    """The sampled deviation of a quantity, zeros where it does not vary."""
+    return lambda name: dev.get(name, np.zeros(n))
+
+
+def _growth(scene, dev: dict[str, np.ndarray], n: int) -> dict[str, np.ndarray]:
+    """M.120's 1 + alpha Delta T of each part at each stack's (deviated) temperature."""
+    from bearingsim.dynamics.thermal import growth_factor
+
+    t, a, d = scene.temperatures, scene.expansion, _deviation(dev, n)
+    alpha = {"inner_ring": a.race, "outer_ring": a.race, "ball": a.ball, "cage": a.cage}
+    return {part: growth_factor(alpha[part], t.rise(part) + d(f"{part}_temperature")) for part in alpha}
+
+
 def stack_clearances(scene, dev: dict[str, np.ndarray], n: int):
     """CageClearances (arrays of n) of the stacks: the scene's drawing dimensions plus the
     deviations, each part grown to its (deviated) temperature (M.120)."""
     from bearingsim.dynamics.quasistatic.crush_screen import CageClearances
 
-    b, c = scene.nominal.bearing, scene.nominal.cage
-    t, a = scene.temperatures, scene.expansion
-
-    def d(name):
-        return dev.get(name, np.zeros(n))
-
-    def grow(alpha, part, name):
-        return 1.0 + alpha * (t.rise(part) + d(name))
-
-    f_i, f_o = grow(a.race, "inner_ring", "inner_ring_temperature"), grow(a.race, "outer_ring", "outer_ring_temperature")
-    f_b, f_c = grow(a.ball, "ball", "ball_temperature"), grow(a.cage, "cage", "cage_temperature")
-    outside = (c.outside_diameter + d("cage_outside_diameter")) * f_c
-    bore = (c.bore_diameter + d("cage_bore_diameter")) * f_c
-    outer_land = (b.outer_shoulder_diameter + d("outer_land_diameter")) * f_o
-    inner_land = (b.inner_shoulder_diameter + d("inner_land_diameter")) * f_i
+    b, c, d, f = scene.nominal.bearing, scene.nominal.cage, _deviation(dev, n), _growth(scene, dev, n)
+    outside = (c.outside_diameter + d("cage_outside_diameter")) * f["cage"]
+    bore = (c.bore_diameter + d("cage_bore_diameter")) * f["cage"]
+    outer_land = (b.outer_shoulder_diameter + d("outer_land_diameter")) * f["outer_ring"]
+    inner_land = (b.inner_shoulder_diameter + d("inner_land_diameter")) * f["inner_ring"]
     if c.guidance == "outer":
         guide, non_guiding = 0.5 * (outer_land - outside), 0.5 * (bore - inner_land)
     else:
         guide, non_guiding = 0.5 * (bore - inner_land), 0.5 * (outer_land - outside)
-    pocket = (c.pocket_diameter + d("pocket_diameter")) * f_c - (b.ball_diameter + d("ball_diameter")) * f_b
-    ecc = np.maximum(0.0, c.pocket_circle_eccentricity + d("pocket_circle_eccentricity")) * f_c
+    pocket = (c.pocket_diameter + d("pocket_diameter")) * f["cage"] - (b.ball_diameter + d("ball_diameter")) * f["ball"]
+    ecc = np.maximum(0.0, c.pocket_circle_eccentricity + d("pocket_circle_eccentricity")) * f["cage"]
     return CageClearances(pocket=pocket, guide=guide, pocket_circle_eccentricity=ecc,
-                          pocket_index_range=c.pocket_index_range() * f_c, non_guiding=non_guiding)
+                          pocket_index_range=c.pocket_index_range() * f["cage"], non_guiding=non_guiding)
 
 
 def _excursion_at(scene, moment: float, axial: float, diametral_clearance: float | None):
@@ -103,16 +107,9 @@ NODES_BY_DIMENSION = {1: 17, 2: 7, 3: 5}
 def stack_diametral_clearance(scene, dev: dict[str, np.ndarray], n: int) -> np.ndarray:
     """Operating diametral clearance P_d of each stack [m]: groove bottoms and balls grown to
     their (deviated) temperatures (M.120)."""
-    b, t, a = scene.nominal.bearing, scene.temperatures, scene.expansion
-
-    def d(name):
-        return dev.get(name, np.zeros(n))
-
-    f_i = 1.0 + a.race * (t.rise("inner_ring") + d("inner_ring_temperature"))
-    f_o = 1.0 + a.race * (t.rise("outer_ring") + d("outer_ring_temperature"))
-    f_b = 1.0 + a.ball * (t.rise("ball") + d("ball_temperature"))
-    return ((b.outer_groove_bottom_diameter + d("diametral_clearance")) * f_o - b.inner_groove_bottom_diameter * f_i
-            - 2.0 * (b.ball_diameter + d("ball_diameter")) * f_b)
+    b, d, f = scene.nominal.bearing, _deviation(dev, n), _growth(scene, dev, n)
+    return ((b.outer_groove_bottom_diameter + d("diametral_clearance")) * f["outer_ring"]
+            - b.inner_groove_bottom_diameter * f["inner_ring"] - 2.0 * (b.ball_diameter + d("ball_diameter")) * f["ball"])
 
 
 def excursion_surrogate(scene, dev: dict[str, np.ndarray]):
@@ -156,7 +153,7 @@ class ToleranceResult:
 def analyse(scene, spec: ToleranceSpec | None = None, samples: int | None = None,
             seed: int | None = None) -> ToleranceResult:
     """Sample the stacks of `spec` (default: the scene's [tolerances]) and screen each."""
-    from bearingsim.dynamics.quasistatic.crush_screen import crush_margin, required_offset
+    from bearingsim.dynamics.quasistatic.crush_screen import margin_and_regime, non_guiding_gap, required_offset
 
     spec = spec or scene.tolerances
     if spec is None:
@@ -169,11 +166,9 @@ def analyse(scene, spec: ToleranceSpec | None = None, samples: int | None = None
     s1, s_pp, shift = x[:, 0], x[:, 1], x[:, 4:].reshape(n, 2, 2)
     push = np.arctan2(x[:, 3], x[:, 2])
     clear = stack_clearances(scene, dev, n)
-    margin, code = crush_margin(s1, s_pp, clear)
-    (_, worst), _ = required_offset(s1, s_pp, clear)
-    e = np.minimum(worst, clear.guide)
-    p = np.stack([np.cos(push), np.sin(push)], axis=-1)[:, None, :]
-    gap = clear.non_guiding - np.linalg.norm(e[:, None, None] * p + shift, axis=-1).max(axis=-1)
+    (_, worst), pressed = required_offset(s1, s_pp, clear)
+    margin, code = margin_and_regime(worst, pressed, clear.guide)
+    gap = non_guiding_gap(clear.non_guiding, np.minimum(worst, clear.guide), push, shift)
     return ToleranceResult(deviations=dev, margin=margin, regime=code, guide_clearance=np.asarray(clear.guide),
                            pocket_clearance=np.asarray(clear.pocket), non_guiding_gap=gap, spec=spec)
 

@@ -169,9 +169,14 @@ def crush_margin(first_harmonic, peak_to_peak, clearances: CageClearances):
     """(C - e_req) / C at the worst cage orientation, and the regime code (0 free, 1 pressed,
     2 crushed); numpy, broadcasts over arrays of clearances (the tolerance analysis)."""
     (_, worst), pressed = required_offset(first_harmonic, peak_to_peak, clearances)
-    C = np.asarray(clearances.guide, float)
-    margin = (C - worst) / C
-    return margin, np.where(pressed, np.where(worst > C, 2, 1), 0)
+    return margin_and_regime(worst, pressed, clearances.guide)
+
+
+def margin_and_regime(worst_offset, pressed, guide_clearance):
+    """(C - e_req) / C and the regime code (0 free, 1 pressed, 2 crushed) of a worst-orientation
+    required offset (numpy, broadcasts)."""
+    C = np.asarray(guide_clearance, float)
+    return (C - worst_offset) / C, np.where(pressed, np.where(worst_offset > C, 2, 1), 0)
 
 
 REGIMES = ("free", "pressed", "crushed")
@@ -201,14 +206,14 @@ def excursion_of(azimuth, orbital_speed, pitch_radius: float) -> Excursion:
                      rear_wall_azimuth=float(grid[np.argmin(s)]))
 
 
-def non_guiding_gap(clearance, offset, push_azimuth: float, land_shift=None):
-    """g of M.124 [m] (numpy, broadcasts over `offset` and `clearance`): the cage `offset` [m]
-    along `push_azimuth` [rad]; `land_shift` (k, 2) [m] the guiding-land centre minus the
-    non-guiding land centre at the cage's ends (None: both centred)."""
-    offset = np.asarray(offset, float)
-    shift = np.zeros((1, 2)) if land_shift is None else np.asarray(land_shift, float).reshape(-1, 2)
-    px, py = math.cos(push_azimuth), math.sin(push_azimuth)
-    dist = np.hypot(offset[..., None] * px + shift[:, 0], offset[..., None] * py + shift[:, 1])
+def non_guiding_gap(clearance, offset, push_azimuth, land_shift=None):
+    """g of M.124 [m] (numpy, broadcasts over stacks): the cage `offset` [m] along
+    `push_azimuth` [rad]; `land_shift` (..., k, 2) [m] the guiding-land centre minus the
+    non-guiding land centre at the cage's k ends (None: both centred)."""
+    offset, azimuth = np.asarray(offset, float), np.asarray(push_azimuth, float)
+    shift = np.zeros((1, 2)) if land_shift is None else np.asarray(land_shift, float)
+    direction = np.stack([np.cos(azimuth), np.sin(azimuth)], axis=-1)[..., None, :]
+    dist = np.linalg.norm(offset[..., None, None] * direction + shift, axis=-1)
     return np.asarray(clearance, float) - dist.max(axis=-1)
 
 
@@ -220,7 +225,7 @@ def crush_screen(excursion: Excursion, cage_speed: float, clearances: CageCleara
     fixed)."""
     x = excursion
     (best, worst), pressed = required_offset(x.first_harmonic, x.peak_to_peak, clearances)
-    margin, code = crush_margin(x.first_harmonic, x.peak_to_peak, clearances)
+    margin, code = margin_and_regime(worst, pressed, clearances.guide)
     regime = REGIMES[int(code)]
     C = clearances.guide
     c_film = C * (1.0 + film.eps0)

@@ -10,23 +10,21 @@ import time
 from .kernel_cache import ensure_compiled, kernel_configuration
 
 
-def compile_scene_kernels(scene) -> float:
+def compile_scene_kernels(scene) -> None:
     """Compile (or load) every kernel `scene`'s dynamic run calls, without writing results:
     the quasi-static start and the first two steps (an identified hinge is replaced by a given
-    one: the hinge's values do not select kernels). Returns the seconds it took."""
+    one: the hinge's values do not select kernels)."""
     from bearingsim.dynamics.bearing.run import load_kernels
 
     from .scene_sections import Hinge
     from .stages.simulate import build_model
 
-    t0 = time.perf_counter()
     if scene.hinge.source == "fe":
         scene = dataclasses.replace(scene, hinge=Hinge(source="given", translational=(1e9, 1e9, 1e9),
                                                        bending=(1e5, 1e5),
                                                        damping_ratio_time=scene.hinge.damping_ratio_time))
     params, start = build_model(scene)
     load_kernels(params, start, scene.solver)
-    return time.perf_counter() - t0
 
 
 def warm_up(scene_names: list[str] | None = None, report=None) -> list[dict]:

@@ -157,16 +157,14 @@ def simulate_bearing(params: BearingModelParams, start: dict, settings: HHTSetti
                       has_cage=params.has_cage, step_history=rec.log[:, :2].copy())
 
 
-def load_kernels(params: BearingModelParams, start: dict, settings: HHTSettings) -> float:
+def load_kernels(params: BearingModelParams, start: dict, settings: HHTSettings) -> None:
     """Compile (or load from numba's cache) every kernel a run of `params` calls, with the
-    first steps of the run (`warm_up_compiled_loop`); returns the seconds it took. The caller may hold a lock
-    around it so that processes sharing a cache compile once (pipeline.kernel_cache)."""
-    t0 = time.perf_counter()
+    first steps of the run (`warm_up_compiled_loop`). The caller may hold a lock around it so
+    that processes sharing a cache compile once (pipeline.kernel_cache), and times it."""
     params = params.with_float32_residual()
     model = BearingModel(params)
     q0, v0 = initial_coordinates(params, start)
     warm_up_compiled_loop(model, q0, v0, settings, 2.0 * settings.first_step)
-    return time.perf_counter() - t0
 
 
 def warm_up_compiled_loop(model: BearingModel, q0, v0, settings: HHTSettings, duration: float) -> None:

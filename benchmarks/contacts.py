@@ -24,7 +24,7 @@ import time
 import numba
 import numpy as np
 
-from bearingsim.dynamics.bearing.assembly import evaluate_bearing, evaluate_bearing_residual
+from bearingsim.dynamics.bearing.assembly import evaluate_bearing
 
 
 def repeat_loop(evaluate):
@@ -40,14 +40,13 @@ def repeat_loop(evaluate):
 
 
 _repeat = repeat_loop(evaluate_bearing)
-_repeat_residual = repeat_loop(evaluate_bearing_residual)
 
 
 def _time_kernel(model, q, v, want_tangent: bool, number: int, repeat: int = 25, loop=None) -> float:
-    """Best mean time [s] of one kernel call over `repeat` runs of `number` calls: the
-    residual-only kernel the time loop calls in Newton's iterations, or with want_tangent
-    `evaluate_bearing` (`loop` overrides the choice)."""
-    loop = loop or (_repeat if want_tangent else _repeat_residual)
+    """Best mean time [s] of one `evaluate_bearing` call over `repeat` runs of `number` calls,
+    residual-only (the time loop's Newton iterations) or with want_tangent (`loop` overrides
+    the kernel loop)."""
+    loop = loop or _repeat
     a = np.zeros(model.n_dof)
     ma, g = np.zeros(model.n_dof), np.zeros(model.n_dof)
     args = (0.0, q, v, a, model.arrays, want_tangent, ma, g, model.diag, model.K.blocks(), model.C.blocks())

@@ -15,7 +15,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from bearingsim.dynamics._speed.compile_policy import NO_REFCOUNT
+from bearingsim.dynamics._speed.compile_policy import INTERNAL, NO_REFCOUNT, WITH_REFCOUNT
 from bearingsim.dynamics.contact.pocket import (
     P_OUT_APPROACH, P_OUT_DFN_DRATE, P_OUT_FRICTION_POWER, P_OUT_IN_CONTACT,
 )
@@ -65,27 +65,18 @@ def mass_diagonal(fp, ip, n):
     return m
 
 
-@numba.njit(cache=True)
+@numba.njit(**NO_REFCOUNT)
 def evaluate_bearing(t, q, v, a, model, want_tangent, ma, g, diag, K, C):
     """Fill ma = M a, g = g(t, q, v), diag (channels.py) and, when want_tangent, the
     tangent blocks K, C (`linear_solvers.Blocks`). model: `bundles.ModelArrays`.
-    Returns the drive moment [N m] that holds the inner-race spin (M.52)."""
-    return _evaluate(t, q, v, a, model, want_tangent, ma, g, diag, K, C)
+    Returns the drive moment [N m] that holds the inner-race spin (M.52).
 
-
-@numba.njit(**NO_REFCOUNT)
-def evaluate_bearing_residual(t, q, v, a, model, want_tangent, ma, g, diag, K, C):
-    """`evaluate_bearing` without tangents (want_tangent, K and C are not read): the same
-    residual bit for bit, compiled without reference counting (`NO_REFCOUNT`), for the
-    residual-only calls of every Newton iteration. The tangent branches of `_evaluate` allocate;
-    with want_tangent the constant False here numba prunes them before typing. `_evaluate`
-    passes the flag on to the kernels it calls as `bool(want_tangent)`, a plain bool rather than
-    numba's type of the constant, so that they are compiled once for both force kernels (tests/test_compile_specialisations.py)."""
-    return _evaluate(t, q, v, a, model, False, ma, g, diag, K, C)
-
-
-@numba.njit(cache=True, inline="always")
-def _evaluate(t, q, v, a, model, want_tangent, ma, g, diag, K, C):
+    One kernel for the Newton iterations' residual-only calls and the refactorisations' tangent
+    calls, with want_tangent a run-time flag: the residual path allocates nothing and runs
+    without reference counting (`NO_REFCOUNT`); the tangent terms, which build small arrays, are
+    kernels of their own with reference counting (`_ball_tangents`, `_hinge_tangent`,
+    `_inner_race_tangent`, `_cage_tangent`), called only when want_tangent. Compiled once, its
+    code is optimised once (docs/performance.md, *Compiling*)."""
     fp, ip = model.fp, model.ip
     Z = ip[IP_Z]
     g[:] = 0.0
@@ -130,7 +121,7 @@ def _evaluate(t, q, v, a, model, want_tangent, ma, g, diag, K, C):
     return _border(t, v, model, bodies, loads, ma, g, diag, K.B, C.B, want_tangent)
 
 
-@numba.njit(**NO_REFCOUNT)
+@numba.njit(**NO_REFCOUNT, **INTERNAL)
 def _ball_forces(q, v, model, bodies, scratch, rows, pocket_rows, g, diag, loads, want_tangent):
     """Forces of every ball's race and pocket contacts into g, the wrench sums on the inner
     race and the cage (`loads`) and diag; the contact rows (with their tangent ingredients
@@ -220,14 +211,11 @@ def _ball_forces(q, v, model, bodies, scratch, rows, pocket_rows, g, diag, loads
             diag[DG_P_DISS] += pres[P_OUT_FRICTION_POWER] + pres[P_OUT_DFN_DRATE] * pres[P_OUT_APPROACH] ** 2
 
 
-# The tangent kernels and `_border` are inlined into `evaluate_bearing` in numba's IR
-# (inline="always": one caller each, the same compiler flags). Compiled as functions of their
-# own, each was a library with its callees linked in, optimised and emitted again by LLVM in
-# every caller up the chain. With the literal specialisations below gone as well,
-# evaluate_bearing compiles in about two thirds of the time (`python -m benchmarks.cold_start`,
-# docs/performance.md). `_ball_forces`, the residual's hot loop, keeps its own flags
-# (NO_REFCOUNT) and is not inlined.
-@numba.njit(cache=True, inline="always")
+# The helpers of one contact's tangents are inlined into `_ball_tangents` in numba's IR
+# (inline="always": one caller each): compiled as functions of their own, each would be a
+# library with its callees linked in, optimised and emitted again by LLVM in every caller up the
+# chain (docs/performance.md, *Compiling*).
+@numba.njit(**WITH_REFCOUNT, **INTERNAL)
 def _ball_tangents(v, model, bodies, rows, pocket_rows, q, K, C):
     """Newton blocks of every ball's contacts, from the rows `_ball_forces` left."""
     inner, outer = bodies.inner, bodies.outer
@@ -372,27 +360,15 @@ def _border(t, v, model, bodies, loads, ma, g, diag, Kb, Cb, want_tangent):
         _add_gyroscopic(fp[FP_JIX], fp[FP_JIX], fp[FP_JIZ], Om_i, g, o_i + 3)
     if ip[IP_HINGE]:
         if want_tangent:
-            gh, Kh, Ch = hinge_forces(inner.x, R_i, inner.v, Om_i, hinge.x_A, hinge.R_A, hinge.H_u, hinge.H_psi,
-                                      hinge.G_u, hinge.G_psi)
-            g[o_i:o_i + 6] += gh
-            diag[DG_P_DISS] += mv(Ch, v[o_i:o_i + 6]) @ v[o_i:o_i + 6]
-            Kb[INNER_BORDER:INNER_BORDER + 6, INNER_BORDER:INNER_BORDER + 6] += Kh
-            Cb[INNER_BORDER:INNER_BORDER + 6, INNER_BORDER:INNER_BORDER + 6] += Ch
+            _hinge_tangent(inner, Om_i, hinge, v, o_i, g, diag, Kb, Cb)
         else:  # the residual-only call of every Newton iteration: no tangent blocks
             diag[DG_P_DISS] += add_hinge_force(inner.x, R_i, inner.v, Om_i, hinge.x_A, hinge.R_A, hinge.H_u,
                                                hinge.H_psi, hinge.G_u, hinge.G_psi, g, o_i)
         diag[DG_V_HINGE] = hinge_energy(inner.x, R_i, hinge.x_A, hinge.R_A, hinge.H_u, hinge.H_psi)
-    i3 = INNER_BORDER + 3
     if want_tangent:
-        # the contact moment M_i and the external moment are held fixed in space under a material
-        # rotation increment: K = -(R^T m)~ each (rigid_body.material_moment_of_spatial_moment)
-        Kb[i3:i3 + 3, i3:i3 + 3] += -skew(m_load) - skew(m_contact)
-        if ip[IP_GYRO]:
-            Cb[i3:i3 + 3, i3:i3 + 3] += gyroscopic_moment(np.diag(np.array([fp[FP_JIX], fp[FP_JIX], fp[FP_JIZ]])),
-                                                          Om_i)[1]
+        _inner_race_tangent(fp, bool(ip[IP_GYRO]), Om_i, m_load, m_contact, Kb, Cb)
     if ip[IP_CAGE]:
         o_c = o_i + RACE_DOF
-        c3 = CAGE_BORDER + 3
         Om_c = v[o_c + 3:o_c + 6]
         for i in range(3):
             g[o_c + i] += loads.F_cage[i]
@@ -400,12 +376,9 @@ def _border(t, v, model, bodies, loads, ma, g, diag, Kb, Cb, want_tangent):
         for i in range(3):
             g[o_c + 3 + i] += m_contact[i]
         if want_tangent:
-            Kb[c3:c3 + 3, c3:c3 + 3] += -skew(m_contact)
+            _cage_tangent(fp, bool(ip[IP_GYRO]), Om_c, m_contact, Kb, Cb)
         if ip[IP_GYRO]:
             _add_gyroscopic(fp[FP_JCX], fp[FP_JCX], fp[FP_JCZ], Om_c, g, o_c + 3)
-            if want_tangent:
-                Cb[c3:c3 + 3, c3:c3 + 3] += gyroscopic_moment(
-                    np.diag(np.array([fp[FP_JCX], fp[FP_JCX], fp[FP_JCZ]])), Om_c)[1]
         if ip[IP_JOURNAL]:
             jres = work.journal_row
             cage_block = slice(CAGE_BORDER, CAGE_BORDER + CAGE_DOF)
@@ -417,6 +390,43 @@ def _border(t, v, model, bodies, loads, ma, g, diag, Kb, Cb, want_tangent):
     diag[DG_DRIVE] = drive
     diag[DG_P_DRIVE] = drive * fp[FP_OMEGA_I]
     return drive
+
+
+# The border's tangent terms: kernels with reference counting (they build small arrays), called
+# by `evaluate_bearing` only when it wants tangents.
+@numba.njit(**WITH_REFCOUNT, **INTERNAL)
+def _hinge_tangent(inner, Om_i, hinge, v, o_i, g, diag, Kb, Cb):
+    """The hinge's force into g[o_i:o_i + 6] and its dissipated power into diag, as
+    `add_hinge_force` gives them, with its tangents into the inner race's border blocks."""
+    gh, Kh, Ch = hinge_forces(inner.x, inner.R, inner.v, Om_i, hinge.x_A, hinge.R_A, hinge.H_u, hinge.H_psi,
+                              hinge.G_u, hinge.G_psi)
+    g[o_i:o_i + 6] += gh
+    diag[DG_P_DISS] += mv(Ch, v[o_i:o_i + 6]) @ v[o_i:o_i + 6]
+    Kb[INNER_BORDER:INNER_BORDER + 6, INNER_BORDER:INNER_BORDER + 6] += Kh
+    Cb[INNER_BORDER:INNER_BORDER + 6, INNER_BORDER:INNER_BORDER + 6] += Ch
+
+
+@numba.njit(**WITH_REFCOUNT, **INTERNAL)
+def _inner_race_tangent(fp, gyro, Om_i, m_load, m_contact, Kb, Cb):
+    """The contact moment M_i and the external moment are held fixed in space under a material
+    rotation increment: K = -(R^T m)~ each (rigid_body.material_moment_of_spatial_moment), with
+    m_load, m_contact the material moments; with gyro, the gyroscopic damping block."""
+    i3 = INNER_BORDER + 3
+    Kb[i3:i3 + 3, i3:i3 + 3] += -skew(m_load) - skew(m_contact)
+    if gyro:
+        Cb[i3:i3 + 3, i3:i3 + 3] += gyroscopic_moment(np.diag(np.array([fp[FP_JIX], fp[FP_JIX], fp[FP_JIZ]])),
+                                                      Om_i)[1]
+
+
+@numba.njit(**WITH_REFCOUNT, **INTERNAL)
+def _cage_tangent(fp, gyro, Om_c, m_contact, Kb, Cb):
+    """The cage's contact moment held fixed in space (m_contact: material) and, with gyro, its
+    gyroscopic damping block."""
+    c3 = CAGE_BORDER + 3
+    Kb[c3:c3 + 3, c3:c3 + 3] += -skew(m_contact)
+    if gyro:
+        Cb[c3:c3 + 3, c3:c3 + 3] += gyroscopic_moment(np.diag(np.array([fp[FP_JCX], fp[FP_JCX], fp[FP_JCZ]])),
+                                                      Om_c)[1]
 
 
 @numba.njit(cache=True, inline="always")

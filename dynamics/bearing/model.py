@@ -13,7 +13,7 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
-from bearingsim.dynamics._speed.compile_policy import NO_REFCOUNT
+from bearingsim.dynamics._speed.compile_policy import KERNEL, NO_REFCOUNT
 from bearingsim.dynamics.contact.pocket import N_POCKET_OUT, P_BALL_RADIUS, P_POCKET_RADIUS
 from bearingsim.dynamics.journal.hybrid import N_JOURNAL_OUT
 from bearingsim.dynamics.journal.squeeze_film import N_SQUEEZE_OUT
@@ -22,7 +22,7 @@ from bearingsim.dynamics.multibody.joints import prescribe_velocity_blocks
 from bearingsim.dynamics.multibody.linear_solvers import BlockArrowMatrix, assemble_iteration_blocks
 
 from . import channels, layout
-from .assembly import evaluate_bearing, evaluate_bearing_residual, mass_diagonal
+from .assembly import evaluate_bearing, mass_diagonal
 from .params import IP_CAGE, IP_Z
 from .bundles import Body, BorderLoads, CageArrays, ModelArrays, ResidualWork
 from .race_forces import N_RC, contact_scratch
@@ -35,7 +35,7 @@ from .params import BearingModelParams
 IMPACT_FIELDS = ("time", "ball", "orbital_position", "peak_force", "impact_speed", "duration")
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def track_impacts(t, diag, Z, state, events, impact_speeds):
     """Update per-pocket impact state from the accepted step's diagnostics (docs/model.md §7).
 
@@ -81,14 +81,14 @@ class AcceptedStepLog(NamedTuple):
     threshold: np.ndarray
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def accepted_step(t, q, v, a, model, diag, log):
     """Impact log and energy balance from the accepted step's diagnostics (docs/model.md §7,
     §10); returns True when the impact log is nearly full (empty it: `BearingModel.drain`)."""
     return log_step(t, diag, model.ip[IP_Z], model.ip[IP_CAGE] != 0, model.cage.impact_speeds, log)
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def log_step(t, diag, Z, has_cage, impact_speeds, log):
     """`accepted_step` on the few arrays it reads (a cheaper call from Python)."""
     if has_cage:
@@ -138,9 +138,7 @@ def residual_work(Z: int) -> ResidualWork:
 
 
 class _Kernel:
-    """The force kernels bound to one model's bundles: `evaluate_bearing` for tangent calls,
-    `evaluate_bearing_residual` (the same residual bit for bit, without reference counting)
-    for residual-only ones.
+    """The force kernel `evaluate_bearing` bound to one model's bundles.
 
     numba's per-call type dispatch types every array of every nested bundle in Python, more
     than a tenth of a residual; after the first call this
@@ -166,10 +164,9 @@ class _Kernel:
         entry = self.entries.get(want_tangent)
         if entry is not None and fits:
             return entry(*args)
-        kernel = evaluate_bearing if want_tangent else evaluate_bearing_residual
-        drive = kernel(*args)
+        drive = evaluate_bearing(*args)
         if entry is None and fits:
-            self.entries[want_tangent] = kernel.get_overload(tuple(numba.typeof(x) for x in args))
+            self.entries[want_tangent] = evaluate_bearing.get_overload(tuple(numba.typeof(x) for x in args))
         return drive
 
 
@@ -274,10 +271,9 @@ class BearingModel:
         K, C = self._blocks
         n = np.zeros(self.n_dof)  # the kernel's argument types, as the loop passes them
         args = (0.0, n, n, n, self.arrays, False, n, n, self.diag, K, C)
-        # Newton's residual-only calls go to the kernel compiled without reference counting
-        # (assembly.evaluate_bearing_residual: the same residual, ≈ 8 % cheaper)
-        kernel, residual = kernel_address(evaluate_bearing, args), kernel_address(evaluate_bearing_residual, args)
-        return CompiledProblem(bearing_chunk, kernel, residual, self.arrays, self.log, self.mass, rows, self.diag, K, C,
+        # one kernel for the tangent calls and Newton's residual-only calls (want_tangent at run time)
+        kernel = kernel_address(evaluate_bearing, args)
+        return CompiledProblem(bearing_chunk, kernel, kernel, self.arrays, self.log, self.mass, rows, self.diag, K, C,
                                self.drain)
 
     # --- results -----------------------------------------------------------------------

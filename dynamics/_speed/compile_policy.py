@@ -15,7 +15,21 @@ and build them from views, without any reference counting. tests/test_bearing_mo
 checks that the arrays passed through the model keep their reference counts.
 """
 
-NO_REFCOUNT = {"cache": True, "_nrt": False}
+# Every kernel: cached, and without the C-callable wrapper numba otherwise compiles for each
+# function so that it can be passed around as a first-class function value, which nothing here
+# does (a compile cost on a machine's first run, docs/performance.md).
+KERNEL = {"cache": True, "no_cfunc_wrapper": True}
+
+NO_REFCOUNT = {**KERNEL, "_nrt": False}
+
+# Kernels that allocate and are called from a `NO_REFCOUNT` kernel: numba compiles a callee with
+# the flags of the caller it is first typed from unless the callee states its own, so these say
+# that they keep reference counting.
+WITH_REFCOUNT = {**KERNEL, "_nrt": True}
+
+# Kernels that only other kernels call, with bundles of many arrays: no Python entry either, whose
+# unboxing code for those bundles is a large part of their compile.
+INTERNAL = {"no_cpython_wrapper": True}
 
 # The vectorised passes over arrays (dynamics/_speed/simd_math.py, traction/nodes.py, traction/fast.py,
 # the film batch): fast-math so that LLVM vectorises their loops and reductions, without

@@ -7,7 +7,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from bearingsim.dynamics._speed.compile_policy import NO_REFCOUNT
+from bearingsim.dynamics._speed.compile_policy import KERNEL, NO_REFCOUNT
 from bearingsim.dynamics.journal.hybrid import (
     J_OUT_CONTACT_AZIMUTH, J_OUT_DF_DOMEGA_CAGE, J_OUT_DF_DPOS, J_OUT_DF_DVEL,
     J_OUT_DT_DOMEGA_CAGE, J_OUT_DT_DPOS, J_OUT_DT_DVEL, J_OUT_EPS, J_OUT_FILM_POWER, J_OUT_FORCE,
@@ -73,7 +73,7 @@ def pocket_tangent(k, x_b, cage, pp, pres, K, C):
     add_pair(k, off, Jv, GA, GB, C)
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def journal_forces(cage, race, jp, jres, squeeze, g, cage_off, want_tangent, Kb, Cb):
     """Cage on its guiding land (docs/model.md §8): cage and race are `bundles.Body` (the
     race turns about z); force and torque about z on the cage (spatial), into the cage rows
@@ -101,7 +101,7 @@ def journal_forces(cage, race, jp, jres, squeeze, g, cage_off, want_tangent, Kb,
     return F[0] * vel0 + F[1] * vel1 + T * (cage.w[2] - w_race_z)
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def _subtract_planar(M, out, i_force, i_torque):
     """M -= the cage block of d(F_x, F_y, T)/d(x, y) (or of the velocities): rows 0, 1
     (force, row-major 2x2 at out[i_force]) and 5 (torque, out[i_torque:i_torque+2])."""
@@ -121,7 +121,7 @@ def pocket_diag(pres, diag, d):
     diag[d + DB_POCKET_FRICTION_POWER] = pres[P_OUT_FRICTION_POWER]
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def journal_diag(jres, diag):
     """The cage-land channels (channels.GLOBAL) from the `cage_race_journal` row."""
     diag[DG_EPS] = jres[J_OUT_EPS]

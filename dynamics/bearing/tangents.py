@@ -17,8 +17,10 @@ from __future__ import annotations
 import numba
 import numpy as np
 
+from bearingsim.dynamics._speed.compile_policy import KERNEL
 
-@numba.njit(cache=True)
+
+@numba.njit(**KERNEL)
 def point_map(r, R, out):
     """out (3x6) = [I, -r~ R]: velocity of the material point at offset r [m] of a body
     with material angular velocity (R = I for spatial)."""
@@ -32,7 +34,7 @@ def point_map(r, R, out):
         out[2, 3 + j] = r[1] * R[0, j] - r[0] * R[1, j]
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def slip_map(ex, ey, n, r, R, out):
     """out (3x6): rows d(du0, dv0, w_s)/dW of a body at contact offset r: e_x^T [I, -r~R],
     e_y^T [I, -r~R], [0, n^T R]."""
@@ -46,7 +48,7 @@ def slip_map(ex, ey, n, r, R, out):
         out[2, 3 + j] = n[0] * R[0, j] + n[1] * R[1, j] + n[2] * R[2, j]
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def add_congruent(out, A, J, B, sign):
     """out += sign A^T J B for small dense A (k x na), J (k x k), B (k x nb), out (na x nb).
 
@@ -65,7 +67,7 @@ def add_congruent(out, A, J, B, sign):
                 out[i, j] += A[p, i] * t
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def add_pair(k, off, J, GA, GB, M):
     """Add the four blocks above to the block-arrow matrix M (`linear_solvers.Blocks`) for
     ball k and the border body at border offset `off` (off < 0: the other body is fixed,

@@ -23,7 +23,7 @@ import math
 import numba
 import numpy as np
 
-from bearingsim.dynamics._speed.compile_policy import NO_REFCOUNT
+from bearingsim.dynamics._speed.compile_policy import KERNEL, NO_REFCOUNT
 
 # Columns of a Hertz table row (value, d/dα pairs for cubic Hermite interpolation).
 TAB_KH, TAB_DKH, TAB_KAPPA, TAB_DKAPPA, TAB_CA, TAB_DCA, TAB_CB, TAB_DCB = range(8)
@@ -31,7 +31,7 @@ TABLE_COLUMNS = 8
 DEFAULT_TABLE_NODES = 181  # 0.5° spacing on [0, 90°]: max relative error ~1e-9
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def elliptic_km(m):
     """Complete elliptic integrals (K(m), E(m)) of parameter m = k² ∈ [0, 1).
 
@@ -54,14 +54,14 @@ def elliptic_km(m):
     return k, k * (1.0 - c2_sum)
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def _ellipticity_residual(log_kappa, f_rho):
     kappa2 = math.exp(2.0 * log_kappa)
     k, e = elliptic_km(1.0 - 1.0 / kappa2)
     return ((kappa2 + 1.0) * e - 2.0 * k) / ((kappa2 - 1.0) * e) - f_rho
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def ellipticity(f_rho):
     """Ellipticity κ = a/b [-] solving F(ρ) = [(κ²+1)E(m) − 2K(m)] / [(κ²−1)E(m)].
 
@@ -83,7 +83,7 @@ def ellipticity(f_rho):
     return math.exp(0.5 * (lo + hi))
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def hertz_from_kappa(kappa, k_el, e_el, sum_rho, e_eff):
     """(δ*, k_h, c_a, c_b) from κ and K, E at m = 1 − 1/κ² (Harris ch. 6; docs/model.md §6.2).
 
@@ -99,7 +99,7 @@ def hertz_from_kappa(kappa, k_el, e_el, sum_rho, e_eff):
     return delta_star, k_h, c_a, c_b
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def hertz_exact(sum_rho, f_rho, e_eff):
     """Exact Hertz constants (κ, δ*, k_h, c_a, c_b) for curvature sum Σρ [1/m] and F(ρ).
 
@@ -111,7 +111,7 @@ def hertz_exact(sum_rho, f_rho, e_eff):
     return kappa, delta_star, k_h, c_a, c_b
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def hertz_hamrock_brewe(sum_rho, f_rho, e_eff):
     """Hamrock–Brewe closed forms (ASME J. Lubr. Technol. 105, 1983), same outputs as
     `hertz_exact`: κ ≈ 1.0339 (R_y/R_x)^0.636, E ≈ 1.0003 + 0.5968 R_x/R_y,
@@ -126,7 +126,7 @@ def hertz_hamrock_brewe(sum_rho, f_rho, e_eff):
     return kappa, delta_star, k_h, c_a, c_b
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def race_curvature(alpha, ball_diameter, pitch_diameter, groove_radius, is_outer):
     """Curvature sum Σρ [1/m] and difference F(ρ) [-] of a ball–race contact at angle α.
 
@@ -145,14 +145,14 @@ def race_curvature(alpha, ball_diameter, pitch_diameter, groove_radius, is_outer
     return sum_rho, (rho_ii1 - rho_ii2) / sum_rho
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def _race_row(alpha, D, d_m, r, is_outer, e_eff):
     sum_rho, f_rho = race_curvature(alpha, D, d_m, r, is_outer)
     kappa, _, k_h, c_a, c_b = hertz_exact(sum_rho, f_rho, e_eff)
     return k_h, kappa, c_a, c_b
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def build_hertz_table(ball_diameter, pitch_diameter, groove_radius, is_outer, e_eff, n_nodes):
     """Exact Hertz constants on n_nodes equally spaced α ∈ [0, π/2] for one race.
 
@@ -215,7 +215,7 @@ def hertz_table_eval(table, alpha):
     return k_h, sign * dk, kappa, c_a, c_b
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def semi_axis_coefficients(table, alpha):
     """c_a, c_b [m/N^{1/3}] (a = c_a F^{1/3}, b = c_b F^{1/3}) of a Hertz table at every contact
     angle of the array `alpha` [rad]: `hertz_table_eval` for many angles at once."""
@@ -227,7 +227,7 @@ def semi_axis_coefficients(table, alpha):
     return c_a.reshape(alpha.shape), c_b.reshape(alpha.shape)
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def max_pressure(force, c_a, c_b):
     """p_max = 3F/(2π a b) [Pa] with a = c_a F^{1/3}, b = c_b F^{1/3} (docs/model.md §6.2)."""
     if force <= 0.0:
@@ -235,7 +235,7 @@ def max_pressure(force, c_a, c_b):
     return 3.0 * force ** (1.0 / 3.0) / (2.0 * math.pi * c_a * c_b)
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def normal_tangent(k_h, delta, n, lever, out):
     """Tangent of the Hertz normal force, M.34, written into out (3×3) [N/m].
 

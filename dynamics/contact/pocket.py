@@ -40,7 +40,7 @@ import math
 import numba
 import numpy as np
 
-from bearingsim.dynamics._speed.compile_policy import NO_REFCOUNT
+from bearingsim.dynamics._speed.compile_policy import KERNEL, NO_REFCOUNT
 
 # --- parameter vector layout -----------------------------------------------------------
 P_BALL_RADIUS = 0  # r_b [m]
@@ -77,7 +77,7 @@ N_POCKET_OUT = 30
 DAMPING_MODELS = ("flores", "hunt-crossley", "lankarani-nikravesh")
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def _cross(ax, ay, az, bx, by, bz):
     return ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx
 
@@ -90,7 +90,7 @@ def _column_mix(rot, u, v, w):
             rot[2, 0] * u + rot[2, 1] * v + rot[2, 2] * w)
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def pocket_normal_force(delta, delta_dot, impact_speed, k_h, c_d):
     """Damped Hertz normal force of docs/model.md §7 and its slopes.
 
@@ -109,7 +109,7 @@ def pocket_normal_force(delta, delta_dot, impact_speed, k_h, c_d):
     return f_n, 1.5 * k_h * root * damping, elastic * c_d / impact_speed
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def pocket_contact(x_ball, v_ball, w_ball, x_cage, rot_cage, v_cage, w_cage, psi, impact_speed, params):
     """Ball–pocket contact of one ball in pocket psi (docs/model.md §7).
 
@@ -187,7 +187,7 @@ def _pocket_contact_into(out, x_ball, v_ball, w_ball, x_cage, rot_cage, v_cage, 
     out[P_OUT_FRICTION], out[P_OUT_FRICTION + 1], out[P_OUT_FRICTION + 2] = -ratio * sx, -ratio * sy, -ratio * sz
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def pocket_contacts(x_balls, v_balls, w_balls, x_cage, rot_cage, v_cage, w_cage, psi, impact_speeds, params):
     """`pocket_contact` for all Z balls: ball k in pocket psi[k] (docs/model.md §7).
 

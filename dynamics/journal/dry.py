@@ -16,6 +16,8 @@ import math
 
 import numba
 
+from bearingsim.dynamics._speed.compile_policy import KERNEL
+
 # Palmgren's power law is an empirical fit for steel on steel (Palmgren, Ball and Roller
 # Bearing Engineering, 3rd ed., 1959; quoted with Lundberg's formula in Harris & Kotzalas,
 # Essential Concepts of Bearing Technology, 5th ed., ch. 6, line-contact deformation).
@@ -27,7 +29,7 @@ _NEWTON_MAX_ITERATIONS = 50
 _NEWTON_RTOL = 1e-13
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def lundberg_deflection(Q, l, E_eff):
     """Lundberg line-contact approach delta(Q) [m] (docs/model.md §8, dry part).
 
@@ -41,14 +43,14 @@ def lundberg_deflection(Q, l, E_eff):
     return 2.0 * Q / (math.pi * E_eff * l) * math.log(math.pi * E_eff * l * l / Q)
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def lundberg_compliance(Q, l, E_eff):
     """d delta / dQ [m/N] of Lundberg's relation (derivative of `lundberg_deflection`)."""
     a = 2.0 / (math.pi * E_eff * l)
     return a * (math.log(math.pi * E_eff * l * l / Q) - 1.0)
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def palmgren_load(delta, l, E_eff):
     """Palmgren's guess Q(delta) [N] for a line contact of length l [m].
 
@@ -64,7 +66,7 @@ def palmgren_load(delta, l, E_eff):
     return q_steel * E_eff / PALMGREN_E_EFF_STEEL
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def lundberg_load(delta, l, E_eff):
     """Load Q [N] and stiffness dQ/d delta [N/m] of a line contact of length l [m].
 

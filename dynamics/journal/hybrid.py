@@ -41,6 +41,7 @@ import math
 import numba
 import numpy as np
 
+from bearingsim.dynamics._speed.compile_policy import KERNEL
 from bearingsim.dynamics.journal.dry import lundberg_load
 from bearingsim.dynamics.journal.squeeze_film import N_SQUEEZE_OUT, squeeze_film_force
 
@@ -87,7 +88,7 @@ J_OUT_MIN_FILM = 27  # thinnest land film, C_film - e (>= 0) [m]
 N_JOURNAL_OUT = 28
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def ocvirk_force(eps, viscosity, omega_sum, R, L, C):
     """Short-bearing film force on the journal, Gümbel half film (docs/model.md §8, paper eq. 25).
 
@@ -106,7 +107,7 @@ def ocvirk_force(eps, viscosity, omega_sum, R, L, C):
     return f_n, f_t, df_n, df_t
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def ocvirk_torque(eps, viscosity, omega_rel, R, L, C):
     """Viscous torque about z on the journal (docs/model.md §8, paper eq. 26).
 
@@ -123,7 +124,7 @@ def ocvirk_torque(eps, viscosity, omega_rel, R, L, C):
     return t, t * dlng
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def hybrid_weights(eps, eps0):
     """Blending weights of docs/model.md §8 (paper eqs. 28–31) and their eps-derivatives.
 
@@ -142,7 +143,7 @@ def hybrid_weights(eps, eps0):
     return f_f, df_f, 1.0 - chi, -1.0 / eps0
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def _mode_weights(eps, params):
     """Weights (f_F, df_F/de, f_C, df_C/de), film clearance and whether metal can touch."""
     mode = params[J_MODE]
@@ -158,7 +159,7 @@ def _mode_weights(eps, params):
     return 0.0, 0.0, 0.0, 0.0, c, False
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def _film_terms(e, omega_sum, omega_rel, c_film, params):
     """Film force/torque and derivatives for the n lands, with the over-e forms regular at e=0.
 
@@ -194,7 +195,7 @@ def _film_terms(e, omega_sum, omega_rel, c_film, params):
             fn_e, ft_e, dfn_dw, dft_dw, dt_dw)
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def journal_scalars(e, v_slide, omega_sum, omega_rel, params):
     """Polar components of the hybrid journal force and torque (docs/model.md §8) and slopes.
 
@@ -244,7 +245,7 @@ def journal_scalars(e, v_slide, omega_sum, omega_rel, params):
             film_power, max(c_film - e, 0.0))
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def cage_race_journal(offset, velocity, omega_cage, omega_race, params):
     """Hybrid short-journal force and torque on the cage, with tangents (docs/model.md §8).
 
@@ -261,7 +262,7 @@ def cage_race_journal(offset, velocity, omega_cage, omega_race, params):
     return out
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def cage_race_journal_into(ox, oy, vx, vy, omega_cage, omega_race, params, out, sq):
     """`cage_race_journal` of offset (ox, oy) [m] and velocity (vx, vy) [m/s] into out
     (N_JOURNAL_OUT), with sq (N_SQUEEZE_OUT) as the dynamic film's scratch: no allocation,
@@ -303,7 +304,7 @@ def cage_race_journal_into(ox, oy, vx, vy, omega_cage, omega_race, params, out, 
         _add_squeeze_film(ox, oy, vx, vy, omega_cage + omega_race, eps, erx, ery, params, out, sq)
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def _add_squeeze_film(ox, oy, vx, vy, omega_sum, eps, erx, ery, params, out, sq):
     """Add the weighted dynamic film force f_F F(e, V) (squeeze_film.py) and its exact
     tangents to out; V = v - (omega/2) e_z x e, so dV/de = -(omega/2) e_z x and

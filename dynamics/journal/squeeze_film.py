@@ -38,10 +38,12 @@ import math
 import numba
 import numpy as np
 
+from bearingsim.dynamics._speed.compile_policy import KERNEL
+
 N_SQUEEZE_OUT = 10  # force (2), dF/de at fixed V (2x2 row-major), dF/dV (2x2 row-major)
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def sommerfeld_angle(theta, eps):
     """psi(theta) of Sommerfeld's substitution, continuous in theta (psi(theta + 2 pi) =
     psi(theta) + 2 pi): tan(psi/2) = sqrt((1 + eps)/(1 - eps)) tan(theta/2)."""
@@ -50,7 +52,7 @@ def sommerfeld_angle(theta, eps):
     return theta + 2.0 * math.atan((k - 1.0) * math.sin(theta) / ((1.0 + c) + k * (1.0 - c)))
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def _second_moments(p, eps):
     """Antiderivatives in psi of (cos + eps)^2, sin (cos + eps), sin^2 (M.94d)."""
     s, c = math.sin(p), math.cos(p)
@@ -59,7 +61,7 @@ def _second_moments(p, eps):
             0.5 * p - 0.5 * s * c)
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def _third_moments(p, eps):
     """Antiderivatives in psi of (cos + eps)^3, (cos + eps)^2 sin, (cos + eps) sin^2, sin^3."""
     s, c = math.sin(p), math.cos(p)
@@ -70,7 +72,7 @@ def _third_moments(p, eps):
             -c + c**3 / 3.0)
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def film_moments(eps, theta1, theta2):
     """Film integrals over [theta1, theta2] (theta from the direction of e, h/C = 1 - eps cos):
     (I_cc, I_cs, I_ss) = int (cos^2, cos sin, sin^2) / (1 - eps cos)^3 and
@@ -90,7 +92,7 @@ def film_moments(eps, theta1, theta2):
             (d2 - d1) / (q**3 * sq), (e2 - e1) / q**3, (f2 - f1) / (q * q * sq), (g2 - g1) / (q * q))
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def squeeze_film_force(ex, ey, vx, vy, omega, c_film, k_film, eps_clip, out):
     """Dynamic short-bearing film force on the journal (M.94b–M.94e), global x-y frame.
 
@@ -138,7 +140,7 @@ def squeeze_film_force(ex, ey, vx, vy, omega, c_film, k_film, eps_clip, out):
     _rotate_sym(-k_film * a_rr, -k_film * a_rt, -k_film * a_tt, erx, ery, out, 6)
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def _rotate_sym(m_rr, m_rt, m_tt, erx, ery, out, at):
     """out[at:at+4] = R M R^T (row-major) for the symmetric local M, R = [e_r e_t]."""
     etx, ety = -ery, erx

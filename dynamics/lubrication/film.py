@@ -30,11 +30,11 @@ import math
 
 import numba
 
-from bearingsim.dynamics._speed.compile_policy import VEC
+from bearingsim.dynamics._speed.compile_policy import KERNEL, VEC
 from bearingsim.dynamics._speed.simd_math import exp_array, log_array
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def moes_parameters(F, Rx, Ry, E_eff, eta0, alpha_p, u_s):
     """Moes dimensionless groups (M, L, lambda) of §6.3.
 
@@ -47,7 +47,7 @@ def moes_parameters(F, Rx, Ry, E_eff, eta0, alpha_p, u_s):
     return M, L, Rx / Ry
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def nvm_asymptotes(M, L, lam):
     """The four Moes asymptotes (H_RI, H_EI, H_RP, H_EP) of §6.3 for lambda = Rx/Ry."""
     c = 1.0 + 0.006 * math.log(lam) + 0.63 * lam ** (4.0 / 7.0)
@@ -58,7 +58,7 @@ def nvm_asymptotes(M, L, lam):
     return H_RI, H_EI, H_RP, H_EP
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def nvm_central_dimensionless(M, L, lam):
     """Central film H_c = (h_c/Rx)(eta0 u_s/(E'Rx))^(-1/2) (NVM 1994 as in §6.3).
 
@@ -75,7 +75,7 @@ def nvm_central_dimensionless(M, L, lam):
     return (iso + piezo) ** (1.0 / s)
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def film_central_nvm(F, Rx, Ry, E_eff, eta0, alpha_p, u_s):
     """Central film thickness h_c [m] by Nijenbanning-Venner-Moes (docs/model.md §6.3).
 
@@ -94,7 +94,7 @@ def film_central_nvm(F, Rx, Ry, E_eff, eta0, alpha_p, u_s):
     return film_central_nvm_terms(F, Rx, E_eff, eta0, alpha_p, u_s, ln_RI0, ln_EI0, h00_m4, ln_RP0, ln_EP0)
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def nvm_geometry_terms(Rx, Ry):
     """The parts of the logarithms of the four Moes asymptotes that depend on lambda = Rx/Ry
     alone: (ln_RI0, ln_EI0, (lambda/1.8)^4, ln_RP0, ln_EP0), see `film_central_nvm_terms`."""
@@ -108,7 +108,7 @@ def nvm_geometry_terms(Rx, Ry):
     return ln_RI0, ln_EI0, (lam / 1.8) ** 4, ln_RP0, ln_EP0
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def film_central_nvm_terms(F, Rx, E_eff, eta0, alpha_p, u_s, ln_RI0, ln_EI0, h00_m4, ln_RP0, ln_EP0):
     """`film_central_nvm` [m] from the geometry terms of `nvm_geometry_terms`:
     ln H_RI = ln_RI0 - 2 ln M, ln H_EI = ln_EI0 - (2/15) ln M, ln H_RP = ln_RP0 + (2/3) ln L,
@@ -206,7 +206,7 @@ def film_central_nvm_batch(F, Rx, u_s, ln_RI0, ln_EI0, h00_m4, ln_RP0, ln_EP0, n
         h[m] = t[m] * Rx[m]
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def film_central_nvm_direct(F, Rx, Ry, E_eff, eta0, alpha_p, u_s):
     """`film_central_nvm` written directly with powers (the reference twin of the tests)."""
     if F <= 0.0 or u_s <= 0.0:
@@ -216,13 +216,13 @@ def film_central_nvm_direct(F, Rx, Ry, E_eff, eta0, alpha_p, u_s):
     return H * Rx * math.sqrt(eta0 * u_s / (E_eff * Rx))
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def hamrock_dowson_ellipticity(Rx, Ry):
     """k = 1.03 (Ry/Rx)^0.64, the ellipticity Hamrock & Dowson (1977) used in their fits."""
     return 1.03 * (Ry / Rx) ** 0.64
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def film_hamrock_dowson(F, Rx, Ry, E_eff, eta0, alpha_p, u_s):
     """Central and minimum film (h_c, h_min) [m] by Hamrock & Dowson (1977), docs/model.md §6.3.
 
@@ -247,7 +247,7 @@ FILM_HAMROCK_DOWSON = 1
 FILM_CODES = {"nvm": FILM_NVM, "hamrock-dowson": FILM_HAMROCK_DOWSON}
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def film_central(method, F, Rx, Ry, E_eff, eta0, alpha_p, u_s):
     """Central film h_c [m] by the method code (FILM_NVM default, FILM_HAMROCK_DOWSON)."""
     if method == FILM_HAMROCK_DOWSON:

@@ -29,6 +29,8 @@ import math
 import numba
 import numpy as np
 
+from bearingsim.dynamics._speed.compile_policy import KERNEL
+
 MODEL_BARUS = 0
 MODEL_ROELANDS = 1
 MODEL_WLF = 2
@@ -44,13 +46,13 @@ WLF_LOG10_ETA_GLASS = 12.0  # log10(eta_g / 1 Pa.s): viscosity at the glass tran
 # wlf:      [T, T_g0, A1, A2, B1, B2, C1, C2]   (T, T_g0 in K; A1, C2 in K; A2, B2 in 1/Pa)
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def viscosity_barus(p, eta0, alpha):
     """Barus viscosity eta = eta0 exp(alpha p) [Pa.s] (docs/model.md §6.4, Barus). p [Pa], alpha [1/Pa]."""
     return eta0 * math.exp(alpha * p)
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def viscosity_roelands(p, eta0, z):
     """Roelands viscosity [Pa.s] (docs/model.md §6.4, Roelands): ln(eta/eta0) = (ln eta0 + 9.67)((1+p/p_r)^z - 1).
 
@@ -59,7 +61,7 @@ def viscosity_roelands(p, eta0, z):
     return eta0 * math.exp((math.log(eta0) - ROELANDS_LN_ETA_INF) * ((1.0 + p / ROELANDS_PRESSURE) ** z - 1.0))
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def viscosity_wlf(p, T, Tg0, A1, A2, B1, B2, C1, C2):
     """Modified WLF (Yasutomi-Bair-Winer) viscosity eta(p, T) [Pa.s] (docs/model.md §6.4, modified WLF).
 
@@ -76,7 +78,7 @@ def viscosity_wlf(p, T, Tg0, A1, A2, B1, B2, C1, C2):
     return 10.0 ** (WLF_LOG10_ETA_GLASS - C1 * X / (C2 + X))
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def viscosity(p, model, params):
     """eta(p) [Pa.s] at the operating temperature for model code `model` (docs/model.md §6.4).
 
@@ -89,7 +91,7 @@ def viscosity(p, model, params):
     return viscosity_wlf(p, params[0], params[1], params[2], params[3], params[4], params[5], params[6], params[7])
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def pressure_viscosity_coefficient(model, params):
     """Approximate pressure-viscosity coefficient alpha* = d ln eta/dp at p = 0 [1/Pa] (docs/model.md §6.4).
 
@@ -110,7 +112,7 @@ def pressure_viscosity_coefficient(model, params):
     return math.log(10.0) * C1 * C2 * (A1 * A2 + B1 * B2 * dT) / (C2 + dT) ** 2
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def viscosity_on_grid(p, model, params, out):
     """Fill out[i] = eta(p[i]) [Pa.s]: the vector form used to precompute quadrature nodes."""
     for i in range(p.shape[0]):

@@ -24,11 +24,13 @@ import math
 import numba
 import numpy as np
 
+from bearingsim.dynamics._speed.compile_policy import KERNEL
+
 # Below this |theta| [rad] the series of 4 tan(x/4)/x is used (its next term is x^4/1280).
 _SMALL_ANGLE = 1e-4
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def skew(a):
     """Skew-symmetric matrix a~ with a~ b = a x b (3x3)."""
     s = np.zeros((3, 3))
@@ -41,13 +43,13 @@ def skew(a):
     return s
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def crv_c0(c):
     """Scalar part c0 = 2 - c.c/8 of the CRV (M.4a), dimensionless."""
     return 2.0 - (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) / 8.0
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def crv_to_matrix(c):
     """Rotation matrix R(c) = I + 2 (c0 c~ + c~ c~) / (4 - c0)^2 (M.4b)."""
     R = np.empty((3, 3))
@@ -55,7 +57,7 @@ def crv_to_matrix(c):
     return R
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def crv_to_matrix_into(c, R):
     """`crv_to_matrix` written into R (3x3): no allocation, for kernels without reference counting."""
     c0 = crv_c0(c)
@@ -67,7 +69,7 @@ def crv_to_matrix_into(c, R):
         R[i, i] += 1.0 - f * (c[0] * c[0] + c[1] * c[1] + c[2] * c[2])
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def crv_H(c):
     """Tangent operator H(c) with spatial omega = H c_dot (M.4c), 3x3."""
     c0 = crv_c0(c)
@@ -75,14 +77,14 @@ def crv_H(c):
     return f * (c0 * np.eye(3) + skew(c) + np.outer(c, c) / 4.0)
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def crv_H_inv(c):
     """Inverse tangent operator H^-1 = (c0 I - c~ + c c^T/4) / 2 (M.4d), 3x3."""
     c0 = crv_c0(c)
     return 0.5 * (c0 * np.eye(3) - skew(c) + np.outer(c, c) / 4.0)
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def crv_to_quaternion(c):
     """Euler parameters (e0, e1, e2, e3) of the CRV: e0 = c0/(4-c0), e = c/(4-c0).
 
@@ -99,7 +101,7 @@ def crv_to_quaternion(c):
     return e
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def quaternion_to_crv(e):
     """CRV c = 4 e / (1 + e0) of unit Euler parameters, taking the sign with e0 >= 0.
 
@@ -114,7 +116,7 @@ def quaternion_to_crv(e):
     return c
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def crv_from_rotation_vector(theta):
     """CRV of the rotation vector theta = phi n [rad]: c = 4 tan(phi/4) n (M.4a)."""
     phi = math.sqrt(theta[0] ** 2 + theta[1] ** 2 + theta[2] ** 2)
@@ -125,7 +127,7 @@ def crv_from_rotation_vector(theta):
     return f * theta
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def crv_to_rotation_vector(c):
     """Rotation vector phi n [rad] of the CRV: phi = 4 atan(|c|/4) (inverse of M.4a)."""
     nc = math.sqrt(c[0] ** 2 + c[1] ** 2 + c[2] ** 2)
@@ -136,7 +138,7 @@ def crv_to_rotation_vector(c):
     return f * c
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def crv_compose(p, q):
     """CRV r of R(r) = R(p) R(q) (apply q first, in the frame of p), rescaled to |r| <= 4."""
     a = crv_to_quaternion(p)
@@ -151,7 +153,7 @@ def crv_compose(p, q):
     return quaternion_to_crv(e / n)
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def crv_rescale(c, c_dot):
     """Rescale a CRV past |c| = 4 and map its rate: c* = -16 c/(c.c), c*_dot = (dc*/dc) c_dot.
 
@@ -174,7 +176,7 @@ def _quaternion_of(c0, c1, c2):
     return s0 / d, c0 / d, c1 / d, c2 / d
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def update_configuration(q_n, dq, rotation_slots, q_out):
     """Configuration update q_{n+1} = q_n (+) dq, in place into q_out.
 

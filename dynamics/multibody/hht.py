@@ -19,6 +19,8 @@ import math
 import numba
 import numpy as np
 
+from bearingsim.dynamics._speed.compile_policy import KERNEL
+
 from .crv import update_configuration
 from .newton import IterationMatrix
 from .results import Result, SolverStats
@@ -26,7 +28,7 @@ from .settings import HHTSettings, JacobianReuse
 from .step_control import MACHINE_EPSILON, NEWTON_FLOOR, scaled_difference_norm
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def newmark_kinematics(q_n, v_n, a_n, a1, h, beta, gamma, rotation_slots, dq, q1, v1):
     """Newmark increment dq, q_{n+1} = q_n (+) dq and v_{n+1} (module docstring), in place."""
     c_a = h * h * (0.5 - beta)
@@ -39,7 +41,7 @@ def newmark_kinematics(q_n, v_n, a_n, a1, h, beta, gamma, rotation_slots, dq, q1
     update_configuration(q_n, dq, rotation_slots, q1)
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def hht_residual(ma, g1, g_n, alpha, r):
     """r = M a_{n+1} - (1 - alpha) g_{n+1} - alpha g_n [N, N m]; returns max |r| (inf if NaN)."""
     big = 0.0
@@ -53,7 +55,7 @@ def hht_residual(ma, g1, g_n, alpha, r):
     return big
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def predict_acceleration(a_n, da_prev, ratio, linear, out):
     """Newton's start for a_{n+1}: a_n, or (linear) a_n + (h / h_prev)(a_n - a_{n-1}), the
     extrapolation of the last step's change; it starts Newton O(h) closer on smooth motion."""
@@ -62,7 +64,7 @@ def predict_acceleration(a_n, da_prev, ratio, linear, out):
         out[i] = a_n[i] + c * da_prev[i]
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def subtract_inplace(x, dx):
     for i in range(x.shape[0]):
         x[i] -= dx[i]
@@ -71,7 +73,7 @@ def subtract_inplace(x, dx):
 NEWTON_CONTINUE, NEWTON_CONVERGED, NEWTON_DIVERGED = 0, 1, 2
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def newton_verdict(k, corr, corr_prev, eta, estimate_test, newton_tol, floor, fresh, full_newton, refactor_rate):
     """Decision after Newton correction k (0-based) of scaled size corr (the previous one
     corr_prev, inf at k = 0): returns (NEWTON_*, updated contraction estimate eta, rebuild the

@@ -24,11 +24,13 @@ from dataclasses import dataclass, field
 import numba
 import numpy as np
 
+from bearingsim.dynamics._speed.compile_policy import KERNEL
+
 from .crv import skew
 from .small import mm, mtv, mtv3, mv
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def _hinge_psi_terms(R_A, R_B, Omega_B):
     """P (2x3), psi (2) [rad], B_psi (2x3) and psi_dot (2) [rad/s] of M.15–M.16."""
     P = np.empty((2, 3))
@@ -42,7 +44,7 @@ def _hinge_psi_terms(R_A, R_B, Omega_B):
     return P, psi, B_psi, mv(B_psi, Omega_B)
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def hinge_forces(x_B, R_B, x_B_dot, Omega_B, x_A, R_A, H_u, H_psi, G_u, G_psi):
     """Viscoelastic hinge generalised force g (6) and residual tangents K, C (6x6).
 
@@ -78,7 +80,7 @@ def hinge_forces(x_B, R_B, x_B_dot, Omega_B, x_A, R_A, H_u, H_psi, G_u, G_psi):
     return g, K, C
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def add_hinge_force(x_B, R_B, x_B_dot, Omega_B, x_A, R_A, H_u, H_psi, G_u, G_psi, g, off):
     """The generalised force of `hinge_forces` added to g[off:off + 6], without its tangents;
     returns the power the viscous part dissipates [W], u_dot^T G_u u_dot + sum G_psi psi_dot^2
@@ -111,7 +113,7 @@ def add_hinge_force(x_B, R_B, x_B_dot, Omega_B, x_A, R_A, H_u, H_psi, G_u, G_psi
     return power
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def hinge_energy(x_B, R_B, x_A, R_A, H_u, H_psi):
     """Strain energy V = u^T H_u u / 2 + psi^T H_psi psi / 2 [J] (M.17). Scalar code without
     temporaries: the residual of every Newton iteration writes it into the diagnostics."""
@@ -124,7 +126,7 @@ def hinge_energy(x_B, R_B, x_A, R_A, H_u, H_psi):
     return 0.5 * strain + 0.5 * (H_psi[0] * psi0 ** 2 + H_psi[1] * psi1 ** 2)
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def hinge_strains(x_B, R_B, x_B_dot, Omega_B, x_A, R_A):
     """(u [m], psi [rad], u_dot [m/s], psi_dot [rad/s]) of M.15–M.16."""
     P, psi, B_psi, psi_dot = _hinge_psi_terms(R_A, R_B, Omega_B)

@@ -23,10 +23,12 @@ from __future__ import annotations
 
 import numba
 
+from bearingsim.dynamics._speed.compile_policy import KERNEL
+
 from .linear_solvers import BlockArrowMatrix
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def prescribe_velocity_residual(i, v, target, p, ma, g):
     """Replace row i of (M a, g) by the velocity constraint v_i = target [rad/s or m/s].
 
@@ -38,7 +40,7 @@ def prescribe_velocity_residual(i, v, target, p, ma, g):
     return drive
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def prescribe_velocity_dense(S, i, c_m, c_v, p):
     """Row i of a dense iteration matrix for the replaced row: c_v p on the diagonal
     (c_m when c_v = 0, i.e. in the initial-acceleration solve, giving a_i = 0)."""
@@ -46,7 +48,7 @@ def prescribe_velocity_dense(S, i, c_m, c_v, p):
     S[i, i] = c_v * p if c_v > 0.0 else c_m
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def prescribe_velocity_blocks(S, i, c_m, c_v, p):
     """Same as `prescribe_velocity_dense` for global index i of block-arrow `Blocks` S."""
     Z, m = S.E.shape[0], S.E.shape[1]

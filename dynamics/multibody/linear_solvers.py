@@ -29,10 +29,10 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
-from bearingsim.dynamics._speed.compile_policy import NO_REFCOUNT
+from bearingsim.dynamics._speed.compile_policy import KERNEL, NO_REFCOUNT
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def lu_factor_inplace(A, piv):
     """LU factorisation with partial pivoting, in place (L unit lower, U upper).
 
@@ -83,7 +83,7 @@ def lu_solve_inplace(LU, piv, b):
         b[i] /= LU[i, i]
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def lu_solve_columns_inplace(LU, piv, B):
     """Solve (LU) X = B in place in the (n, k) matrix B."""
     n = LU.shape[0]
@@ -105,7 +105,7 @@ def lu_solve_columns_inplace(LU, piv, B):
             B[i, c] /= LU[i, i]
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def block_arrow_factor(D, E, F, B, LU_D, piv_D, Dinv_T, F_T, DinvE_T, S, piv_S):
     """Factor a block-arrow matrix for `block_arrow_solve`: LU of each D_k (LU_D, piv_D: the
     factorisation's own workspace), the transposes of D_k^-1, F_k and D_k^-1 E_k (Dinv_T
@@ -298,7 +298,7 @@ class BlockArrowSolver:
         block_arrow_solve(self._Dinv_T, self._F_T, self._DinvE_T, self._S, self._piv_S, rhs, out)
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def assemble_iteration_blocks(K, C, mass, c_m, c_v, c_q, S):
     """S = c_m diag(mass) + c_v C + c_q K on block-arrow `Blocks` (mass: the diagonal of M,
     in the global order of the unknowns)."""

@@ -15,11 +15,13 @@ from __future__ import annotations
 
 import numba
 
+from bearingsim.dynamics._speed.compile_policy import KERNEL
+
 from .results import SolverStats
 from .settings import HHTSettings, JacobianReuse
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def needs_refactor(stale, h_factored, h, keep_across_steps, refactor_step_ratio):
     """Whether a step of size h starts with a fresh matrix: none is factored (or it is stale),
     the policy rebuilds every step (`keep_across_steps` false), or the step changed by more

@@ -18,11 +18,13 @@ from __future__ import annotations
 import numba
 import numpy as np
 
+from bearingsim.dynamics._speed.compile_policy import KERNEL
+
 from .crv import skew
 from .small import mm, mtv, mv
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def gyroscopic_moment(J, Omega):
     """Complementary inertia moment g_gyr = -Omega x (J Omega) [N m] (material), and
     C_gyr = -dg_gyr/dOmega = Omega~ J - (J Omega)~ [N m s]."""
@@ -32,7 +34,7 @@ def gyroscopic_moment(J, Omega):
     return g, C
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def material_moment_of_spatial_moment(R, m_s):
     """Material moment tau = R^T m_s [N m] of a spatial moment held fixed in space, and
     K = -dtau/dTheta = -(R^T m_s)~ (R -> R exp(dTheta~) gives dtau = (R^T m_s)~ dTheta)."""
@@ -40,7 +42,7 @@ def material_moment_of_spatial_moment(R, m_s):
     return tau, -skew(tau)
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def material_moment_of_spatial_force(R, rho, f_s):
     """Material moment tau = rho x (R^T f_s) [N m] of a spatial force f_s [N] held fixed in
     space, applied at the material point rho [m] (measured from the reference point), and
@@ -50,7 +52,7 @@ def material_moment_of_spatial_force(R, rho, f_s):
     return tau, -(skew(rho) @ skew(fm))
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def kinetic_energy(m, J, x_dot, Omega):
     """T = m |x_dot|^2 / 2 + Omega^T J Omega / 2 [J]."""
     return 0.5 * m * (x_dot @ x_dot) + 0.5 * (Omega @ (J @ Omega))

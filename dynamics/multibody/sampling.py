@@ -20,6 +20,8 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
+from bearingsim.dynamics._speed.compile_policy import KERNEL
+
 from .crv import update_configuration
 
 
@@ -50,7 +52,7 @@ class Samples(NamedTuple):
     q_work: np.ndarray
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def hermite_fill(t_n, h, step, rotation_slots, samples, k):
     """Fill samples k, k+1, ... with t_n < times[k] <= t_n + h from the `StepEnds` of one
     step (module docstring); returns the next k."""

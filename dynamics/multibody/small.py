@@ -10,8 +10,10 @@ from __future__ import annotations
 import numba
 import numpy as np
 
+from bearingsim.dynamics._speed.compile_policy import KERNEL
 
-@numba.njit(cache=True)
+
+@numba.njit(**KERNEL)
 def mm(A, B):
     """A B for small matrices (n x k) (k x m)."""
     n, k = A.shape
@@ -25,7 +27,7 @@ def mm(A, B):
     return C
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def mv(A, x):
     """A x for a small matrix A (n x k) and vector x (k)."""
     y = np.zeros(A.shape[0])
@@ -33,7 +35,7 @@ def mv(A, x):
     return y
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def mv_into(A, x, y):
     """y = A x written into y (no allocation)."""
     n, k = A.shape
@@ -44,7 +46,7 @@ def mv_into(A, x, y):
         y[i] = s
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def mtv(A, x):
     """A^T x for a small matrix A (n x k) and vector x (n)."""
     y = np.zeros(A.shape[1])
@@ -52,7 +54,7 @@ def mtv(A, x):
     return y
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def mtv_into(A, x, y):
     """y = A^T x written into y (no allocation)."""
     n, k = A.shape

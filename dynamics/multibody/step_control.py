@@ -21,6 +21,8 @@ import math
 
 import numba
 
+from bearingsim.dynamics._speed.compile_policy import KERNEL
+
 from .settings import HHTSettings
 
 # Shared by both time loops (time_loop.py, compiled.py), so that they take the same steps:
@@ -30,7 +32,7 @@ MACHINE_EPSILON = 2.2e-16  # float64 rounding, relative
 NEWTON_FLOOR = 100.0  # Newton's corrections below NEWTON_FLOOR x the round-off of q have converged
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def scaled_difference_norm(x, y, coef, q_a, q_b, weights, scales, atol, rtol, use_max):
     """Norm of coef (x - y) on the scales of the module docstring (dimensionless).
 
@@ -58,7 +60,7 @@ def scaled_difference_norm(x, y, coef, q_a, q_b, weights, scales, atol, rtol, us
     return s if use_max else math.sqrt(s / count)
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def proposed_step(h, err, safety, min_factor, max_factor, min_step, max_step):
     """h clip(safety ||e||^(-1/3), min_factor, max_factor) (local error O(h^3)), bounded to
     [min_step, max_step] [s]."""

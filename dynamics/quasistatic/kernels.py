@@ -22,6 +22,7 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
+from bearingsim.dynamics._speed.compile_policy import KERNEL
 from bearingsim.dynamics.contact.hertz import hertz_table_eval
 
 
@@ -50,7 +51,7 @@ B_QI, B_QO, B_AI, B_AO, B_DI, B_DO, B_STATUS, B_FRIC_R, B_FRIC_Z, B_FR, B_FZ = r
 STATUS_OK, STATUS_LOOSE, STATUS_FAILED = 0.0, 1.0, 2.0
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def contact_2d(w_r, w_z, gap, table, is_outer):
     """Force on the ball from one groove and its Jacobian with respect to w = C − x_b.
 
@@ -82,7 +83,7 @@ def contact_2d(w_r, w_z, gap, table, is_outer):
     return q, alpha, delta, q * n_r, q * n_z, j_rr, j_rz, j_zr, j_zz
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def ball_residual(x_r, x_z, ci_r, ci_z, co_r, co_z, grooves, m_om2, g_i, g_o):
     """Residual r = ΣF on the ball at (x_r, x_z) [N] and ∂r/∂x_b, plus both contacts (tuple of
     floats). (ci_r, ci_z), (co_r, co_z): inner and outer curvature centres [m]; grooves:
@@ -110,7 +111,7 @@ def ball_residual(x_r, x_z, ci_r, ci_z, co_r, co_z, grooves, m_om2, g_i, g_o):
     return res_r, res_z, a_rr, a_rz, a_zr, a_zz, ci, co, fr_r, fr_z
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def _initial_ball_position(ci_r, ci_z, co_r, co_z, grooves, m_om2, x):
     """Collinear (no centrifugal force) solution, or the ball resting on the outer groove.
 
@@ -146,7 +147,7 @@ def _initial_ball_position(ci_r, ci_z, co_r, co_z, grooves, m_om2, x):
     return True
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def _newton_ball(ci_r, ci_z, co_r, co_z, grooves, m_om2, g_i, g_o, x):
     """Damped Newton on the ball residual from x (in/out); True when converged."""
     tol = 1e-14  # [m] Newton step at which we stop: ~1e-9 of a Hertz approach
@@ -176,7 +177,7 @@ def _newton_ball(ci_r, ci_z, co_r, co_z, grooves, m_om2, g_i, g_o, x):
     return False
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def solve_ball(ci_r, ci_z, co_r, co_z, grooves, m_om2, g_i, g_o, x, warm):
     """Equilibrium position x = (r, z) of one ball (in/out); returns a status.
 
@@ -198,7 +199,7 @@ def solve_ball(ci_r, ci_z, co_r, co_z, grooves, m_om2, g_i, g_o, x, warm):
     return STATUS_FAILED
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def bearing_equilibrium(ci, gmat, R_co, grooves, loads, xb, warm, out_force, out_stiffness, out_ball):
     """Contact load on the inner race and its condensed stiffness, balls in equilibrium.
 
@@ -253,7 +254,7 @@ def bearing_equilibrium(ci, gmat, R_co, grooves, loads, xb, warm, out_force, out
     return failed
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def ball_kinematics(alpha_i, alpha_o, x_r, D, omega_i, omega_o, inner_control):
     """Orbital speed ω_m and ball angular velocity (ω_r, ω_z) [rad/s] from pure rolling.
 

@@ -58,7 +58,7 @@ from bearingsim.dynamics.lubrication import rheology
 from bearingsim.dynamics.traction import laws
 from bearingsim.dynamics.traction.laws import dispatch
 from bearingsim.dynamics._speed.aligned import CACHE_LINE, empty_aligned
-from bearingsim.dynamics._speed.compile_policy import NO_REFCOUNT, VEC
+from bearingsim.dynamics._speed.compile_policy import KERNEL, NO_REFCOUNT, VEC
 from bearingsim.dynamics._speed.simd_math import log_array, log_array32
 from bearingsim.dynamics._speed.table_lookup import last_position32, lerp_picked32, pick_rows, split_position32
 from bearingsim.dynamics.traction.nodes import max_nodes, pack_rule, place_nodes
@@ -464,7 +464,7 @@ def traction_fast(a, b, p_h, h, du0, dv0, w_s, tr, out, jacobian=True):
     return flag
 
 
-@numba.njit(cache=True)
+@numba.njit(**KERNEL)
 def traction_fast_batch(a, b, p_h, h, du0, dv0, w_s, tr, F, J, flags):
     """traction_fast over n contacts: inputs (n,) arrays (units as traction_fast), one rule.
 

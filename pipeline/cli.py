@@ -134,7 +134,21 @@ def _run_locked(scene, scene_arg, run_dir, targets, force, quiet, notes=(), shar
 
 
 def _run_stages_reported(scene, scene_arg, run_dir, targets, force, quiet, notes, shared=True):
-    """The stages, with every failure logged to run.log and mapped to an exit code."""
+    """The stages, with every failure logged to run.log and mapped to an exit code; on a cold
+    kernel cache the dynamic run's kernels compile meanwhile in a second process
+    (`compile_ahead`)."""
+    from . import compile_ahead
+    from .runner import closure
+    from .stages import STAGES
+
+    child = compile_ahead.start(scene, closure(STAGES, targets))
+    try:
+        return _run_stages_with_exit_codes(scene, scene_arg, run_dir, targets, force, quiet, notes, shared)
+    finally:
+        compile_ahead.stop(child)
+
+
+def _run_stages_with_exit_codes(scene, scene_arg, run_dir, targets, force, quiet, notes, shared):
     from .artefacts import SHARED_STAGES, shared_store_dir
     from .run_session import run_stages_logged
     from .scene import read_scene_table

@@ -4,9 +4,11 @@ numba writes compiled kernels to the cache directory of `pipeline.numba_cache` (
 version of the dynamics sources). Two processes that start on a cold cache would each compile
 the same kernels (minutes of CPU each): the sweep's workers, parallel test processes, a user
 running two scenes at once. So the first process of a kernel configuration takes an exclusive
-file lock in the cache directory, compiles by running the first two steps of its model, and
-leaves a marker; the others wait on the lock and then load what it compiled. A process that
-finds the marker takes no lock at all.
+file lock of that configuration in the cache directory, compiles by running the first two steps
+of its model, and leaves a marker; the others wait on the lock and then load what it compiled. A
+process that finds the marker takes no lock at all. Each configuration has its own lock, so that
+the quasi-static kernels of one process are not held up by another's dynamic compile
+(`compile_ahead`).
 
 The kernel configuration is what selects compiled specialisations: the `[physics]` options and
 whether the scene has a cage, a lubricant and a hinge. Loads, dimensions and solver tolerances
@@ -25,7 +27,6 @@ import time
 from pathlib import Path
 
 log = logging.getLogger("bearingsim")
-LOCK_FILE = ".bearingsim-compile.lock"
 LOG_FILE = "bearingsim-compile.log"
 
 
@@ -40,6 +41,12 @@ def cache_directory() -> Path | None:
     """numba's cache directory of this process (None: numba's default, next to the sources)."""
     value = os.environ.get("NUMBA_CACHE_DIR")
     return Path(value) if value else None
+
+
+def compiled_marker(cache: Path, scene, configuration: str | None = None) -> Path:
+    """The file that says `cache` holds the kernels of `configuration` (default: the scene's
+    dynamic-run configuration)."""
+    return cache / f".compiled-{configuration or kernel_configuration(scene)}"
 
 
 @contextlib.contextmanager
@@ -67,11 +74,11 @@ def ensure_compiled(scene, compile_kernels, configuration: str | None = None) ->
         compile_kernels()
         return time.perf_counter() - t0
     key = configuration or kernel_configuration(scene)
-    marker = cache / f".compiled-{key}"
+    marker = compiled_marker(cache, scene, configuration)
     if marker.exists():
         return 0.0
     cache.mkdir(parents=True, exist_ok=True)
-    with _exclusive(cache / LOCK_FILE):
+    with _exclusive(cache / f".bearingsim-compile-{key}.lock"):
         if not marker.exists():
             t1 = time.perf_counter()
             compile_kernels()

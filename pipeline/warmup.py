@@ -10,19 +10,41 @@ import time
 from .kernel_cache import ensure_compiled, kernel_configuration
 
 
+def _without_fe_hinge(scene):
+    """`scene` with an identified hinge replaced by a given one: the hinge's values do not select
+    kernels, and the FE stage need not run to compile them."""
+    from .scene_sections import Hinge
+
+    if scene.hinge.source != "fe":
+        return scene
+    return dataclasses.replace(scene, hinge=Hinge(source="given", translational=(1e9, 1e9, 1e9), bending=(1e5, 1e5),
+                                                  damping_ratio_time=scene.hinge.damping_ratio_time))
+
+
+def compile_force_kernel(scene) -> None:
+    """Compile (or load) the force kernel of `scene`'s dynamic run alone, for the kernel's
+    argument types: no quasi-static solution needed (the inner race at its nominal position)."""
+    import numpy as np
+
+    from bearingsim.dynamics.bearing import BearingModel
+
+    from .stages.simulate import check_dynamic_physics, model_params
+
+    scene = _without_fe_hinge(scene)
+    check_dynamic_physics(scene)
+    model = BearingModel(model_params(scene, None, np.zeros(3), np.eye(3)).with_float32_residual())
+    model.compiled()  # compiles the kernel for the time loop's argument types (`kernel_address`)
+
+
 def compile_scene_kernels(scene) -> None:
     """Compile (or load) every kernel `scene`'s dynamic run calls, without writing results:
     the quasi-static start and the first two steps (an identified hinge is replaced by a given
     one: the hinge's values do not select kernels)."""
     from bearingsim.dynamics.bearing.run import load_kernels
 
-    from .scene_sections import Hinge
     from .stages.simulate import build_model
 
-    if scene.hinge.source == "fe":
-        scene = dataclasses.replace(scene, hinge=Hinge(source="given", translational=(1e9, 1e9, 1e9),
-                                                       bending=(1e5, 1e5),
-                                                       damping_ratio_time=scene.hinge.damping_ratio_time))
+    scene = _without_fe_hinge(scene)
     params, start = build_model(scene)
     load_kernels(params, start, scene.solver)
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import multiprocessing
 import os
+import pickle
 import time
 from pathlib import Path
 
@@ -41,6 +42,74 @@ def test_processes_starting_together_compile_once(tmp_path):
     assert len(log.read_text().splitlines()) == 1
     notes = (cache / kernel_cache.LOG_FILE).read_text().splitlines()
     assert len(notes) == 1 and "compiled configuration" in notes[0]
+
+
+def _hold_lock(cache: str, configuration: str, seconds: float) -> None:
+    """Holds the compile lock of `configuration` for `seconds` (a long compile)."""
+    os.environ["NUMBA_CACHE_DIR"] = cache
+    kernel_cache.ensure_compiled(load_scene("helicopter-b-given-hinge"), lambda: time.sleep(seconds), configuration)
+
+
+def test_one_configurations_compile_does_not_hold_up_anothers(tmp_path, monkeypatch):
+    """The quasi-static kernels of one process must not wait for another process's dynamic
+    compile (`compile_ahead` runs both at once): each configuration has its own lock."""
+    cache = tmp_path / "cache"
+    ctx = multiprocessing.get_context("spawn")
+    holder = ctx.Process(target=_hold_lock, args=(str(cache), None, 30.0))
+    holder.start()
+    try:
+        for _ in range(200):  # until the holder has its lock
+            if list(cache.glob(".bearingsim-compile-*.lock")):
+                break
+            time.sleep(0.05)
+        monkeypatch.setenv("NUMBA_CACHE_DIR", str(cache))
+        t0 = time.perf_counter()
+        kernel_cache.ensure_compiled(load_scene("helicopter-b-given-hinge"), lambda: None, "quasistatic")
+        assert time.perf_counter() - t0 < 20.0
+        assert holder.is_alive()
+    finally:
+        holder.terminate()
+        holder.join()
+
+
+def test_compile_ahead_starts_only_for_a_dynamic_run_on_a_cold_cache_and_several_cores(tmp_path, monkeypatch):
+    from bearingsim.pipeline import compile_ahead
+
+    started = []
+    monkeypatch.setattr(compile_ahead.subprocess, "Popen", lambda *a, **k: started.append(a) or _FakeChild())
+    scene = load_scene("helicopter-b-given-hinge")
+    cache = tmp_path / "cache"
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(cache))
+    monkeypatch.setattr(compile_ahead, "_cores", lambda: 2)
+    assert compile_ahead.start(scene, ["quasistatic"]) is None  # no dynamic run
+    monkeypatch.setattr(compile_ahead, "_cores", lambda: 1)
+    assert compile_ahead.start(scene, ["quasistatic", "simulate"]) is None  # one core: nothing to overlap
+    monkeypatch.setattr(compile_ahead, "_cores", lambda: 2)
+    child = compile_ahead.start(scene, ["quasistatic", "simulate"])
+    assert isinstance(child, _FakeChild) and len(started) == 1
+    assert pickle.loads(bytes(child.stdin.data)) == scene  # the child compiles for this very scene
+    cache.mkdir()
+    kernel_cache.compiled_marker(cache, scene).touch()
+    assert compile_ahead.start(scene, ["quasistatic", "simulate"]) is None  # compiled already
+    monkeypatch.delenv("NUMBA_CACHE_DIR")
+    assert compile_ahead.start(scene, ["quasistatic", "simulate"]) is None  # numba's own cache: no lock to share
+
+
+class _FakeStdin:
+    def __init__(self):
+        self.data = bytearray()
+
+    def write(self, b):
+        self.data += b
+
+    def close(self):
+        pass
+
+
+class _FakeChild:
+    def __init__(self):
+        self.stdin = _FakeStdin()
+        self.pid = 0
 
 
 def test_configuration_key_follows_the_physics_not_the_loads():
@@ -109,3 +178,27 @@ def test_two_workers_of_an_outside_scheduler_compile_once(tmp_path):
     assert len(logs) == 1
     # one line for the quasi-static kernels, one for the force kernels: each compiled once
     assert len(logs[0].read_text().splitlines()) == 2
+
+
+@pytest.mark.slow
+def test_a_cold_run_compiles_its_dynamic_kernels_ahead_in_one_child(tmp_path):
+    """`bearingsim run` on an empty cache: the dynamic kernels are compiled once, by the child
+    `compile_ahead` started (its pid in run.log), and the run itself only loads them."""
+    import re
+    import subprocess
+    import sys
+
+    if len(os.sched_getaffinity(0)) < 2:
+        pytest.skip("one core: nothing is compiled ahead")
+    env = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"}
+    cache = tmp_path / "numba"
+    env["NUMBA_CACHE_DIR"] = str(cache)
+    exe = str(Path(sys.executable).parent / "bearingsim")
+    subprocess.run([exe, "run", "helicopter-b-given-hinge", "--out", str(tmp_path / "run"), "--set",
+                    "solver.duration=1e-3", "--set", "output.sample_interval=5e-5"], env=env, cwd=tmp_path,
+                   check=True, capture_output=True)
+    child = re.search(r"kernels in process (\d+)", (tmp_path / "run" / "run.log").read_text())
+    assert child, "no compile-ahead child in run.log"
+    dynamic = [line for line in (cache / kernel_cache.LOG_FILE).read_text().splitlines()
+               if "configuration quasistatic" not in line]
+    assert len(dynamic) == 1 and f"pid {child.group(1)} " in dynamic[0], dynamic

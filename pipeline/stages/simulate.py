@@ -58,21 +58,27 @@ def check_dynamic_physics(scene: Scene) -> None:
 
 def build_model(scene: Scene, identify_dir=None):
     """(model parameters, quasi-static start) for `scene` — shared with `bench`."""
-    from bearingsim.dynamics.bearing import build_model_params
     from bearingsim.dynamics.quasistatic.result import initial_state
 
     from .quasistatic import solve
 
     check_dynamic_physics(scene)
     start = initial_state(solve(scene))
+    return model_params(scene, identify_dir, start["inner_race_displacement"], start["inner_race_rotation"]), start
+
+
+def model_params(scene: Scene, identify_dir, static_x, static_R):
+    """The dynamic model's parameters of `scene`, with the inner race's static position
+    static_x [m] and rotation static_R (the quasi-static solution's)."""
+    from bearingsim.dynamics.bearing import build_model_params
+
     s, m = scene, scene.materials
-    params = build_model_params(
+    return build_model_params(
         s.bearing, s.cage, m.ball, m.race, m.cage, s.lubricant,
         axial=s.load.axial, radial=s.load.radial, moment=s.load.moment,
         inner_speed=s.speed.inner, outer_speed=s.speed.outer,
-        hinge=hinge_matrices(s, identify_dir), static_x=start["inner_race_displacement"],
-        static_R=start["inner_race_rotation"], options=s.physics, load_step=s.load.load_step)
-    return params, start
+        hinge=hinge_matrices(s, identify_dir), static_x=static_x,
+        static_R=static_R, options=s.physics, load_step=s.load.load_step)
 
 
 def _quasistatic_result(stage_dir) -> dict | None:

@@ -1,0 +1,83 @@
+"""Compile a scene's dynamic-run kernels in a second process while this one runs the stages
+before the dynamic run.
+
+On a machine whose cache lacks the scene's kernels, the dynamic run waits minutes for numba
+to compile them, yet they depend on no result of the stages before it (identify, the
+quasi-static solution): only on the scene's kernel configuration (`kernel_cache`). So the
+command line starts a child process that compiles them on another core (the force kernel
+first, the longest, which needs no quasi-static solution), and the dynamic run waits on the
+cache's lock for what the child has not finished. On one core, or with the kernels cached, nothing is started.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import pickle
+import subprocess
+import sys
+
+log = logging.getLogger("bearingsim")
+
+
+def _cores() -> int:
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # not on Linux
+        return os.cpu_count() or 1
+
+
+def start(scene, stage_names: list[str]) -> subprocess.Popen | None:
+    """Start the child for `scene` when `stage_names` (the stages this command will run,
+    dependencies included) contain the dynamic run, numba's cache is configured and lacks the
+    scene's kernels, and this process may use more than one core. Returns the child, or None."""
+    from .kernel_cache import cache_directory, compiled_marker
+
+    cache = cache_directory()
+    if "simulate" not in stage_names or cache is None or _cores() < 2:
+        return None
+    if compiled_marker(cache, scene).exists():
+        return None
+    try:
+        child = subprocess.Popen([sys.executable, "-m", "bearingsim.pipeline.compile_ahead"], stdin=subprocess.PIPE,
+                                 stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        child.stdin.write(pickle.dumps(scene))
+        child.stdin.close()
+    except (OSError, pickle.PicklingError) as exc:
+        log.info("kernels not compiled ahead (%s): the dynamic run compiles them", exc)
+        return None
+    log.info("compiling the dynamic run's kernels in process %d while the stages before it run", child.pid)
+    return child
+
+
+def stop(child: subprocess.Popen | None) -> None:
+    """End the child if it still runs (the command is over, or failed before its dynamic run):
+    an interrupted compile leaves no marker, and the lock is released with the process."""
+    if child is None or child.poll() is not None:
+        return
+    child.terminate()
+    try:
+        child.wait(timeout=10)
+    except subprocess.TimeoutExpired:
+        child.kill()
+        child.wait()
+
+
+def _main() -> None:
+    from .kernel_cache import ensure_compiled
+    from .stages.quasistatic import solve
+    from .warmup import compile_force_kernel, compile_scene_kernels
+
+    scene = pickle.loads(sys.stdin.buffer.read())
+
+    def compile_kernels():
+        # the force kernel first, the longest compile, which needs no quasi-static solution: the
+        # parent meanwhile compiles the quasi-static kernels in its own stage, under their lock
+        compile_force_kernel(scene)
+        ensure_compiled(scene, lambda: solve(scene), "quasistatic")
+        compile_scene_kernels(scene)
+
+    ensure_compiled(scene, compile_kernels)
+
+if __name__ == "__main__":
+    _main()

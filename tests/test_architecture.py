@@ -21,8 +21,6 @@ PARAMETER_DEBT = {
     "dynamics/quasistatic/solver.py solve_quasistatic",  # the loads and switches of one solve
     "dynamics/journal/hybrid.py journal_parameters",
     "dynamics/bearing/params.py build_model_params",
-    "dynamics/lubrication/film.py film_central_nvm_batch",  # a numba kernel: arrays of the batch
-    "dynamics/traction/fast.py _slip_and_table_row32",  # a numba pass: the contact's floats
     "dynamics/multibody/compiled.py integrate_compiled",
     "pipeline/cli.py sweep",  # a typer command: one parameter per command-line option
 }

@@ -265,9 +265,9 @@ def test_tabulated_film_equals_the_nvm_formula(lubricated, outer):
         nvm_terms_into(table, *table_position(table, alpha), carries[i])
         assert film_of_carry(carries[i], alpha, outer, params.fp, FILM_NVM) == pytest.approx(direct[i], rel=1e-8), alpha
     n = alphas.size
-    cols = [np.ascontiguousarray(carries[:, c]) for c in (CA_FEL, CA_RX, CA_U, *range(CA_RX + 1, CA_RX + 6))]
+    film_in = np.ascontiguousarray(carries[:, [CA_FEL, CA_RX, CA_U, *range(CA_RX + 1, CA_RX + 6)]].T)
     h = np.empty(n)
-    film_central_nvm_batch(*cols, n, params.fp[FP_E_EFF], params.fp[FP_ETA0], params.fp[FP_ALPHA_P], h,
+    film_central_nvm_batch(film_in, n, params.fp[FP_E_EFF], params.fp[FP_ETA0], params.fp[FP_ALPHA_P], h,
                            np.empty((FILM_BATCH_ROWS, 5 * n)), np.empty(5 * n, dtype=np.int64))
     np.testing.assert_allclose(np.maximum(h, min_film), direct, rtol=1e-8)
 

@@ -329,6 +329,8 @@ def test_error_scales_follow_contact_stiffness_and_clearances(dry):
     (Q = K delta^1.5) projected on x, plus the hinge's 1e9 N/m — computed here from the
     quasi-static solver's loads, approaches and angles, not from the dynamic model."""
     from bearingsim.dynamics.contact.pocket import P_BALL_RADIUS, P_POCKET_RADIUS
+    from bearingsim.dynamics.operating_point import OperatingPoint
+    from bearingsim.dynamics.quasistatic.options import QuasiStaticOptions
     from bearingsim.dynamics.quasistatic.solver import solve_quasistatic
 
     from .bearing_fixtures import INNER_SPEED
@@ -336,8 +338,9 @@ def test_error_scales_follow_contact_stiffness_and_clearances(dry):
     params, start, model, q, v = dry
     scales = model.error_scales(0.0, q, v)
     Z = params.ball_count
-    qs = solve_quasistatic(REFERENCE, STEEL, STEEL, axial=34000.0, radial=0.0, moment=430.0,
-                           inner_speed=INNER_SPEED, gyroscopic=True)
+    qs = solve_quasistatic(REFERENCE, STEEL, STEEL,
+                           OperatingPoint(axial=34000.0, radial=0.0, moment=430.0, inner_speed=INNER_SPEED),
+                           QuasiStaticOptions(gyroscopic=True))
     q_mean = np.mean(np.concatenate([qs.inner_load, qs.outer_load]))
     loaded = qs.inner_deflection > 0
     k_contact = 1.5 * qs.inner_load[loaded] / qs.inner_deflection[loaded]

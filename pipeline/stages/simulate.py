@@ -61,17 +61,17 @@ def build_model(scene: Scene, identify_dir=None):
     from bearingsim.dynamics.bearing import build_model_params
     from bearingsim.dynamics.quasistatic.result import initial_state
 
+    from ..quasistatic_solution import operating_point
     from .quasistatic import solve
 
     check_dynamic_physics(scene)
     start = initial_state(solve(scene))
     s, m = scene, scene.materials
     params = build_model_params(
-        s.bearing, s.cage, m.ball, m.race, m.cage, s.lubricant,
-        axial=s.load.axial, radial=s.load.radial, moment=s.load.moment,
-        inner_speed=s.speed.inner, outer_speed=s.speed.outer,
-        hinge=hinge_matrices(s, identify_dir), static_x=start["inner_race_displacement"],
-        static_R=start["inner_race_rotation"], options=s.physics, load_step=s.load.load_step)
+        s.bearing, s.cage, m.ball, m.race, m.cage, s.lubricant, operating_point(s),
+        hinge=hinge_matrices(s, identify_dir),
+        static_frame=(start["inner_race_displacement"], start["inner_race_rotation"]), options=s.physics,
+        load_step=s.load.load_step)
     return params, start
 
 

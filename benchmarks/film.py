@@ -49,9 +49,9 @@ def _one_by_one(repeats, F, Rx, u, ri, ei, h00, rp, ep, E, eta0, alpha_p, h):
 
 
 @numba.njit
-def _batch(repeats, F, Rx, u, ri, ei, h00, rp, ep, E, eta0, alpha_p, h, work, iwork):
+def _batch(repeats, film_in, E, eta0, alpha_p, h, work, iwork):
     for _ in range(repeats):
-        film.film_central_nvm_batch(F, Rx, u, ri, ei, h00, rp, ep, F.shape[0], E, eta0, alpha_p, h, work, iwork)
+        film.film_central_nvm_batch(film_in, film_in.shape[1], E, eta0, alpha_p, h, work, iwork)
 
 
 def _best(run, args, repeats: int = 2000) -> float:
@@ -71,7 +71,8 @@ def main() -> None:
     h1, h2 = np.empty(n), np.empty(n)
     common = (*cols, E_EFF, lub.eta0, lub.alpha_star)
     t1 = _best(_one_by_one, (*common, h1))
-    t2 = _best(_batch, (*common, h2, np.empty((film.FILM_BATCH_ROWS, 5 * n)), np.empty(5 * n, dtype=np.int64)))
+    t2 = _best(_batch, (np.array(cols), E_EFF, lub.eta0, lub.alpha_star, h2, np.empty((film.FILM_BATCH_ROWS, 5 * n)),
+                        np.empty(5 * n, dtype=np.int64)))
     print(f"NVM central film of {n} contacts (nato-o156 at its scene temperature), minimum of 7 runs")
     print(f"  one contact at a time (libm exp/log): {t1 * 1e6:6.2f} us")
     print(f"  batch (vectorised exp/log):           {t2 * 1e6:6.2f} us   ratio {t2 / t1:.2f}")

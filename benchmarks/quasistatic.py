@@ -12,6 +12,7 @@ import time
 def main() -> None:
     start = time.perf_counter()
     from bearingsim.dynamics.geometry import BearingGeometry, Material
+    from bearingsim.dynamics.operating_point import OperatingPoint
     from bearingsim.dynamics.quasistatic.solver import solve_quasistatic
     import_time = time.perf_counter() - start
 
@@ -25,7 +26,8 @@ def main() -> None:
     for name, moment in (("helicopter-a", 100.0), ("helicopter-b", 430.0)):
         for call in ("first", "second"):
             start = time.perf_counter()
-            res = solve_quasistatic(geometry, steel, steel, axial=34000.0, moment=moment, inner_speed=speed)
+            res = solve_quasistatic(geometry, steel, steel,
+                                    OperatingPoint(axial=34000.0, moment=moment, inner_speed=speed))
             elapsed = time.perf_counter() - start
             print(f"{name:<14}{call:<7}{elapsed:>10.4f}{res.iterations:>7d}{res.inner_displacement[2] * 1e6:>10.2f}"
                   f"{res.inner_tilt[1] * 1e3:>12.4f}{res.inner_load.max():>13.1f}"

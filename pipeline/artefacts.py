@@ -360,8 +360,8 @@ def run_directory_lock(run_dir: Path) -> Iterator[None]:
             fcntl.flock(handle, fcntl.LOCK_UN)
 
 
-# Stages worth sharing between run directories by default: the FE identification (~30 s, the
-# same for every scene with the same [fe] and ring geometry). Dynamic results are per scene.
+# Stages worth sharing between run directories by default: the FE identification (costly, and
+# the same for every scene with the same [fe] and ring geometry). Dynamic results are per scene.
 SHARED_STAGES = frozenset({"identify"})
 
 

@@ -12,11 +12,13 @@ import json
 import logging
 import math
 import sys
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated, Optional
 
 import typer
 
+from .cli_options import flat_options
 from .console import escape, explain, finding_lines, make_console
 from .numba_cache import configure_numba_cache
 
@@ -536,42 +538,50 @@ def stability(cases: Annotated[Optional[list[str]], typer.Argument(help=_literal
         _fail(EXIT_FAILED, "a case finished with an unphysical state (see the table): a defect to report")
 
 
+@dataclass(frozen=True)
+class SweepOptions:
+    """The options of `bearingsim sweep`, one field an option, in the order of its help."""
+
+    vary: Annotated[Optional[list[str]], typer.Option(
+        "--vary", metavar="KEY=VALUES",
+        help=_literal("Vary a scene key (repeatable): start:stop:count or a,b,c, e.g. --vary "
+                      "load.moment=0:600:13. Replaces the scene's [sweep] points."))] = None
+    mode: Annotated[Optional[str], typer.Option(
+        "--mode", help="factorial (every combination, default) or list (i-th values together).")] = None
+    set_: SetOpt = None
+    name: Annotated[Optional[str], typer.Option("--name", help=_literal("Sweep name [default: <scene>-sweep]."))] = None
+    out: Annotated[Optional[Path], typer.Option("--out", help=_literal("Sweep directory [default: runs/<sweep name>/]."))] = None
+    store: Annotated[Optional[Path], typer.Option(
+        "--store", help=_literal("Shared stage store [default: <sweep dir>/store]; share one between sweeps."))] = None
+    workers: Annotated[int, typer.Option("--workers", min=1, help="Worker processes of the local cluster.")] = 2
+    scheduler: Annotated[Optional[str], typer.Option(
+        "--scheduler", metavar="ADDRESS", help="Use a running Dask scheduler (e.g. tcp://host:8786); "
+                                               "its workers must see the sweep directory.")] = None
+    retry_failed: Annotated[bool, typer.Option("--retry-failed", help="Rerun points that failed before.")] = False
+    dry_run: Annotated[bool, typer.Option("--dry-run", help="Validate and list the points; run nothing.")] = False
+    max_points: Annotated[int, typer.Option(
+        "--max-points", min=1, help="Refuse sweeps of more points than this (a guard against a typo "
+                                    "in a range).")] = 10_000
+    figures: Annotated[Optional[bool], typer.Option(
+        "--figures/--no-figures", help="Draw each point's PNG figures (default: the scene's sweep.figures, "
+                                       "else yes); --no-figures saves their drawing time.")] = None
+
+
 @app.command()
-def sweep(scene: SceneArg,
-          vary: Annotated[Optional[list[str]], typer.Option(
-              "--vary", metavar="KEY=VALUES",
-              help=_literal("Vary a scene key (repeatable): start:stop:count or a,b,c, e.g. --vary "
-                            "load.moment=0:600:13. Replaces the scene's [sweep] points."))] = None,
-          mode: Annotated[Optional[str], typer.Option(
-              "--mode", help="factorial (every combination, default) or list (i-th values together).")] = None,
-          set_: SetOpt = None,
-          name: Annotated[Optional[str], typer.Option("--name", help=_literal("Sweep name [default: <scene>-sweep]."))] = None,
-          out: Annotated[Optional[Path], typer.Option("--out", help=_literal("Sweep directory [default: runs/<sweep name>/]."))] = None,
-          store: Annotated[Optional[Path], typer.Option(
-              "--store", help=_literal("Shared stage store [default: <sweep dir>/store]; share one between sweeps."))] = None,
-          workers: Annotated[int, typer.Option("--workers", min=1, help="Worker processes of the local cluster.")] = 2,
-          scheduler: Annotated[Optional[str], typer.Option(
-              "--scheduler", metavar="ADDRESS", help="Use a running Dask scheduler (e.g. tcp://host:8786); "
-                                                     "its workers must see the sweep directory.")] = None,
-          retry_failed: Annotated[bool, typer.Option("--retry-failed", help="Rerun points that failed before.")] = False,
-          dry_run: Annotated[bool, typer.Option("--dry-run", help="Validate and list the points; run nothing.")] = False,
-          max_points: Annotated[int, typer.Option(
-              "--max-points", min=1, help="Refuse sweeps of more points than this (a guard against a typo "
-                                          "in a range).")] = 10_000,
-          figures: Annotated[Optional[bool], typer.Option(
-              "--figures/--no-figures", help="Draw each point's PNG figures (default: the scene's sweep.figures, "
-                                             "else yes); --no-figures saves their drawing time.")] = None) -> None:
+@flat_options
+def sweep(scene: SceneArg, options: SweepOptions) -> None:
     """Parameter sweep on Dask: one pipeline run per point, a results table and a cage-stability map."""
-    from .sweep.console import SweepProgress, class_counts, print_results
-    from .sweep.driver import claim_sweep_directory, dask_client, gather, plan_sweep, run_sweep, unfinished
+    from .sweep.console import class_counts, print_results
+    from .sweep.driver import claim_sweep_directory, gather, plan_sweep
     from .sweep.table import read_table, result_row
 
+    o = options
     try:
-        plan = plan_sweep(scene, set_, vary, mode=mode, name=name, out=out, store=store, max_points=max_points,
-                          figures=figures)
+        plan = plan_sweep(scene, o.set_, o.vary, mode=o.mode, name=o.name, out=o.out, store=o.store,
+                          max_points=o.max_points, figures=o.figures)
     except SceneError as exc:
         _fail(EXIT_SCENE, f"scene: {explain(exc)}")
-    if dry_run:
+    if o.dry_run:
         rows = [result_row(p, None, Path(r.run_dir), plan.section.thresholds) for p, r in zip(plan.points, plan.requests)]
         print_results(rows, plan.varied, out_console)
         err_console.print(f"{len(rows)} points; sweep directory {plan.sweep_dir}/", highlight=False)
@@ -581,30 +591,8 @@ def sweep(scene: SceneArg,
     except OutputRefused as exc:
         _fail(EXIT_SCENE, str(exc))
     err_console.print(f"sweep {plan.name}: {len(plan.points)} points on "
-                      f"{scheduler or f'a local cluster of {workers} workers'}", highlight=False)
-    try:
-        if not unfinished(plan, retry_failed)[1]:  # all points finished before: no cluster needed
-            records = run_sweep(plan, None, retry_failed=retry_failed)
-        else:
-            with dask_client(scheduler, workers) as client, SweepProgress(err_console) as bar:
-                if getattr(client, "dashboard_link", None):
-                    err_console.print(f"Dask dashboard: {client.dashboard_link}", highlight=False)
-                records = run_sweep(plan, client, progress=bar.update, retry_failed=retry_failed)
-    except KeyboardInterrupt as exc:
-        how, code = interruption(exc)
-        if not scheduler:  # the local cluster is closed: no worker writes the points any more
-            from .sweep.point_runner import remove_stale_temporaries
-
-            for request in plan.requests:
-                remove_stale_temporaries(Path(request.run_dir))
-        _fail(code, f"interrupted ({how}): finished points are kept in {plan.sweep_dir / 'points'}/, the "
-                    "interrupted ones left nothing; run the same command again to run only the others")
-    except OutputRefused as exc:
-        _fail(EXIT_SCENE, str(exc))
-    except OSError as exc:
-        _fail(EXIT_FAILED, f"cannot reach the Dask scheduler {scheduler!r}: {exc}" if scheduler else str(exc))
-    except RuntimeError as exc:  # e.g. the optional dask extra is not installed
-        _fail(EXIT_FAILED, str(exc))
+                      f"{o.scheduler or f'a local cluster of {o.workers} workers'}", highlight=False)
+    records = _run_sweep_points(plan, o)
     paths = gather(plan, records, warn=False)  # the table below prints the short-run warning
     rows = read_table(paths["table"])
     print_results(rows, plan.varied, out_console)
@@ -618,6 +606,36 @@ def sweep(scene: SceneArg,
     if unfinished:
         _fail(EXIT_FAILED, f"{len(unfinished)} points did not finish (worker lost); rerun the same command "
                            "to run only those")
+
+
+def _run_sweep_points(plan, o: SweepOptions) -> list:
+    """Run the points of `plan` that are not finished, on a Dask cluster (`--scheduler`, or a
+    local one of `--workers`), or none when every point finished before; the records of all."""
+    from .sweep.console import SweepProgress
+    from .sweep.driver import dask_client, run_sweep, unfinished
+
+    try:
+        if not unfinished(plan, o.retry_failed)[1]:  # all points finished before: no cluster needed
+            return run_sweep(plan, None, retry_failed=o.retry_failed)
+        with dask_client(o.scheduler, o.workers) as client, SweepProgress(err_console) as bar:
+            if getattr(client, "dashboard_link", None):
+                err_console.print(f"Dask dashboard: {client.dashboard_link}", highlight=False)
+            return run_sweep(plan, client, progress=bar.update, retry_failed=o.retry_failed)
+    except KeyboardInterrupt as exc:
+        how, code = interruption(exc)
+        if not o.scheduler:  # the local cluster is closed: no worker writes the points any more
+            from .sweep.point_runner import remove_stale_temporaries
+
+            for request in plan.requests:
+                remove_stale_temporaries(Path(request.run_dir))
+        _fail(code, f"interrupted ({how}): finished points are kept in {plan.sweep_dir / 'points'}/, the "
+                    "interrupted ones left nothing; run the same command again to run only the others")
+    except OutputRefused as exc:
+        _fail(EXIT_SCENE, str(exc))
+    except OSError as exc:
+        _fail(EXIT_FAILED, f"cannot reach the Dask scheduler {o.scheduler!r}: {exc}" if o.scheduler else str(exc))
+    except RuntimeError as exc:  # e.g. the optional dask extra is not installed
+        _fail(EXIT_FAILED, str(exc))
 
 
 def main() -> None:  # pragma: no cover - console entry point

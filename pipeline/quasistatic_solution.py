@@ -8,15 +8,22 @@ import numpy as np
 from .scene import Scene
 
 
+def operating_point(scene: Scene):
+    """The loads on the inner race and the race speeds of `scene` (`[load]`, `[speed]`)."""
+    from bearingsim.dynamics.operating_point import OperatingPoint
+
+    return OperatingPoint(axial=scene.load.axial, radial=scene.load.radial, moment=scene.load.moment,
+                          inner_speed=scene.speed.inner, outer_speed=scene.speed.outer)
+
+
 def solve(scene: Scene):
     """Solve the quasi-static equilibrium of `scene` (no files)."""
+    from bearingsim.dynamics.quasistatic.options import QuasiStaticOptions
     from bearingsim.dynamics.quasistatic.solver import solve_quasistatic
 
     return solve_quasistatic(
-        scene.bearing, scene.materials.ball, scene.materials.race,
-        axial=scene.load.axial, radial=scene.load.radial, moment=scene.load.moment,
-        inner_speed=scene.speed.inner, outer_speed=scene.speed.outer,
-        centrifugal=scene.physics.centrifugal, gyroscopic=scene.physics.gyroscopic,
+        scene.bearing, scene.materials.ball, scene.materials.race, operating_point(scene),
+        QuasiStaticOptions(centrifugal=scene.physics.centrifugal, gyroscopic=scene.physics.gyroscopic),
     )
 
 

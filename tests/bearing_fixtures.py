@@ -9,6 +9,8 @@ import numpy as np
 
 from bearingsim.dynamics.bearing import ModelOptions, build_model_params
 from bearingsim.dynamics.geometry import BearingGeometry, CageGeometry, Material
+from bearingsim.dynamics.operating_point import OperatingPoint
+from bearingsim.dynamics.quasistatic.options import QuasiStaticOptions
 from bearingsim.dynamics.quasistatic.solver import solve_quasistatic
 from bearingsim.dynamics.quasistatic.result import initial_state
 
@@ -23,13 +25,11 @@ INNER_SPEED = 3060.0 * 2.0 * math.pi / 60.0
 def reference_model(moment=430.0, axial=34000.0, radial=0.0, options=ModelOptions(traction="coulomb", cage_race="dry"),
                     lubricant=None, hinge=True, cage=True, gyroscopic=True):
     """(params, start) of the reference bearing; dry by default (no lubricant needed)."""
-    qs = solve_quasistatic(REFERENCE, STEEL, STEEL, axial=axial, radial=radial, moment=moment,
-                           inner_speed=INNER_SPEED, gyroscopic=gyroscopic)
+    loads = OperatingPoint(axial=axial, radial=radial, moment=moment, inner_speed=INNER_SPEED)
+    qs = solve_quasistatic(REFERENCE, STEEL, STEEL, loads, QuasiStaticOptions(gyroscopic=gyroscopic))
     start = initial_state(qs)
     H = (np.diag([1e9, 1e9, 1e9]), np.array([1e5, 1e5]), 1e-6) if hinge else None
     params = build_model_params(
-        REFERENCE, REFERENCE_CAGE if cage else None, STEEL, STEEL, BRONZE, lubricant,
-        axial=axial, radial=radial, moment=moment, inner_speed=INNER_SPEED, outer_speed=0.0,
-        hinge=H, static_x=start["inner_race_displacement"], static_R=start["inner_race_rotation"],
-        options=options)
+        REFERENCE, REFERENCE_CAGE if cage else None, STEEL, STEEL, BRONZE, lubricant, loads,
+        hinge=H, static_frame=(start["inner_race_displacement"], start["inner_race_rotation"]), options=options)
     return params, start

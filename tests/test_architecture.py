@@ -16,16 +16,6 @@ REPO = Path(__file__).resolve().parents[1]
 PACKAGES = {"pipeline": "bearingsim.pipeline", "dynamics": "bearingsim.dynamics", "fe_model": "bearingsim.fe_model",
             "meshes": "bearingsim.meshes"}
 MAX_PARAMETERS = 12
-# Known excess, to be cut down: each entry must still exceed the limit (so the list only shrinks).
-PARAMETER_DEBT = {
-    "dynamics/quasistatic/solver.py solve_quasistatic",  # the loads and switches of one solve
-    "dynamics/journal/hybrid.py journal_parameters",
-    "dynamics/bearing/params.py build_model_params",
-    "dynamics/lubrication/film.py film_central_nvm_batch",  # a numba kernel: arrays of the batch
-    "dynamics/traction/fast.py _slip_and_table_row32",  # a numba pass: the contact's floats
-    "dynamics/multibody/compiled.py integrate_compiled",
-    "pipeline/cli.py sweep",  # a typer command: one parameter per command-line option
-}
 # which package may import which (docs/architecture.md)
 ALLOWED = {"pipeline": {"pipeline", "fe_model", "dynamics", "meshes"}, "fe_model": {"fe_model", "meshes"},
            "dynamics": {"dynamics"}, "meshes": {"meshes"}}
@@ -140,5 +130,4 @@ def test_import_directions():
 def test_functions_take_at_most_twelve_parameters():
     found = {f"{path.relative_to(REPO)} {name}": n for path in product_modules().values()
              for name, n in long_signatures(path)}
-    assert sorted(set(found) - PARAMETER_DEBT) == [], "new functions of more than 12 parameters: use named bundles"
-    assert sorted(PARAMETER_DEBT - set(found)) == [], "fixed: remove them from PARAMETER_DEBT"
+    assert found == {}, "functions of more than 12 parameters: use named bundles"

@@ -38,11 +38,13 @@ def test_cage_speed_near_epicyclic(case_b):
     speed with a stationary outer ring), evaluated at the mean quasi-static contact angle.
     Traction makes balls creep, so the cage runs a little slower, not faster; 2 % bounds it."""
     params, start, r = case_b
+    from bearingsim.dynamics.operating_point import OperatingPoint
+    from bearingsim.dynamics.quasistatic.options import QuasiStaticOptions
     from bearingsim.dynamics.quasistatic.solver import solve_quasistatic
 
     from .bearing_fixtures import STEEL
-    qs = solve_quasistatic(REFERENCE, STEEL, STEEL, axial=34000.0, moment=430.0,
-                           inner_speed=INNER_SPEED, gyroscopic=True)
+    qs = solve_quasistatic(REFERENCE, STEEL, STEEL, OperatingPoint(axial=34000.0, moment=430.0, inner_speed=INNER_SPEED),
+                           QuasiStaticOptions(gyroscopic=True))
     alpha = float(np.mean(np.abs(qs.inner_contact_angle)))
     epicyclic = 0.5 * INNER_SPEED * (1.0 - REFERENCE.ball_diameter * math.cos(alpha) / REFERENCE.pitch_diameter)
     late = r.t >= 0.5 * r.t[-1]

@@ -265,9 +265,9 @@ def test_tabulated_film_equals_the_nvm_formula(lubricated, outer):
         nvm_terms_into(table, *table_position(table, alpha), carries[i])
         assert film_of_carry(carries[i], alpha, outer, params.fp, FILM_NVM) == pytest.approx(direct[i], rel=1e-8), alpha
     n = alphas.size
-    cols = [np.ascontiguousarray(carries[:, c]) for c in (CA_FEL, CA_RX, CA_U, *range(CA_RX + 1, CA_RX + 6))]
+    film_in = np.ascontiguousarray(carries[:, [CA_FEL, CA_RX, CA_U, *range(CA_RX + 1, CA_RX + 6)]].T)
     h = np.empty(n)
-    film_central_nvm_batch(*cols, n, params.fp[FP_E_EFF], params.fp[FP_ETA0], params.fp[FP_ALPHA_P], h,
+    film_central_nvm_batch(film_in, n, params.fp[FP_E_EFF], params.fp[FP_ETA0], params.fp[FP_ALPHA_P], h,
                            np.empty((FILM_BATCH_ROWS, 5 * n)), np.empty(5 * n, dtype=np.int64))
     np.testing.assert_allclose(np.maximum(h, min_film), direct, rtol=1e-8)
 
@@ -329,6 +329,8 @@ def test_error_scales_follow_contact_stiffness_and_clearances(dry):
     (Q = K delta^1.5) projected on x, plus the hinge's 1e9 N/m — computed here from the
     quasi-static solver's loads, approaches and angles, not from the dynamic model."""
     from bearingsim.dynamics.contact.pocket import P_BALL_RADIUS, P_POCKET_RADIUS
+    from bearingsim.dynamics.operating_point import OperatingPoint
+    from bearingsim.dynamics.quasistatic.options import QuasiStaticOptions
     from bearingsim.dynamics.quasistatic.solver import solve_quasistatic
 
     from .bearing_fixtures import INNER_SPEED
@@ -336,8 +338,9 @@ def test_error_scales_follow_contact_stiffness_and_clearances(dry):
     params, start, model, q, v = dry
     scales = model.error_scales(0.0, q, v)
     Z = params.ball_count
-    qs = solve_quasistatic(REFERENCE, STEEL, STEEL, axial=34000.0, radial=0.0, moment=430.0,
-                           inner_speed=INNER_SPEED, gyroscopic=True)
+    qs = solve_quasistatic(REFERENCE, STEEL, STEEL,
+                           OperatingPoint(axial=34000.0, radial=0.0, moment=430.0, inner_speed=INNER_SPEED),
+                           QuasiStaticOptions(gyroscopic=True))
     q_mean = np.mean(np.concatenate([qs.inner_load, qs.outer_load]))
     loaded = qs.inner_deflection > 0
     k_contact = 1.5 * qs.inner_load[loaded] / qs.inner_deflection[loaded]

@@ -116,7 +116,7 @@ def test_batch_nvm_equals_the_one_contact_kernel():
     terms = np.array([film.nvm_geometry_terms(Rx[i], Ry[i]) for i in range(n)]).T.copy()
     for alpha_p in (0.0, 1.5e-8):
         h = np.full(n, np.nan)
-        film.film_central_nvm_batch(F, Rx, u_s, *terms, n, E_EFF, eta0, alpha_p, h,
+        film.film_central_nvm_batch(np.array([F, Rx, u_s, *terms]), n, E_EFF, eta0, alpha_p, h,
                                     np.empty((film.FILM_BATCH_ROWS, 5 * n)), np.empty(5 * n, dtype=np.int64))
         one = [film.film_central_nvm_terms(F[i], Rx[i], E_EFF, eta0, alpha_p, u_s[i], *terms[:, i]) for i in range(n)]
         np.testing.assert_allclose(h, one, rtol=1e-12)

@@ -24,6 +24,7 @@ from bearingsim.dynamics.journal.hybrid import (
     J_OUT_TORQUE,
     cage_race_journal,
     hybrid_weights,
+    JournalGeometry,
     journal_parameters,
     journal_parameters_for_cage,
     journal_scalars,
@@ -45,7 +46,8 @@ def params(**kw):
     base = dict(radius=R_S, length=L_S, clearance=C_S, viscosity=MU,
                 effective_modulus=E_BRONZE_STEEL, friction_coefficient=0.1)
     base.update(kw)
-    return journal_parameters(**base)
+    lands = JournalGeometry(**{name: base.pop(name) for name in JournalGeometry._fields if name in base})
+    return journal_parameters(lands, **base)
 
 
 def journal_at(eps, p, omega_cage=OMEGA, omega_race=0.0, azimuth=0.0, velocity=(0.0, 0.0)):

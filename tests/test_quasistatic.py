@@ -3,6 +3,7 @@
 import json
 import math
 import time
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -10,6 +11,8 @@ from scipy.optimize import brentq
 
 from bearingsim.dynamics.geometry import BearingGeometry, Material, effective_modulus
 from bearingsim.dynamics.contact.hertz import hertz_exact, race_curvature
+from bearingsim.dynamics.operating_point import OperatingPoint
+from bearingsim.dynamics.quasistatic.options import QuasiStaticOptions
 from bearingsim.dynamics.quasistatic.solver import QuasiStaticError, solve_quasistatic
 from bearingsim.dynamics.quasistatic.result import initial_state
 from bearingsim.dynamics.contact.race import ball_race_contact
@@ -39,8 +42,8 @@ def _masta_bearing(clearance_mm):
     (0.01, 0.0, 1000.0, 2, 149.1717),  # Example 4: axial, with clearance
 ])
 def test_masta_deep_groove_radial_and_axial(clearance_mm, radial, axial, key, reference_um):
-    res = solve_quasistatic(_masta_bearing(clearance_mm), MASTA_STEEL, MASTA_STEEL, radial=radial, axial=axial,
-                            centrifugal=False)
+    res = solve_quasistatic(_masta_bearing(clearance_mm), MASTA_STEEL, MASTA_STEEL,
+                            OperatingPoint(radial=radial, axial=axial), QuasiStaticOptions(centrifugal=False))
     # measured: within 0.006 % (exact, α-dependent k_h)
     assert res.inner_displacement[key] * 1e6 == pytest.approx(reference_um, rel=1e-3)
 
@@ -48,8 +51,8 @@ def test_masta_deep_groove_radial_and_axial(clearance_mm, radial, axial, key, re
 def test_masta_combined_load_linear_kinematics():
     # Example 5: F_r = F_a = 1000 N, s_r = 0.01 mm, tilt free: δ_r = 19.5923 µm, δ_a = 146.4603 µm.
     # ISO/TS 16281 uses small-rotation kinematics, so compare with the same ("linear").
-    res = solve_quasistatic(_masta_bearing(0.01), MASTA_STEEL, MASTA_STEEL, radial=1000.0, axial=1000.0,
-                            centrifugal=False, kinematics="linear")
+    res = solve_quasistatic(_masta_bearing(0.01), MASTA_STEEL, MASTA_STEEL, OperatingPoint(radial=1000.0, axial=1000.0),
+                            QuasiStaticOptions(centrifugal=False, kinematics="linear"))
     assert res.inner_displacement[0] * 1e6 == pytest.approx(19.5923, rel=1e-3)
     assert res.inner_displacement[2] * 1e6 == pytest.approx(146.4603, rel=1e-3)
 
@@ -57,7 +60,8 @@ def test_masta_combined_load_linear_kinematics():
 def test_masta_pure_moment_tilt():
     # Example 6: M = 1000 N·mm, zero clearance: misalignment 3.6957 mrad (measured 0.33 % off
     # with the exact kinematics; the linear form is 1.3 % off).
-    res = solve_quasistatic(_masta_bearing(0.0), MASTA_STEEL, MASTA_STEEL, moment=1.0, centrifugal=False)
+    res = solve_quasistatic(_masta_bearing(0.0), MASTA_STEEL, MASTA_STEEL, OperatingPoint(moment=1.0),
+                            QuasiStaticOptions(centrifugal=False))
     assert abs(res.inner_tilt[1]) * 1e3 == pytest.approx(3.6957, rel=1e-2)
 
 
@@ -86,7 +90,8 @@ def test_angular_contact_thrust_against_closed_form():
         delta_a = brentq(equation, 0.0, 1e-3, xtol=1e-16)
         alpha = math.asin((A * math.sin(alpha0) + delta_a) / math.hypot(A * math.cos(alpha0),
                                                                        A * math.sin(alpha0) + delta_a))
-        res = solve_quasistatic(geo, STEEL, STEEL, axial=thrust, centrifugal=False, contact_constants=tuple(ks))
+        res = solve_quasistatic(geo, STEEL, STEEL, OperatingPoint(axial=thrust),
+                                QuasiStaticOptions(centrifugal=False, contact_constants=tuple(ks)))
         # the solver measures from the centred position: add the axial play A sin α°
         assert res.inner_displacement[2] == pytest.approx(A * math.sin(alpha0) + delta_a, rel=1e-8)
         assert res.inner_contact_angle == pytest.approx(alpha, rel=1e-8)
@@ -95,7 +100,7 @@ def test_angular_contact_thrust_against_closed_form():
 
 # ---------------------------------------------------------------------------------------
 def test_pure_axial_load_is_shared_equally():
-    res = solve_quasistatic(HELI, STEEL, STEEL, axial=34000.0, inner_speed=HELI_SPEED)
+    res = solve_quasistatic(HELI, STEEL, STEEL, OperatingPoint(axial=34000.0, inner_speed=HELI_SPEED))
     assert np.ptp(res.inner_load) <= 1e-9 * res.inner_load.mean()
     assert np.ptp(res.outer_contact_angle) <= 1e-9
     assert res.inner_tilt == pytest.approx(0.0, abs=1e-15)
@@ -111,14 +116,14 @@ def test_stribeck_limit_zero_clearance_many_balls():
     # Stribeck (1901): Q_max ≈ 4.37 F_r / Z for a zero-clearance radial ball bearing
     # (NSK technical report CAT. E728g, §5.1 eq. 4; Harris & Kotzalas vol. 1 ch. 7).
     geo = BearingGeometry.from_catalogue(0.01, 30, 0.1, 0.52, 0.52, 0.0)
-    res = solve_quasistatic(geo, STEEL, STEEL, radial=10000.0, centrifugal=False)
+    res = solve_quasistatic(geo, STEEL, STEEL, OperatingPoint(radial=10000.0), QuasiStaticOptions(centrifugal=False))
     assert res.inner_load.max() == pytest.approx(4.37 * 10000.0 / 30, rel=0.03)
 
 
 def test_moment_sign_convention():
     # +M_y tilts the inner race so its groove at ψ = 0 (+x) moves to −z: with +z thrust the
     # balls on the −x side (ψ = π) close up and carry the most (derivation in quasistatic_result).
-    res = solve_quasistatic(HELI, STEEL, STEEL, axial=34000.0, moment=430.0, inner_speed=HELI_SPEED)
+    res = solve_quasistatic(HELI, STEEL, STEEL, OperatingPoint(axial=34000.0, moment=430.0, inner_speed=HELI_SPEED))
     assert res.inner_tilt[1] > 0.0
     assert res.azimuth[np.argmax(res.inner_load)] == pytest.approx(math.pi)
     plus_x = np.cos(res.azimuth) > 0.0
@@ -130,8 +135,8 @@ def test_moment_sign_convention():
 @pytest.mark.parametrize("kinematics", ["linear", "exact"])
 def test_stiffness_is_symmetric_with_constant_hertz_constants(kinematics):
     ks = (4.8e10, 4.15e10)
-    res = solve_quasistatic(HELI, STEEL, STEEL, axial=34000.0, moment=430.0, radial=2000.0,
-                            centrifugal=False, contact_constants=ks, kinematics=kinematics)
+    res = solve_quasistatic(HELI, STEEL, STEEL, OperatingPoint(axial=34000.0, moment=430.0, radial=2000.0),
+                            QuasiStaticOptions(centrifugal=False, contact_constants=ks, kinematics=kinematics))
     k = res.stiffness
     scale = np.sqrt(np.abs(np.outer(np.diag(k), np.diag(k))))
     assert np.max(np.abs(k - k.T) / scale) < 1e-9
@@ -139,23 +144,24 @@ def test_stiffness_is_symmetric_with_constant_hertz_constants(kinematics):
 
 
 def test_stiffness_matches_finite_differences_of_the_solution():
-    base = dict(axial=34000.0, moment=430.0, radial=1000.0, inner_speed=HELI_SPEED)
-    res = solve_quasistatic(HELI, STEEL, STEEL, **base)
+    base = OperatingPoint(axial=34000.0, moment=430.0, radial=1000.0, inner_speed=HELI_SPEED)
+    res = solve_quasistatic(HELI, STEEL, STEEL, base)
     compliance = np.linalg.inv(res.stiffness)
     steps = [("radial", 0, 20.0), ("axial", 2, 50.0), ("moment", 4, 1.0)]
     for name, column, h in steps:
-        plus = solve_quasistatic(HELI, STEEL, STEEL, **{**base, name: base[name] + h})
-        minus = solve_quasistatic(HELI, STEEL, STEEL, **{**base, name: base[name] - h})
+        plus = solve_quasistatic(HELI, STEEL, STEEL, replace(base, **{name: getattr(base, name) + h}))
+        minus = solve_quasistatic(HELI, STEEL, STEEL, replace(base, **{name: getattr(base, name) - h}))
         dq = np.concatenate([plus.inner_displacement - minus.inner_displacement,
                              plus.inner_tilt - minus.inner_tilt]) / (2 * h)
         assert dq == pytest.approx(compliance[:, column], rel=1e-4, abs=1e-4 * np.abs(compliance[:, column]).max())
 
 
 def test_helicopter_cases_run_fast():
-    solve_quasistatic(HELI, STEEL, STEEL, axial=34000.0, moment=100.0, inner_speed=HELI_SPEED)  # compile/cache
+    # compile/cache
+    solve_quasistatic(HELI, STEEL, STEEL, OperatingPoint(axial=34000.0, moment=100.0, inner_speed=HELI_SPEED))
     for moment in (100.0, 430.0):
         start = time.perf_counter()
-        res = solve_quasistatic(HELI, STEEL, STEEL, axial=34000.0, moment=moment, inner_speed=HELI_SPEED)
+        res = solve_quasistatic(HELI, STEEL, STEEL, OperatingPoint(axial=34000.0, moment=moment, inner_speed=HELI_SPEED))
         assert time.perf_counter() - start < 2.0
         assert res.converged and not res.warnings
         assert np.all(res.truncation_margin_inner > 0) and np.all(res.truncation_margin_outer > 0)
@@ -172,9 +178,9 @@ def test_preload_and_zero_load():
 
 
 def test_gyroscopic_friction_changes_loads_slightly():
-    kw = dict(axial=34000.0, moment=430.0, inner_speed=HELI_SPEED)
-    plain = solve_quasistatic(HELI, STEEL, STEEL, **kw)
-    gyro = solve_quasistatic(HELI, STEEL, STEEL, gyroscopic=True, **kw)
+    loads = OperatingPoint(axial=34000.0, moment=430.0, inner_speed=HELI_SPEED)
+    plain = solve_quasistatic(HELI, STEEL, STEEL, loads)
+    gyro = solve_quasistatic(HELI, STEEL, STEEL, loads, QuasiStaticOptions(gyroscopic=True))
     change = np.abs(gyro.outer_load - plain.outer_load).max() / plain.outer_load.max()
     assert 1e-6 < change < 0.05
 
@@ -182,11 +188,11 @@ def test_gyroscopic_friction_changes_loads_slightly():
 def test_riding_over_the_shoulder_is_an_error():
     shallow = BearingGeometry(0.01905, 22, 0.1584, 0.1573, 0.009753, 0.009906, inner_shoulder_diameter=0.144)
     with pytest.raises(QuasiStaticError, match="shoulder"):
-        solve_quasistatic(shallow, STEEL, STEEL, axial=34000.0, moment=3000.0, inner_speed=HELI_SPEED)
+        solve_quasistatic(shallow, STEEL, STEEL, OperatingPoint(axial=34000.0, moment=3000.0, inner_speed=HELI_SPEED))
 
 
 def test_json_contract_and_initial_state_rolls():
-    res = solve_quasistatic(HELI, STEEL, STEEL, axial=34000.0, inner_speed=HELI_SPEED)
+    res = solve_quasistatic(HELI, STEEL, STEEL, OperatingPoint(axial=34000.0, inner_speed=HELI_SPEED))
     doc = json.loads(json.dumps(res.to_json_dict()))
     assert set(doc) >= {"inner_race", "balls", "stiffness", "converged"}
     assert len(doc["balls"]) == 22 and len(doc["inner_race"]["tilt"]) == 2

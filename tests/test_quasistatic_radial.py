@@ -23,6 +23,8 @@ from typer.testing import CliRunner
 
 from bearingsim.dynamics.geometry import BearingGeometry, Material
 from bearingsim.dynamics.quasistatic import solver
+from bearingsim.dynamics.operating_point import OperatingPoint
+from bearingsim.dynamics.quasistatic.options import QuasiStaticOptions
 from bearingsim.dynamics.quasistatic.solver import QuasiStaticError, solve_quasistatic
 from bearingsim.pipeline.cli import app
 
@@ -86,7 +88,8 @@ def _issue_problem():
 def test_issue_equilibrium_matches_continuation_and_an_independent_root_finder():
     """Three routes to the same equilibrium (balls at rest): the solver, the continuation from the
     axial load alone (M.119 fallback), and scipy's hybrid Powell method from a generic start."""
-    res = solve_quasistatic(HELI, STEEL, STEEL, axial=1106.0, radial=15217.0, centrifugal=False)
+    res = solve_quasistatic(HELI, STEEL, STEEL, OperatingPoint(axial=1106.0, radial=15217.0),
+                            QuasiStaticOptions(centrifugal=False))
     assert_balanced(res, HELI)
     q_solver = np.concatenate([res.inner_displacement, res.inner_tilt])
     problem, load = _issue_problem()
@@ -117,7 +120,7 @@ def test_stribeck_distribution_of_a_radial_load():
     vol. 1, ch. 7), so Q_max = 4.385 F_r/Z for Z = 9 — below Stribeck's design value 5 F_r/(Z cos α)."""
     geometry = BearingGeometry.from_catalogue(0.0127, 9, 0.065, 0.52, 0.52, 0.0)
     radial = 8900.0
-    res = solve_quasistatic(geometry, STEEL, STEEL, radial=radial, centrifugal=False)
+    res = solve_quasistatic(geometry, STEEL, STEEL, OperatingPoint(radial=radial), QuasiStaticOptions(centrifugal=False))
     assert_balanced(res, geometry)
     cos = np.clip(np.cos(res.azimuth), 0.0, None)
     q_max = radial / np.sum(cos ** 2.5)
@@ -139,8 +142,9 @@ def test_load_grid_converges_balanced_or_stops_at_a_land(name, geometry, speed):
     outcomes = []
     for axial, radial, moment in GRID:
         try:
-            res = solve_quasistatic(geometry, STEEL, STEEL, axial=axial, radial=radial, moment=moment,
-                                    inner_speed=speed, gyroscopic=speed != 0.0)
+            res = solve_quasistatic(geometry, STEEL, STEEL,
+                                    OperatingPoint(axial=axial, radial=radial, moment=moment, inner_speed=speed),
+                                    QuasiStaticOptions(gyroscopic=speed != 0.0))
         except QuasiStaticError as exc:
             assert "rides over the shoulder" in str(exc), (name, axial, radial, moment, str(exc))
             outcomes.append("land")

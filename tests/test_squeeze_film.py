@@ -10,13 +10,15 @@ import numpy as np
 import pytest
 
 from bearingsim.dynamics.journal.hybrid import (
-    cage_race_journal, journal_parameters, ocvirk_force, unpack_journal,
+    JournalGeometry, cage_race_journal, journal_parameters, ocvirk_force, unpack_journal,
 )
 from bearingsim.dynamics.journal.squeeze_film import (
     N_SQUEEZE_OUT, film_moments, squeeze_film_force, squeeze_film_reference,
 )
 
 C = 1e-4
+# R, L, C of the journal tests below: about the reference cage's guiding land (docs/model.md §2)
+LANDS = JournalGeometry(radius=0.083, length=0.0076, clearance=2.9e-4)
 
 
 def _force(ex, ey, vx, vy, omega, k=1.0, c=C):
@@ -132,8 +134,8 @@ def test_half_speed_whirl_carries_no_load():
 
 @pytest.mark.parametrize("mode", ["hybrid", "hydrodynamic"])
 def test_journal_tangents_with_the_dynamic_film_equal_finite_differences(mode):
-    p = journal_parameters(radius=0.083, length=0.0076, clearance=2.9e-4, viscosity=0.005,
-                           effective_modulus=1.2e11, friction_coefficient=0.1, film="dynamic", mode=mode)
+    p = journal_parameters(LANDS, viscosity=0.005, effective_modulus=1.2e11, friction_coefficient=0.1,
+                           film="dynamic", mode=mode)
     states = [((0.6e-4, 1.7e-4), (0.02, -0.05)), ((2.3e-4, 0.4e-4), (0.0, 0.0)),
               ((0.5e-5, 0.0), (0.01, 0.01))]
     if mode == "hybrid":
@@ -159,9 +161,8 @@ def test_journal_tangents_with_the_dynamic_film_equal_finite_differences(mode):
 
 
 def test_static_and_dynamic_films_agree_for_a_centre_at_rest():
-    kw = dict(radius=0.083, length=0.0076, clearance=2.9e-4, viscosity=0.005,
-              effective_modulus=1.2e11, friction_coefficient=0.1)
-    ps, pd = journal_parameters(**kw, film="static"), journal_parameters(**kw, film="dynamic")
+    kw = dict(viscosity=0.005, effective_modulus=1.2e11, friction_coefficient=0.1)
+    ps, pd = journal_parameters(LANDS, **kw, film="static"), journal_parameters(LANDS, **kw, film="dynamic")
     for eps in (0.2, 0.8, 1.01, 1.04):
         off = np.array([eps * 2.9e-4 * 0.6, eps * 2.9e-4 * 0.8])
         a = cage_race_journal(off, np.zeros(2), 143.7, 0.0, ps)
@@ -171,5 +172,4 @@ def test_static_and_dynamic_films_agree_for_a_centre_at_rest():
 
 def test_unknown_film_is_a_clear_error():
     with pytest.raises(ValueError, match="film = 'wet'"):
-        journal_parameters(radius=0.083, length=0.0076, clearance=2.9e-4, viscosity=0.005,
-                           effective_modulus=1.2e11, friction_coefficient=0.1, film="wet")
+        journal_parameters(LANDS, viscosity=0.005, effective_modulus=1.2e11, friction_coefficient=0.1, film="wet")

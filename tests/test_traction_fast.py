@@ -23,7 +23,7 @@ from bearingsim.dynamics.traction import quadrature as traction
 from bearingsim.dynamics.lubrication.lubricant import load_builtin_lubricant
 from bearingsim.dynamics.traction.fast import (
     FLAG_NO_CONTACT, FLAG_OK, FLAG_PRESSURE_CLAMPED, FLAG_SLIP_CLAMPED, FLAG_UNVALIDATED, FastTraction, _accumulate,
-    _Nodes, _NodeValues,
+    _Nodes, _NodeValues, _Slip,
     SMALL_ARG, _accumulate_force, _accumulate_force_g, _eyring_argument,
     _lerp_eyring_argument32, _slip_and_table_index, _slip_and_table_row32,
     _stress_factor32, _viscosity_lookup, traction_fast,
@@ -271,7 +271,8 @@ def test_passes_equal_their_py_funcs(o156, fast):
             eta_flat32 = fast.eta_table.astype(np.float32).ravel()
             last = np.float32(eta_flat32.size // 2 - 1.000001)
             row, picked = np.empty(n, dtype=np.uint32), np.empty(n, dtype=np.int64)
-            pick(_slip_and_table_row32)(X, Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / fast.p_step, last, row, fi32, r32)
+            pick(_slip_and_table_row32)(_Nodes(X, Y, W), n, a, b, p_h, _Slip(du0, dv0, w_s), 1.0 / fast.p_step, last,
+                                        row, fi32, r32)
             fi64 = np.empty_like(fi)  # (fi itself now holds log_array's exponents)
             pick(_slip_and_table_index)(X, Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / fast.p_step, fi64, np.empty_like(r))
             # float32 rounds the terms of s, not s: near the pole |s| is good to ~1e-7 of the terms
@@ -322,7 +323,7 @@ def test_float32_passes_give_the_exact_table_lookup_and_stress_factor(o156, fast
     eta_flat32 = fast.eta_table.astype(np.float32).ravel()
     last = np.float32(eta_flat32.size // 2 - 1.000001)
     row = np.empty(n, dtype=np.uint32)
-    _slip_and_table_row32(X, Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / fast.p_step, last, row, fi, r)
+    _slip_and_table_row32(_Nodes(X, Y, W), n, a, b, p_h, _Slip(du0, dv0, w_s), 1.0 / fast.p_step, last, row, fi, r)
     rows = np.empty(n, dtype=np.int64)
     pick_rows(row, n, eta_flat32.view(np.int64), rows)
     _lerp_eyring_argument32(rows, fi, r, n, 1.0 / (fast.tau0 * h), k, x, z)

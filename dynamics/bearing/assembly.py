@@ -166,8 +166,7 @@ def _ball_forces(q, v, model, bodies, scratch, rows, pocket_rows, g, diag, loads
                     for i in range(5):
                         film_in[3 + i, c] = 0.0
     if film == FILM_NVM:
-        film_central_nvm_batch(film_in[0], film_in[1], film_in[2], film_in[3], film_in[4], film_in[5], film_in[6],
-                               film_in[7], 2 * Z, fp[FP_E_EFF], fp[FP_ETA0], fp[FP_ALPHA_P], scratch.film_h,
+        film_central_nvm_batch(film_in, 2 * Z, fp[FP_E_EFF], fp[FP_ETA0], fp[FP_ALPHA_P], scratch.film_h,
                                scratch.film_work, scratch.film_iwork)
     for k in range(Z):
         b = BALL_DOF * k

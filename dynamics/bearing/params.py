@@ -9,6 +9,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from bearingsim.dynamics.geometry import BearingGeometry, CageGeometry, Material, effective_modulus
+from bearingsim.dynamics.operating_point import OperatingPoint
 from bearingsim.dynamics.traction.fast import TractionRule, unused_traction_rule
 from bearingsim.dynamics.traction.laws import EYRING, LAWS
 
@@ -116,13 +117,13 @@ def inner_race_inertia(bearing: BearingGeometry, race: Material) -> tuple[float,
 
 def build_model_params(
     bearing: BearingGeometry, cage: CageGeometry | None, ball: Material, race: Material,
-    cage_material: Material | None, lubricant, *, axial: float, radial: float, moment: float,
-    inner_speed: float, outer_speed: float, hinge: tuple | None, static_x, static_R,
-    options: ModelOptions = ModelOptions(), load_step: tuple[float, float] | None = None,
+    cage_material: Material | None, lubricant, loads: OperatingPoint, *, hinge: tuple | None,
+    static_frame: tuple, options: ModelOptions = ModelOptions(), load_step: tuple[float, float] | None = None,
 ) -> BearingModelParams:
-    """Pack a bearing. `hinge` = (H_u 3x3 [N/m], H_psi (2) [N m/rad], c_G [s]) or None
-    (inner race free); (static_x, static_R) is the hinge's static frame A (docs/model.md §5).
-    `load_step` = (t_step [s], moment after it [N m]): a sudden change of the moment."""
+    """Pack a bearing under `loads` (loads on the inner race and race speeds). `hinge` =
+    (H_u 3x3 [N/m], H_psi (2) [N m/rad], c_G [s]) or None (inner race free); `static_frame` =
+    (x_A [m], R_A) is the hinge's static frame A (docs/model.md §5). `load_step` =
+    (t_step [s], moment after it [N m]): a sudden change of the moment."""
     if not options.centrifugal:
         raise ValueError("physics.centrifugal = false acts only on the quasi-static solve: the dynamic "
                          "model's inertia always carries the balls' centrifugal force")
@@ -133,9 +134,9 @@ def build_model_params(
         bearing.outer_groove_center_diameter, bearing.inner_groove_radius, bearing.outer_groove_radius)
     fp[FP_MB], fp[FP_JB] = bearing.ball_mass(ball), bearing.ball_inertia(ball)
     fp[FP_MI], fp[FP_JIX], fp[FP_JIZ] = inner_race_inertia(bearing, race)
-    fp[FP_OMEGA_I], fp[FP_OMEGA_O] = inner_speed, outer_speed
-    fp[FP_FX], fp[FP_FZ], fp[FP_MY] = radial, axial, moment
-    fp[FP_T_LOAD_STEP], fp[FP_MY_STEP] = load_step if load_step is not None else (math.inf, moment)
+    fp[FP_OMEGA_I], fp[FP_OMEGA_O] = loads.inner_speed, loads.outer_speed
+    fp[FP_FX], fp[FP_FZ], fp[FP_MY] = loads.radial, loads.axial, loads.moment
+    fp[FP_T_LOAD_STEP], fp[FP_MY_STEP] = load_step if load_step is not None else (math.inf, loads.moment)
     e_eff = effective_modulus(ball, race)
     fp[FP_E_EFF] = e_eff
     fp[FP_MIN_FILM], fp[FP_MU_DRY] = options.min_film, options.dry_friction
@@ -173,6 +174,7 @@ def build_model_params(
         ip[IP_HINGE] = 1
     else:
         H_u, H_psi, c_G = np.zeros((3, 3)), np.zeros(2), 0.0
+    static_x, static_R = static_frame
     contiguous = np.ascontiguousarray
     return BearingModelParams(
         fp=fp, ip=ip,

@@ -37,6 +37,7 @@ is given by the J_OUT_* indices (`unpack_journal` turns it into a dict).
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numba
 import numpy as np
@@ -331,33 +332,41 @@ def _add_squeeze_film(ox, oy, vx, vy, omega_sum, eps, erx, ery, params, out, sq)
 
 
 # --- packing and unpacking (Python side, outside the hot loop) ----------------------------
+class JournalGeometry(NamedTuple):
+    """The lands the cage runs on: radius R [m] of the land, length L [m] of the total land
+    overlap (both sides), radial clearance C [m], the number of separate lands L is split
+    into, and the guiding race (outer | inner)."""
+
+    radius: float
+    length: float
+    clearance: float
+    lands: int = 1
+    guidance: str = "outer"
+
+
 def journal_parameters(
+    geometry: JournalGeometry,
     *,
-    radius: float,
-    length: float,
-    clearance: float,
     viscosity: float,
     effective_modulus: float,
     friction_coefficient: float,
     eps0: float = 0.05,
     regularisation_speed: float = 1e-3,
-    lands: int = 1,
     mode: str = "hybrid",
-    guidance: str = "outer",
     eps_clip: float = 0.999,
     film: str = "static",
 ) -> np.ndarray:
     """Pack and check the journal parameters (SI units) for `cage_race_journal`.
 
-    radius R [m] land radius; length L [m] total land overlap; clearance C [m] radial;
-    viscosity [Pa s] at the land; effective_modulus E' [Pa]; friction_coefficient mu_dry
-    [-]; eps0 [-] boundary-layer thickness e0/C; regularisation_speed [m/s] of the dry
-    friction; lands: separate lands L is split into; mode: hybrid | hydrodynamic | dry |
-    none; guidance: outer | inner; eps_clip: largest film eccentricity e/C_film the
-    film formulas are evaluated at (all of them in hydrodynamic mode, the torque in hybrid);
-    film: static (paper eq. 25, a centre at rest) | dynamic (with the squeeze and whirl
-    terms, squeeze_film.py).
+    geometry: the lands (`JournalGeometry`: R, L, C, lands, guidance); viscosity [Pa s] at the
+    land; effective_modulus E' [Pa]; friction_coefficient mu_dry [-]; eps0 [-] boundary-layer
+    thickness e0/C; regularisation_speed [m/s] of the dry friction; mode: hybrid |
+    hydrodynamic | dry | none; eps_clip: largest film eccentricity e/C_film the film formulas
+    are evaluated at (all of them in hydrodynamic mode, the torque in hybrid); film: static
+    (paper eq. 25, a centre at rest) | dynamic (with the squeeze and whirl terms,
+    squeeze_film.py).
     """
+    radius, length, clearance, lands, guidance = geometry
     positive = {
         "radius [m]": radius, "length [m]": length, "clearance [m]": clearance,
         "effective_modulus [Pa]": effective_modulus, "eps0 [-]": eps0,
@@ -391,23 +400,20 @@ def journal_parameters(
 
 
 def journal_parameters_for_cage(bearing, cage, cage_material, race_material, *, viscosity: float,
-                                friction_coefficient: float, **options) -> np.ndarray:
-    """`journal_parameters` from dynamics.geometry objects (R = land radius, L, C, E').
+                                friction_coefficient: float, lands: int = 1, **options) -> np.ndarray:
+    """`journal_parameters` from dynamics.geometry objects (R = land radius, L, C, E'), the
+    land length split into `lands` separate lands.
 
-    Extra keyword options (eps0, lands, mode, ...) pass through unchanged.
+    Extra keyword options (eps0, mode, ...) pass through unchanged.
     """
     from bearingsim.dynamics.geometry import effective_modulus
 
-    return journal_parameters(
-        radius=0.5 * cage.guide_land_diameter(bearing),
-        length=cage.guide_land_length(bearing),
-        clearance=cage.guide_clearance(bearing),
-        viscosity=viscosity,
-        effective_modulus=effective_modulus(cage_material, race_material),
-        friction_coefficient=friction_coefficient,
-        guidance=cage.guidance,
-        **options,
-    )
+    geometry = JournalGeometry(radius=0.5 * cage.guide_land_diameter(bearing),
+                               length=cage.guide_land_length(bearing), clearance=cage.guide_clearance(bearing),
+                               lands=lands, guidance=cage.guidance)
+    return journal_parameters(geometry, viscosity=viscosity,
+                              effective_modulus=effective_modulus(cage_material, race_material),
+                              friction_coefficient=friction_coefficient, **options)
 
 
 def unpack_journal(out: np.ndarray) -> dict:

@@ -142,14 +142,15 @@ _LN_145, _LN_3_18, _LN_1_29, _LN_1_48 = math.log(145.0), math.log(3.18), math.lo
 _EXP_UNDERFLOW = -746.0  # exp(x) rounds to 0.0 for every x below about -745.13
 
 
+FILM_INPUT_ROWS = 8  # rows of `film_central_nvm_batch`'s input: F, R_x, u_s and the five NVM terms
 FILM_BATCH_ROWS = 13  # rows of `film_central_nvm_batch`'s float scratch, each 5n long
 
 
 @numba.njit(**VEC)
-def film_central_nvm_batch(F, Rx, u_s, ln_RI0, ln_EI0, h00_m4, ln_RP0, ln_EP0, n, E_eff, eta0, alpha_p, h,
-                           work, iwork):
-    """`film_central_nvm_terms` for n contacts at once: h[m] [m] from F[m] > 0 [N], Rx[m] [m],
-    u_s[m] > 0 [m/s] and the geometry terms of `nvm_geometry_terms` (arrays of length >= n);
+def film_central_nvm_batch(film_in, n, E_eff, eta0, alpha_p, h, work, iwork):
+    """`film_central_nvm_terms` for n contacts at once: h[m] [m] of contact m from column m of
+    film_in, (FILM_INPUT_ROWS, >= n) float64 whose rows are F > 0 [N], Rx [m], u_s > 0 [m/s]
+    and the geometry terms of `nvm_geometry_terms` (ln_RI0, ln_EI0, h00_m4, ln_RP0, ln_EP0);
     E_eff, eta0, alpha_p as there. Agrees with it to ~1e-14 relative (tests/test_film.py).
 
     The same formula, its 16 exp and log taken for every contact in one vectorised pass each
@@ -157,6 +158,8 @@ def film_central_nvm_batch(F, Rx, u_s, ln_RI0, ln_EI0, h00_m4, ln_RP0, ln_EP0, n
     the 44 contacts of the reference bearing (`python -m benchmarks.film`, docs/performance.md).
     work: (FILM_BATCH_ROWS, >= 5n) float64, iwork: (>= 5n,) int64 scratch.
     """
+    F, Rx, u_s = film_in[0], film_in[1], film_in[2]
+    ln_RI0, ln_EI0, h00_m4, ln_RP0, ln_EP0 = film_in[3], film_in[4], film_in[5], film_in[6], film_in[7]
     arg, lns, x, ex, y, ey, t = work[0], work[1], work[2], work[3], work[4], work[5], work[6]
     ln_RI, ln_EI, ln_RP, ln_EP, s, scratch = work[7], work[8], work[9], work[10], work[11], work[12]
     for m in range(n):

@@ -40,6 +40,7 @@ from __future__ import annotations
 
 import math
 import time
+from dataclasses import dataclass, field
 from typing import Callable, NamedTuple
 
 import numba
@@ -436,19 +437,28 @@ class Records(NamedTuple):
     log: np.ndarray
 
 
+@dataclass
+class RunTrace:
+    """What a run has done so far, kept for a caller that stops it (`on_chunk` raises) or sees
+    it fail: the solver counters, filled after every chunk, and the step log, one (k, 4)
+    array a chunk (t, h, residual evaluations and factorisations so far)."""
+
+    stats: SolverStats = field(default_factory=SolverStats)
+    log: list = field(default_factory=list)
+
+
 def integrate_compiled(problem, t0: float, t1: float, q0, v0, settings: HHTSettings | None = None, *,
                        sampler=None, record_dt: float = 0.0, log_every: int = 0,
                        on_chunk: Callable[[float, float], None] | None = None,
-                       chunk_steps: int = 1000, stats: SolverStats | None = None,
-                       log_sink: list | None = None) -> tuple[Solution, Records]:
+                       chunk_steps: int = 1000, trace: RunTrace | None = None) -> tuple[Solution, Records]:
     """`time_loop.integrate` for a problem with a compiled side (`problem.compiled()` ->
     `CompiledProblem`): the same steps, run in numba chunks of `chunk_steps` accepted steps.
 
     sampler: a `FixedIntervalSampler` (Hermite samples). record_dt > 0 [s]: keep step-end
     records (`Records`). log_every > 0: log every log_every-th step. on_chunk(t, h) is called
     after every chunk (progress, wall-clock budgets; it may raise to stop the run). Raises
-    IntegrationError as `integrate` does. `stats` (filled in place) and `log_sink` (a list
-    that receives the step log chunk by chunk) keep what a stopped run did.
+    IntegrationError as `integrate` does. `trace` (filled in place) keeps what a stopped run
+    did.
     """
     from .time_loop import initial_acceleration
 
@@ -456,7 +466,8 @@ def integrate_compiled(problem, t0: float, t1: float, q0, v0, settings: HHTSetti
     check_problem(problem)
     cp = problem.compiled()
     n = problem.n_dof
-    stats = stats if stats is not None else SolverStats()
+    trace = trace if trace is not None else RunTrace()
+    stats = trace.stats
     wall0 = time.perf_counter()
     solver = BlockArrowSolver(*cp.K.E.shape)
     scales = checked_error_scales(problem, t0, q0, v0) if hasattr(problem, "error_scales") else np.zeros(0)
@@ -468,7 +479,7 @@ def integrate_compiled(problem, t0: float, t1: float, q0, v0, settings: HHTSetti
     w.counters[N_FACTORIZATIONS] = w.counters[N_RESIDUALS] = 1  # the initial acceleration's
     n_rec = int(math.floor((t1 - t0) / record_dt + 1e-9)) + 2 if record_dt > 0.0 else 0
     n_log = chunk_steps // log_every + 2 if log_every > 0 else 0  # per chunk, drained after each
-    logged = log_sink if log_sink is not None else []
+    logged = trace.log
     # the records are hundreds of MB for a long run: in ordinary pages (buffers.py)
     out = Output(_samples(sampler, n), zeroed(n_rec), zeroed((n_rec, n)), zeroed((n_rec, n)),
                  zeroed((n_rec, cp.diag.size)), record_dt if record_dt > 0.0 else 1.0,

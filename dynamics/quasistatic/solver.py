@@ -13,9 +13,10 @@ kinematics with race control, updated by fixed-point passes until they settle.
 Example::
 
     from bearingsim.dynamics.geometry import BearingGeometry, Material
+    from bearingsim.dynamics.operating_point import OperatingPoint
     from bearingsim.dynamics.quasistatic.solver import solve_quasistatic
-    res = solve_quasistatic(geometry, steel, steel, axial=34000.0, moment=430.0,
-                            inner_speed=320.4)
+    res = solve_quasistatic(geometry, steel, steel,
+                            OperatingPoint(axial=34000.0, moment=430.0, inner_speed=320.4))
 """
 
 from __future__ import annotations
@@ -31,6 +32,8 @@ from bearingsim.dynamics.contact.hertz import (DEFAULT_TABLE_NODES, TAB_DKH, TAB
 from bearingsim.dynamics.quasistatic.kernels import (BALL_COLUMNS, B_AI, B_AO, B_DI, B_DO, B_FR, B_FZ, B_QI, B_QO,
                                           B_STATUS, STATUS_FAILED, BallLoads, Grooves, ball_kinematics,
                                           bearing_equilibrium)
+from bearingsim.dynamics.operating_point import OperatingPoint
+from bearingsim.dynamics.quasistatic.options import QuasiStaticOptions
 from bearingsim.dynamics.quasistatic.result import QuasiStaticResult, tilt_rotation_matrix
 
 
@@ -324,14 +327,7 @@ def _kinematics(problem, balls, D, inner_speed, outer_speed, inner_control):
     return out
 
 
-def _validate(geometry, race_control, kinematics, loads):
-    if kinematics not in ("exact", "linear"):
-        raise ValueError(f"kinematics = {kinematics!r}: allowed values are 'exact' and 'linear'")
-    if race_control not in ("outer", "inner"):
-        raise ValueError(f"race_control = {race_control!r}: allowed values are 'outer' and 'inner'")
-    for name, value in loads.items():
-        if not math.isfinite(value):
-            raise ValueError(f"{name} = {value}: must be a finite number (N, N·m or rad/s)")
+def _check_geometry(geometry):
     if geometry.curvature_center_distance <= 0.0:
         raise ValueError(
             f"groove radii too small: r_i + r_o − D = {geometry.curvature_center_distance:.3e} m must be > 0")
@@ -367,43 +363,31 @@ def solve_quasistatic(
     geometry: BearingGeometry,
     ball_material: Material,
     race_material: Material,
+    loads: OperatingPoint = OperatingPoint(),
+    options: QuasiStaticOptions = QuasiStaticOptions(),
     *,
-    axial: float = 0.0,
-    radial: float = 0.0,
-    moment: float = 0.0,
-    inner_speed: float = 0.0,
-    outer_speed: float = 0.0,
-    centrifugal: bool = True,
-    gyroscopic: bool = False,
-    race_control: str = "outer",
     tol: float = 1e-10,
     max_iter: int = 50,
-    contact_constants: tuple[float, float] | None = None,
-    kinematics: str = "exact",
     table_nodes: int = DEFAULT_TABLE_NODES,
 ) -> QuasiStaticResult:
     """Quasi-static equilibrium of the bearing under loads on the inner race (docs/model.md §10).
 
-    axial [N] along +z, radial [N] along +x, moment [N·m] about +y; inner_speed,
-    outer_speed [rad/s] about +z. centrifugal: ball centrifugal force m_b ω_c² r at the
-    cage speed ω_c. gyroscopic: the gyroscopic moment J_b ω_c ω_r (Jones) is resisted by
-    friction at the controlling race (race_control "outer" | "inner", λ = 2 there, 0 at the
-    other). tol: relative residual of the five loads (moments divided by d_i/2).
-    contact_constants: (k_i, k_o) [N/m^1.5] to replace the exact α-dependent Hertz
-    constants (for comparisons with references that used fixed values).
-    kinematics: "exact" (rigid rotation of the inner race; moment arms include the
-    tilt-induced axial offset of the groove) or "linear" (small-rotation Jones /
-    ISO/TS 16281 form; differs by O(θ cot α) in the moment balance).
+    loads: the axial, radial and moment loads on the inner race and the race speeds
+    (`OperatingPoint`); options: centrifugal force, gyroscopic friction and its controlling
+    race, kinematics, fixed contact constants (`QuasiStaticOptions`). tol: relative residual
+    of the five loads (moments divided by d_i/2); max_iter: Newton iterations of one solve;
+    table_nodes: nodes of the Hertz tables in the contact angle.
     Raises QuasiStaticError when no equilibrium is found or a contact rides over a land.
     """
-    loads = {"axial": axial, "radial": radial, "moment": moment, "inner_speed": inner_speed,
-             "outer_speed": outer_speed}
-    _validate(geometry, race_control, kinematics, loads)
-    problem = _make_problem(geometry, ball_material, race_material, contact_constants, kinematics, table_nodes)
+    _check_geometry(geometry)
+    problem = _make_problem(geometry, ball_material, race_material, options.contact_constants, options.kinematics,
+                            table_nodes)
+    centrifugal, gyroscopic = options.centrifugal, options.gyroscopic
+    inner_speed, outer_speed = loads.inner_speed, loads.outer_speed
     Z, D = geometry.ball_count, geometry.ball_diameter
-    load = np.array([radial, 0.0, axial, 0.0, moment], dtype=float)
+    load = np.array([loads.radial, 0.0, loads.axial, 0.0, loads.moment], dtype=float)
     mass, inertia = geometry.ball_mass(ball_material), geometry.ball_inertia(ball_material)
-    inner_control = race_control == "inner"
+    inner_control = options.race_control == "inner"
     moving = inner_speed != 0.0 or outer_speed != 0.0
 
     q, iterations, residual = _solve_load(problem, load, None, tol, max_iter)

@@ -117,6 +117,16 @@ class _Nodes(NamedTuple):
     W: np.ndarray
 
 
+class _Slip(NamedTuple):
+    """The sliding of the contact centre, (du0, dv0) [m/s] along and across the entrainment,
+    and the spin w_s [rad/s] about the contact normal: the sliding speed of a node at (x, y)
+    is (du0 - w_s y, dv0 + w_s x)."""
+
+    du0: float
+    dv0: float
+    w_s: float
+
+
 class _NodeValues(NamedTuple):
     """Per node: eta/(tau0 h) k [s/m], |s| r [m/s], Eyring argument x, z = x + sqrt(1 + x^2),
     asinh x = ln z (ash)."""
@@ -226,17 +236,19 @@ def _store_force(out, Fx, Fy, Mz):
 
 
 @numba.njit(**VEC)
-def _slip_and_table_row32(X, Y, n, a, b, p_h, du0, dv0, w_s, inv_p_step, last, row, frac, r):
-    """`_slip_and_table_index` in float32, with the table position f = min(index, last) split at
-    once into its row i = floor f (uint32) and the fraction f - i (float32)
-    (`table_lookup.split_position32`); r float32. Done here, in a pass that vectorises, the split
-    leaves the lookup only its loads (`table_lookup.pick_rows`). A float32 root costs about a
-    third of a float64 one on the divider, and a pass in one width vectorises twice as wide as
-    one that converts. Rounding: 6e-8 of p and of the terms of s (|du0| + |w_s| b), so near the
+def _slip_and_table_row32(nodes, n, a, b, p_h, slip, inv_p_step, last, row, frac, r):
+    """`_slip_and_table_index` in float32 (nodes: `_Nodes`, slip: `_Slip`), with the table
+    position f = min(index, last) split at once into its row i = floor f (uint32) and the
+    fraction f - i (float32) (`table_lookup.split_position32`); r float32. Done here, in a
+    pass that vectorises, the split leaves the lookup only its loads (`table_lookup.pick_rows`).
+    A float32 root costs about a third of a float64 one on the divider, and a pass in one width
+    vectorises twice as wide as one that converts. Rounding: 6e-8 of p and of the terms of s (|du0| + |w_s| b), so near the
     spin pole, where they cancel, |s| is good to ~1e-7 (|du0| + |dv0| + |w_s| b) rather than
     relatively; the force still moves by < 1e-6 of tau0 pi a b (tests/test_traction_fast.py)."""
+    X, Y = nodes.X, nodes.Y
     scale = np.float32(p_h * inv_p_step)
-    a32, b32, du32, dv32, ws32 = np.float32(a), np.float32(b), np.float32(du0), np.float32(dv0), np.float32(w_s)
+    a32, b32 = np.float32(a), np.float32(b)
+    du32, dv32, ws32 = np.float32(slip.du0), np.float32(slip.dv0), np.float32(slip.w_s)
     for m in range(n):
         f, r[m] = _node_index_and_speed32(X[m], Y[m], scale, a32, b32, du32, dv32, ws32)
         row[m], frac[m] = split_position32(f, last)
@@ -437,7 +449,7 @@ def traction_fast(a, b, p_h, h, du0, dv0, w_s, tr, out, jacobian=True):
         values32 = _NodeValues(k=w32[2], r=w32[1], x=w32[3], z=w32[4], ash=w32[5])
         # row and fraction at once, the rows picked in a pass of their own (`_speed.table_lookup`)
         row = tr.iwork32.view(np.uint32)
-        _slip_and_table_row32(nodes.X, nodes.Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / p_step,
+        _slip_and_table_row32(nodes, n, a, b, p_h, _Slip(du0, dv0, w_s), 1.0 / p_step,
                               last_position32(tr.eta_flat32), row, w32[0], values32.r)
         picked = tr.iwork  # the float64 path's int64 scratch, free here
         pick_rows(row, n, tr.eta_flat32.view(np.int64), picked)

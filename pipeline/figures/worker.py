@@ -1,6 +1,6 @@
 """Draw a figure in a second process, started before the numbers it plots exist.
 
-Importing matplotlib costs ~0.7 s, about as much as loading the quasi-static solver's numba
+Importing matplotlib costs about as much as loading the quasi-static solver's numba
 kernels; the two are independent, so `bearingsim quasistatic` calls `prestart()` before it
 loads the scene (the worker imports matplotlib on the second core while the solver loads
 and runs) and the stage's `draw(...)` hands the result to that worker. Without a prestarted

@@ -74,7 +74,7 @@ def write_simulation_results(out_dir: Path, scene, params, start, run, wall_time
 
     series = collect_series(run, params)
     # timeseries.h5 is written in a thread while the summary and figures are computed: its gzip
-    # (~3 s for a 0.8 s run) runs in HDF5 without the GIL, so on two cores it costs no wall time.
+    # runs in HDF5 without the GIL, so on two cores it costs no wall time.
     # The pool's exit waits for the file, and result() re-raises a failed write here.
     with ThreadPoolExecutor(max_workers=1) as pool:
         written = pool.submit(write_timeseries, out_dir / "timeseries.h5", series,

@@ -72,13 +72,13 @@ def model_params(scene: Scene, identify_dir, static_x, static_R):
     static_x [m] and rotation static_R (the quasi-static solution's)."""
     from bearingsim.dynamics.bearing import build_model_params
 
+    from ..quasistatic_solution import operating_point
+
     s, m = scene, scene.materials
     return build_model_params(
-        s.bearing, s.cage, m.ball, m.race, m.cage, s.lubricant,
-        axial=s.load.axial, radial=s.load.radial, moment=s.load.moment,
-        inner_speed=s.speed.inner, outer_speed=s.speed.outer,
-        hinge=hinge_matrices(s, identify_dir), static_x=static_x,
-        static_R=static_R, options=s.physics, load_step=s.load.load_step)
+        s.bearing, s.cage, m.ball, m.race, m.cage, s.lubricant, operating_point(s),
+        hinge=hinge_matrices(s, identify_dir), static_frame=(static_x, static_R), options=s.physics,
+        load_step=s.load.load_step)
 
 
 def _quasistatic_result(stage_dir) -> dict | None:

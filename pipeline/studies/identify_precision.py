@@ -36,7 +36,7 @@ PREVIOUS_3D = {"mesh_size": 0.030, "edge_refinement": 0.25}  # the earlier 3-D d
 
 def mesh_grid(quick: bool, fine: bool = False) -> list[tuple[str, int, float, float | None]]:
     """(model, order, mesh size [m], edge_refinement or None for the scene's) of every row.
-    `fine` adds the 0.00125 m P2 mesh (4.3M dofs, ~90 s and ~10 GB on the reference scene)."""
+    `fine` adds the 0.00125 m P2 mesh (4.3M dofs, ~10 GB on the reference scene)."""
     if quick:
         return [("axisymmetric", 2, h, None) for h in (0.02, 0.01, 0.005)] + \
                [("axisymmetric", 1, h, None) for h in (0.01, 0.005)]

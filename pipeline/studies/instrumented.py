@@ -162,8 +162,8 @@ def run_window(problem, q0, v0, settings, window: float, sample_interval: float,
 
     A problem with a compiled side runs in the compiled loop (`multibody.compiled`), as in a
     user's run, unless `exact_tangent` asks for the Python loop's finite-difference tangent."""
-    from bearingsim.dynamics.multibody import FixedIntervalSampler, IntegrationError, SolverStats, integrate
-    from bearingsim.dynamics.multibody.compiled import integrate_compiled
+    from bearingsim.dynamics.multibody import FixedIntervalSampler, IntegrationError, integrate
+    from bearingsim.dynamics.multibody.compiled import RunTrace, integrate_compiled
 
     wrapped = Instrumented(problem, exact_tangent=exact_tangent, wall_budget=wall_budget)
     # samples on [0, window): a sample exactly at the window's end can be lost to rounding
@@ -178,11 +178,11 @@ def run_window(problem, q0, v0, settings, window: float, sample_interval: float,
     t0 = time.perf_counter()
     error = kind = None
     stats: dict = {}
-    counters, logged = SolverStats(), []
+    trace = RunTrace()
     try:
         if compiled:
             sol, _ = integrate_compiled(problem, 0.0, window, q0, v0, settings, sampler=sampler, log_every=1,
-                                        on_chunk=check_budget, stats=counters, log_sink=logged)
+                                        on_chunk=check_budget, trace=trace)
         else:
             sol = integrate(wrapped, 0.0, window, q0, v0, settings, linear_solver=linear_solver,
                             sampler=sampler)
@@ -191,8 +191,8 @@ def run_window(problem, q0, v0, settings, window: float, sample_interval: float,
         error, kind = str(exc), type(exc).__name__
     wall = time.perf_counter() - t0
     if compiled:  # cumulative counts per accepted step -> per step, as the Python loop's history
-        stats = stats or counters.as_dict()
-        log = np.concatenate(logged) if logged else np.zeros((0, 4))
+        stats = stats or trace.stats.as_dict()
+        log = np.concatenate(trace.log) if trace.log else np.zeros((0, 4))
         hist = log.copy()
         hist[:, 2:] = np.diff(log[:, 2:], axis=0, prepend=0.0)
     else:

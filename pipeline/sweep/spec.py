@@ -26,7 +26,7 @@ from .classify import CageClassThresholds
 
 NOT_VARIABLE = ("name", "description", "sweep")
 # A sweep larger than this is refused unless asked for (`--max-points`): 10 000 points of the
-# reference bearing at ~40 s each are ~4.6 days on one worker. One axis may never list more
+# reference bearing take days on one worker. One axis may never list more
 # values than MAX_AXIS_VALUES (they are held in memory before the limit can be checked).
 MAX_POINTS = 10_000
 MAX_AXIS_VALUES = 10_000_000

@@ -63,10 +63,8 @@ def test_one_configurations_compile_does_not_hold_up_anothers(tmp_path, monkeypa
                 break
             time.sleep(0.05)
         monkeypatch.setenv("NUMBA_CACHE_DIR", str(cache))
-        t0 = time.perf_counter()
         kernel_cache.ensure_compiled(load_scene("helicopter-b-given-hinge"), lambda: None, "quasistatic")
-        assert time.perf_counter() - t0 < 20.0
-        assert holder.is_alive()
+        assert holder.is_alive()  # had it waited for the holder's lock, the holder would be done
     finally:
         holder.terminate()
         holder.join()

@@ -4,9 +4,11 @@ before the dynamic run.
 On a machine whose cache lacks the scene's kernels, the dynamic run waits minutes for numba
 to compile them, yet they depend on no result of the stages before it (identify, the
 quasi-static solution): only on the scene's kernel configuration (`kernel_cache`). So the
-command line starts a child process that compiles them on another core (the force kernel
-first, the longest, which needs no quasi-static solution), and the dynamic run waits on the
-cache's lock for what the child has not finished. On one core, or with the kernels cached, nothing is started.
+command line starts a child process that compiles the longest of them, the force kernel, on
+another core, under that kernel's own lock; it needs no quasi-static solution. This process
+compiles the quasi-static kernels in their stage and the time loop at the start of the dynamic
+run, then waits on the force kernel's lock for what the child has not finished. On one core,
+or with the kernels cached, nothing is started.
 """
 
 from __future__ import annotations
@@ -31,12 +33,12 @@ def start(scene, stage_names: list[str]) -> subprocess.Popen | None:
     """Start the child for `scene` when `stage_names` (the stages this command will run,
     dependencies included) contain the dynamic run, numba's cache is configured and lacks the
     scene's kernels, and this process may use more than one core. Returns the child, or None."""
-    from .kernel_cache import cache_directory, compiled_marker
+    from .kernel_cache import cache_directory, compiled_marker, force_configuration
 
     cache = cache_directory()
     if "simulate" not in stage_names or cache is None or _cores() < 2:
         return None
-    if compiled_marker(cache, scene).exists():
+    if compiled_marker(cache, scene).exists() or compiled_marker(cache, scene, force_configuration(scene)).exists():
         return None
     try:
         child = subprocess.Popen([sys.executable, "-m", "bearingsim.pipeline.compile_ahead"], stdin=subprocess.PIPE,
@@ -64,20 +66,11 @@ def stop(child: subprocess.Popen | None) -> None:
 
 
 def _main() -> None:
-    from .kernel_cache import ensure_compiled
-    from .stages.quasistatic import solve
-    from .warmup import compile_force_kernel, compile_scene_kernels
+    from .kernel_cache import ensure_compiled, force_configuration
+    from .warmup import compile_force_kernel
 
     scene = pickle.loads(sys.stdin.buffer.read())
-
-    def compile_kernels():
-        # the force kernel first, the longest compile, which needs no quasi-static solution: the
-        # parent meanwhile compiles the quasi-static kernels in its own stage, under their lock
-        compile_force_kernel(scene)
-        ensure_compiled(scene, lambda: solve(scene), "quasistatic")
-        compile_scene_kernels(scene)
-
-    ensure_compiled(scene, compile_kernels)
+    ensure_compiled(scene, lambda: compile_force_kernel(scene), force_configuration(scene))
 
 if __name__ == "__main__":
     _main()

@@ -37,6 +37,12 @@ def kernel_configuration(scene) -> str:
     return hashlib.sha256(json.dumps(what, sort_keys=True).encode()).hexdigest()[:12]
 
 
+def force_configuration(scene) -> str:
+    """The configuration key of the scene's force kernel alone, compiled apart from the rest of
+    the dynamic run's kernels by `compile_ahead`."""
+    return kernel_configuration(scene) + "-force"
+
+
 def cache_directory() -> Path | None:
     """numba's cache directory of this process (None: numba's default, next to the sources)."""
     value = os.environ.get("NUMBA_CACHE_DIR")

@@ -22,18 +22,17 @@ def _without_fe_hinge(scene):
 
 
 def compile_force_kernel(scene) -> None:
-    """Compile (or load) the force kernel of `scene`'s dynamic run alone, for the kernel's
-    argument types: no quasi-static solution needed (the inner race at its nominal position)."""
+    """Compile (or load) the force kernel of `scene`'s dynamic run alone: it needs no quasi-static
+    solution (the inner race at its nominal position)."""
     import numpy as np
 
-    from bearingsim.dynamics.bearing import BearingModel
+    from bearingsim.dynamics.bearing.run import compile_force_kernel as compile_kernel
 
     from .stages.simulate import check_dynamic_physics, model_params
 
     scene = _without_fe_hinge(scene)
     check_dynamic_physics(scene)
-    model = BearingModel(model_params(scene, None, np.zeros(3), np.eye(3)).with_float32_residual())
-    model.compiled()  # compiles the kernel for the time loop's argument types (`kernel_address`)
+    compile_kernel(model_params(scene, None, np.zeros(3), np.eye(3)))
 
 
 def compile_scene_kernels(scene) -> None:

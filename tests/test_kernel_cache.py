@@ -180,8 +180,9 @@ def test_two_workers_of_an_outside_scheduler_compile_once(tmp_path):
 
 @pytest.mark.slow
 def test_a_cold_run_compiles_its_dynamic_kernels_ahead_in_one_child(tmp_path):
-    """`bearingsim run` on an empty cache: the dynamic kernels are compiled once, by the child
-    `compile_ahead` started (its pid in run.log), and the run itself only loads them."""
+    """`bearingsim run` on an empty cache: the force kernel is compiled once, by the child
+    `compile_ahead` started (its pid in run.log), and the run itself compiles the rest and loads
+    the force kernel."""
     import re
     import subprocess
     import sys
@@ -197,6 +198,26 @@ def test_a_cold_run_compiles_its_dynamic_kernels_ahead_in_one_child(tmp_path):
                    check=True, capture_output=True)
     child = re.search(r"kernels in process (\d+)", (tmp_path / "run" / "run.log").read_text())
     assert child, "no compile-ahead child in run.log"
-    dynamic = [line for line in (cache / kernel_cache.LOG_FILE).read_text().splitlines()
-               if "configuration quasistatic" not in line]
-    assert len(dynamic) == 1 and f"pid {child.group(1)} " in dynamic[0], dynamic
+    notes = (cache / kernel_cache.LOG_FILE).read_text().splitlines()
+    force = [line for line in notes if "-force " in line]
+    assert len(force) == 1 and f"pid {child.group(1)} " in force[0], notes
+    rest = [line for line in notes if "-force " not in line and "quasistatic" not in line]
+    assert len(rest) == 1 and f"pid {child.group(1)} " not in rest[0], notes
+
+
+def test_the_time_loop_compiled_alone_is_the_one_a_run_calls():
+    """`compile_time_loop` compiles the loop for the argument types of a real run without
+    compiling the force kernel: the run that follows must find that overload and compile no
+    other (a second overload would be a second compile on a cold cache)."""
+    from bearingsim.dynamics.bearing.model import bearing_chunk
+    from bearingsim.dynamics.bearing.run import compile_time_loop, simulate_bearing
+    from bearingsim.dynamics.multibody.settings import HHTSettings
+    from tests.bearing_fixtures import reference_model
+
+    params, start = reference_model()
+    settings = HHTSettings()
+    compile_time_loop(params, settings)
+    signatures = set(bearing_chunk.overloads)
+    assert len(signatures) >= 1
+    simulate_bearing(params, start, settings, 4 * settings.first_step, 1e-5)
+    assert set(bearing_chunk.overloads) == signatures

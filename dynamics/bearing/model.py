@@ -265,14 +265,15 @@ class BearingModel:
         """Energy balance so far [J]: work of the drive and of the external loads, dissipated."""
         return dict(zip(("drive", "external", "dissipated"), map(float, self.log.energy)))
 
-    def compiled(self) -> CompiledProblem:
-        """The compiled side for `multibody.compiled.integrate_compiled`."""
+    def compiled(self, addresses: bool = True) -> CompiledProblem:
+        """The compiled side for `multibody.compiled.integrate_compiled`; without `addresses` the
+        force kernel is not compiled and its address is 0 (`multibody.compiled.compile_loop`)."""
         rows = np.array([layout.spin_row(self.params.ball_count)], dtype=np.int64)
         K, C = self._blocks
         n = np.zeros(self.n_dof)  # the kernel's argument types, as the loop passes them
         args = (0.0, n, n, n, self.arrays, False, n, n, self.diag, K, C)
         # one kernel for the tangent calls and Newton's residual-only calls (want_tangent at run time)
-        kernel = kernel_address(evaluate_bearing, args)
+        kernel = kernel_address(evaluate_bearing, args) if addresses else 0
         return CompiledProblem(bearing_chunk, kernel, kernel, self.arrays, self.log, self.mass, rows, self.diag, K, C,
                                self.drain)
 

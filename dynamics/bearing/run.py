@@ -14,7 +14,7 @@ from typing import Callable, NamedTuple
 import numpy as np
 
 from bearingsim.dynamics.multibody.crv import crv_from_rotation_vector, crv_to_matrix
-from bearingsim.dynamics.multibody.compiled import integrate_compiled
+from bearingsim.dynamics.multibody.compiled import compile_loop, integrate_compiled
 from bearingsim.dynamics.multibody.results import IntegrationError
 from bearingsim.dynamics.multibody.settings import HHTSettings
 
@@ -165,6 +165,18 @@ def load_kernels(params: BearingModelParams, start: dict, settings: HHTSettings)
     model = BearingModel(params)
     q0, v0 = initial_coordinates(params, start)
     warm_up_compiled_loop(model, q0, v0, settings, 2.0 * settings.first_step)
+
+
+def compile_time_loop(params: BearingModelParams, settings: HHTSettings) -> None:
+    """Compile (or load) the time loop of a run of `params` alone, without its force kernel
+    (`multibody.compiled.compile_loop`), so that another process may compile that meanwhile."""
+    compile_loop(BearingModel(params.with_float32_residual()), settings)
+
+
+def compile_force_kernel(params: BearingModelParams) -> None:
+    """Compile (or load) the force kernel of a run of `params` alone, for the argument types the
+    time loop passes it (`BearingModel.compiled`)."""
+    BearingModel(params.with_float32_residual()).compiled()
 
 
 def warm_up_compiled_loop(model: BearingModel, q0, v0, settings: HHTSettings, duration: float) -> None:

@@ -465,35 +465,15 @@ def integrate_compiled(problem, t0: float, t1: float, q0, v0, settings: HHTSetti
     settings = settings or HHTSettings()
     check_problem(problem)
     cp = problem.compiled()
-    n = problem.n_dof
     trace = trace if trace is not None else RunTrace()
     stats = trace.stats
     wall0 = time.perf_counter()
     solver = BlockArrowSolver(*cp.K.E.shape)
     scales = checked_error_scales(problem, t0, q0, v0) if hasattr(problem, "error_scales") else np.zeros(0)
     a0, g0 = initial_acceleration(problem, solver, t0, np.asarray(q0, dtype=float), np.asarray(v0, dtype=float))
-    w = new_work(n, cp.diag, cp.K, cp.C)
-    w.Y[0, 0], w.Y[0, 1], w.Y[0, 2], w.Y[0, 3] = q0, v0, a0, g0
-    w.state[S_T], w.state[S_H], w.state[S_ETA], w.state[S_STALE] = t0, settings.first_step, 1.0, 1.0
-    w.state[S_T_LOGGED] = t0
-    w.counters[N_FACTORIZATIONS] = w.counters[N_RESIDUALS] = 1  # the initial acceleration's
-    n_rec = int(math.floor((t1 - t0) / record_dt + 1e-9)) + 2 if record_dt > 0.0 else 0
-    n_log = chunk_steps // log_every + 2 if log_every > 0 else 0  # per chunk, drained after each
     logged = trace.log
-    # the records are hundreds of MB for a long run: in ordinary pages (buffers.py)
-    out = Output(_samples(sampler, n), zeroed(n_rec), zeroed((n_rec, n)), zeroed((n_rec, n)),
-                 zeroed((n_rec, cp.diag.size)), record_dt if record_dt > 0.0 else 1.0,
-                 np.zeros((n_log, 4)), max(log_every, 1))
-    if n_rec:
-        out.record_t[0], out.record_q[0], out.record_v[0], out.record_diag[0] = t0, q0, v0, cp.diag
-        w.counters[N_RECORDS] = 1
-        w.state[S_NEXT_RECORD] = t0 + record_dt
-    if sampler is not None:
-        sampler.start(t0, w.Y[0, 0], w.Y[0, 1], w.Y[0, 2])
-        w.counters[N_SAMPLES] = sampler.count
-    co = Coordinates(cp.mass, cp.prescribed_rows, np.ascontiguousarray(problem.rotation_slots, dtype=np.int64),
-                     np.ascontiguousarray(problem.error_weights, dtype=float), np.ascontiguousarray(scales))
-    ls = loop_settings(settings, t0, t1)
+    w, out, co, ls = _loop_arguments(problem, cp, settings, (t0, t1), (q0, v0, a0, g0, scales), sampler,
+                                     record_dt, log_every, chunk_steps)
     stall = NewtonStallWatch(settings.alpha)
     while True:
         status = cp.chunk((cp.kernel, cp.residual_kernel), cp.data, cp.hook, ls, co, w, out, chunk_steps)
@@ -520,6 +500,50 @@ def integrate_compiled(problem, t0: float, t1: float, q0, v0, settings: HHTSetti
     k = int(w.counters[N_RECORDS])
     return sol, Records(out.record_t[:k], out.record_q[:k], out.record_v[:k], out.record_diag[:k],
                         np.concatenate(logged) if logged else np.zeros((0, 4)))
+
+
+def _loop_arguments(problem, cp: CompiledProblem, settings: HHTSettings, span, start, sampler, record_dt: float,
+                    log_every: int, chunk_steps: int) -> tuple:
+    """(work, output, coordinates, loop settings) of the chunk for a run over span = (t0, t1) from
+    start = (q0, v0, a0, g0, error scales) (`integrate_compiled`'s arguments otherwise)."""
+    t0, t1 = span
+    q0, v0, a0, g0, scales = start
+    n = problem.n_dof
+    w = new_work(n, cp.diag, cp.K, cp.C)
+    w.Y[0, 0], w.Y[0, 1], w.Y[0, 2], w.Y[0, 3] = q0, v0, a0, g0
+    w.state[S_T], w.state[S_H], w.state[S_ETA], w.state[S_STALE] = t0, settings.first_step, 1.0, 1.0
+    w.state[S_T_LOGGED] = t0
+    w.counters[N_FACTORIZATIONS] = w.counters[N_RESIDUALS] = 1  # the initial acceleration's
+    n_rec = int(math.floor((t1 - t0) / record_dt + 1e-9)) + 2 if record_dt > 0.0 else 0
+    n_log = chunk_steps // log_every + 2 if log_every > 0 else 0  # per chunk, drained after each
+    # the records are hundreds of MB for a long run: in ordinary pages (buffers.py)
+    out = Output(_samples(sampler, n), zeroed(n_rec), zeroed((n_rec, n)), zeroed((n_rec, n)),
+                 zeroed((n_rec, cp.diag.size)), record_dt if record_dt > 0.0 else 1.0,
+                 np.zeros((n_log, 4)), max(log_every, 1))
+    if n_rec:
+        out.record_t[0], out.record_q[0], out.record_v[0], out.record_diag[0] = t0, q0, v0, cp.diag
+        w.counters[N_RECORDS] = 1
+        w.state[S_NEXT_RECORD] = t0 + record_dt
+    if sampler is not None:
+        sampler.start(t0, w.Y[0, 0], w.Y[0, 1], w.Y[0, 2])
+        w.counters[N_SAMPLES] = sampler.count
+    co = Coordinates(cp.mass, cp.prescribed_rows, np.ascontiguousarray(problem.rotation_slots, dtype=np.int64),
+                     np.ascontiguousarray(problem.error_weights, dtype=float), np.ascontiguousarray(scales))
+    return w, out, co, loop_settings(settings, t0, t1)
+
+
+def compile_loop(problem, settings: HHTSettings | None = None, chunk_steps: int = 1000) -> None:
+    """Compile (or load from numba's cache) the time loop of `problem` for the argument types
+    `integrate_compiled` passes it, without compiling its force kernel
+    (`problem.compiled(addresses=False)`): the two are separate libraries (`call_kernel`), so a
+    second process can compile the kernel meanwhile."""
+    settings = settings or HHTSettings()
+    cp = problem.compiled(addresses=False)
+    z = np.zeros(problem.n_dof)
+    w, out, co, ls = _loop_arguments(problem, cp, settings, (0.0, settings.first_step), (z, z, z, z, np.zeros(0)),
+                                     None, 0.0, 0, chunk_steps)
+    args = ((cp.kernel, cp.residual_kernel), cp.data, cp.hook, ls, co, w, out, chunk_steps)
+    cp.chunk.compile(tuple(numba.typeof(x) for x in args))
 
 
 def _finish(stats: SolverStats, w: Work, wall0: float) -> None:

@@ -29,7 +29,7 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
-from bearingsim.dynamics._speed.compile_policy import KERNEL, NO_REFCOUNT
+from bearingsim.dynamics._speed.compile_policy import KERNEL, NO_REFCOUNT, WITH_REFCOUNT
 
 
 @numba.njit(**KERNEL)
@@ -105,7 +105,7 @@ def lu_solve_columns_inplace(LU, piv, B):
             B[i, c] /= LU[i, i]
 
 
-@numba.njit(**KERNEL)
+@numba.njit(**WITH_REFCOUNT)
 def block_arrow_factor(D, E, F, B, LU_D, piv_D, Dinv_T, F_T, DinvE_T, S, piv_S):
     """Factor a block-arrow matrix for `block_arrow_solve`: LU of each D_k (LU_D, piv_D: the
     factorisation's own workspace), the transposes of D_k^-1, F_k and D_k^-1 E_k (Dinv_T

@@ -95,12 +95,23 @@ def _quasistatic_result(stage_dir) -> dict | None:
         return None
 
 
+def compile_dynamic_kernels(scene: Scene, params, start) -> None:
+    """Compile (or load) the kernels of the dynamic run: the time loop alone first, then the force
+    kernel under its own lock (which a `compile_ahead` child may hold, compiling it meanwhile),
+    then the first steps of the run, with everything compiled."""
+    from bearingsim.dynamics.bearing.run import compile_force_kernel, compile_time_loop, load_kernels
+
+    from ..kernel_cache import ensure_compiled, force_configuration
+
+    compile_time_loop(params, scene.solver)
+    ensure_compiled(scene, lambda: compile_force_kernel(params), force_configuration(scene))
+    load_kernels(params, start, scene.solver)
+
+
 def compute(ctx: StageContext) -> dict:
     from bearingsim.dynamics.bearing import simulate_bearing
 
     from ..results.simulation_output import write_simulation_results
-
-    from bearingsim.dynamics.bearing.run import load_kernels
 
     from ..kernel_cache import ensure_compiled
 
@@ -109,7 +120,7 @@ def compute(ctx: StageContext) -> dict:
     params, start = build_model(scene, ctx.upstream.get("identify"))
     # on a cold cache: compile once per machine, other processes wait and load (pipeline.kernel_cache)
     ctx.progress("loading the force kernels", 0.0)
-    compile_seconds = ensure_compiled(scene, lambda: load_kernels(params, start, scene.solver))
+    compile_seconds = ensure_compiled(scene, lambda: compile_dynamic_kernels(scene, params, start))
     wall0 = time.perf_counter()
 
     def progress(t: float, t_end: float, h: float) -> None:

@@ -72,5 +72,6 @@ def _main() -> None:
     scene = pickle.loads(sys.stdin.buffer.read())
     ensure_compiled(scene, lambda: compile_force_kernel(scene), force_configuration(scene))
 
+
 if __name__ == "__main__":
     _main()

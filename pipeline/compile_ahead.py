@@ -33,12 +33,12 @@ def start(scene, stage_names: list[str]) -> subprocess.Popen | None:
     """Start the child for `scene` when `stage_names` (the stages this command will run,
     dependencies included) contain the dynamic run, numba's cache is configured and lacks the
     scene's kernels, and this process may use more than one core. Returns the child, or None."""
-    from .kernel_cache import cache_directory, compiled_marker, force_configuration
+    from .kernel_cache import cache_directory, compiled_marker, force_configuration, kernel_configuration
 
     cache = cache_directory()
     if "simulate" not in stage_names or cache is None or _cores() < 2:
         return None
-    if compiled_marker(cache, scene).exists() or compiled_marker(cache, scene, force_configuration(scene)).exists():
+    if any(compiled_marker(cache, key).exists() for key in (kernel_configuration(scene), force_configuration(scene))):
         return None
     try:
         child = subprocess.Popen([sys.executable, "-m", "bearingsim.pipeline.compile_ahead"], stdin=subprocess.PIPE,

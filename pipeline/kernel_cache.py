@@ -49,10 +49,10 @@ def cache_directory() -> Path | None:
     return Path(value) if value else None
 
 
-def compiled_marker(cache: Path, scene, configuration: str | None = None) -> Path:
-    """The file that says `cache` holds the kernels of `configuration` (default: the scene's
-    dynamic-run configuration)."""
-    return cache / f".compiled-{configuration or kernel_configuration(scene)}"
+def compiled_marker(cache: Path, configuration: str) -> Path:
+    """The file that says `cache` holds the kernels of `configuration` (a key of
+    `kernel_configuration`, `force_configuration`, or "quasistatic")."""
+    return cache / f".compiled-{configuration}"
 
 
 @contextlib.contextmanager
@@ -80,7 +80,7 @@ def ensure_compiled(scene, compile_kernels, configuration: str | None = None) ->
         compile_kernels()
         return time.perf_counter() - t0
     key = configuration or kernel_configuration(scene)
-    marker = compiled_marker(cache, scene, configuration)
+    marker = compiled_marker(cache, key)
     if marker.exists():
         return 0.0
     cache.mkdir(parents=True, exist_ok=True)

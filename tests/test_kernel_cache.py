@@ -87,7 +87,7 @@ def test_compile_ahead_starts_only_for_a_dynamic_run_on_a_cold_cache_and_several
     assert isinstance(child, _FakeChild) and len(started) == 1
     assert pickle.loads(bytes(child.stdin.data)) == scene  # the child compiles for this very scene
     cache.mkdir()
-    kernel_cache.compiled_marker(cache, scene).touch()
+    kernel_cache.compiled_marker(cache, kernel_cache.kernel_configuration(scene)).touch()
     assert compile_ahead.start(scene, ["quasistatic", "simulate"]) is None  # compiled already
     monkeypatch.delenv("NUMBA_CACHE_DIR")
     assert compile_ahead.start(scene, ["quasistatic", "simulate"]) is None  # numba's own cache: no lock to share

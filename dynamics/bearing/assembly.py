@@ -395,8 +395,9 @@ def _border(t, v, model, bodies, loads, ma, g, diag, Kb, Cb, want_tangent):
 # by `evaluate_bearing` only when it wants tangents.
 @numba.njit(**WITH_REFCOUNT, **INTERNAL)
 def _hinge_tangent(inner, Om_i, hinge, v, o_i, g, diag, Kb, Cb):
-    """The hinge's force into g[o_i:o_i + 6] and its dissipated power into diag, as
-    `add_hinge_force` gives them, with its tangents into the inner race's border blocks."""
+    """The hinge's force into g[o_i:o_i + 6], its dissipated power v^T C v into diag and its
+    tangents into the inner race's border blocks, all from `hinge_forces` (a residual-only call
+    adds the force and power with `add_hinge_force`, equal to rounding)."""
     gh, Kh, Ch = hinge_forces(inner.x, inner.R, inner.v, Om_i, hinge.x_A, hinge.R_A, hinge.H_u, hinge.H_psi,
                               hinge.G_u, hinge.G_psi)
     g[o_i:o_i + 6] += gh

@@ -1,6 +1,6 @@
 """The shape of the product code (docs/contributing.md, docs/architecture.md), read with `ast`:
 no import cycles, function-level imports included; the import directions between the packages;
-at most 12 parameters a function.
+at most 12 parameters a function; no hand-written LLVM IR.
 
 Import cycles through function-level imports hide from a module-level import graph, and a
 function of 21 parameters is a bundle that was never named; both were found in review, so this
@@ -16,6 +16,10 @@ REPO = Path(__file__).resolve().parents[1]
 PACKAGES = {"pipeline": "bearingsim.pipeline", "dynamics": "bearingsim.dynamics", "fe_model": "bearingsim.fe_model",
             "meshes": "bearingsim.meshes"}
 MAX_PARAMETERS = 12
+# the imports that writing LLVM IR by hand needs: llvmlite itself, numba's IR-building helpers and
+# its intrinsic/lowering extension points (numba's first-class functions and jit options need none)
+IR_BUILDING = ("llvmlite", "numba.core.cgutils", "numba.core.imputils", "numba.extending.intrinsic",
+               "numba.extending.lower_builtin", "numba.core.extending.intrinsic")
 # which package may import which (docs/architecture.md)
 ALLOWED = {"pipeline": {"pipeline", "fe_model", "dynamics", "meshes"}, "fe_model": {"fe_model", "meshes"},
            "dynamics": {"dynamics"}, "meshes": {"meshes"}}
@@ -104,6 +108,19 @@ def long_signatures(path: Path) -> list[tuple[str, int]]:
     return out
 
 
+def ir_building_imports(source: str) -> list[str]:
+    """The imports in `source`, at any depth, that build LLVM IR by hand (IR_BUILDING)."""
+    found = []
+    for node in ast.walk(ast.parse(source)):
+        names = []
+        if isinstance(node, ast.Import):
+            names = [alias.name for alias in node.names]
+        elif isinstance(node, ast.ImportFrom) and node.module:
+            names = [node.module] + [f"{node.module}.{alias.name}" for alias in node.names]
+        found += [n for n in names if any(n == p or n.startswith(p + ".") for p in IR_BUILDING)]
+    return found
+
+
 def test_the_checks_find_a_cycle_and_a_long_signature(tmp_path):
     graph = {"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}
     assert cycles(graph) == [["a", "b", "c"]]
@@ -113,6 +130,8 @@ def test_the_checks_find_a_cycle_and_a_long_signature(tmp_path):
     long.write_text("def f(" + ", ".join(f"x{i}" for i in range(13)) + "):\n    pass\n"
                     "def g(self, " + ", ".join(f"x{i}" for i in range(12)) + "):\n    pass\n")
     assert long_signatures(long) == [("f", 13)]
+    ir = "import llvmlite.ir as ir\ndef f():\n    from numba.extending import intrinsic, overload\n"
+    assert ir_building_imports(ir) == ["llvmlite.ir", "numba.extending.intrinsic"]
 
 
 def test_no_import_cycles():
@@ -131,3 +150,11 @@ def test_functions_take_at_most_twelve_parameters():
     found = {f"{path.relative_to(REPO)} {name}": n for path in product_modules().values()
              for name, n in long_signatures(path)}
     assert found == {}, "functions of more than 12 parameters: use named bundles"
+
+
+def test_no_hand_written_llvm_ir():
+    """Kernels are numba functions: IR written by hand ties the code to one LLVM's intrinsic
+    names and to numba's internal calling convention (docs/contributing.md)."""
+    found = {str(path.relative_to(REPO)): names for path in product_modules().values()
+             if (names := ir_building_imports(path.read_text(encoding="utf-8")))}
+    assert found == {}

@@ -44,8 +44,8 @@ def _python(params, q0, v0, settings, window, sampler=None):
 def test_compiled_loop_takes_the_python_loops_steps(bearing):
     """6 ms from the quasi-static start: the first pocket impacts come at ~5 ms. Counters must be
     identical; the final state, Hermite samples, impact log and energy balance agree to round-off.
-    Both loops run the same machine code of the force kernel (the compiled loop calls it through
-    its address) and were bit for bit equal here, cold cache or warm; the loop's own arithmetic is
+    Both loops run the same machine code of the force kernel (the compiled loop calls it as a
+    first-class function value) and were bit for bit equal here, cold cache or warm; the loop's own arithmetic is
     compiled inside the loop, where another LLVM may fuse operations differently, so the test
     allows the last bits (a kernel linked into the loop and optimised again gave 2e-11)."""
     params, q0, v0 = bearing

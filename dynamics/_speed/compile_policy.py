@@ -16,11 +16,15 @@ checks that the arrays passed through the model keep their reference counts.
 """
 
 # Every kernel: cached, and without the C-callable wrapper numba otherwise compiles for each
-# function so that it can be passed around as a first-class function value, which nothing here
-# does (a compile cost on a machine's first run, docs/performance.md).
+# function so that it can be passed around as a first-class function value (a compile cost on a
+# machine's first run, docs/performance.md); only `FIRST_CLASS` kernels are passed that way.
 KERNEL = {"cache": True, "no_cfunc_wrapper": True}
 
 NO_REFCOUNT = {**KERNEL, "_nrt": False}
+
+# A force kernel that the compiled time loop receives as a first-class function value
+# (multibody/compiled.py, `KernelFunction`): it keeps its C-callable wrapper.
+FIRST_CLASS = {**NO_REFCOUNT, "no_cfunc_wrapper": False}
 
 # Kernels that allocate and are called from a `NO_REFCOUNT` kernel: numba compiles a callee with
 # the flags of the caller it is first typed from unless the callee states its own, so these say

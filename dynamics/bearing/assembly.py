@@ -15,7 +15,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from bearingsim.dynamics._speed.compile_policy import INTERNAL, NO_REFCOUNT, WITH_REFCOUNT
+from bearingsim.dynamics._speed.compile_policy import FIRST_CLASS, INTERNAL, NO_REFCOUNT, WITH_REFCOUNT
 from bearingsim.dynamics.contact.pocket import (
     P_OUT_APPROACH, P_OUT_DFN_DRATE, P_OUT_FRICTION_POWER, P_OUT_IN_CONTACT,
 )
@@ -65,7 +65,7 @@ def mass_diagonal(fp, ip, n):
     return m
 
 
-@numba.njit(**NO_REFCOUNT)
+@numba.njit(**FIRST_CLASS)
 def evaluate_bearing(t, q, v, a, model, want_tangent, ma, g, diag, K, C):
     """Fill ma = M a, g = g(t, q, v), diag (channels.py) and, when want_tangent, the
     tangent blocks K, C (`linear_solvers.Blocks`). model: `bundles.ModelArrays`.

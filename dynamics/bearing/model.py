@@ -17,7 +17,7 @@ from bearingsim.dynamics._speed.compile_policy import KERNEL, NO_REFCOUNT
 from bearingsim.dynamics.contact.pocket import N_POCKET_OUT, P_BALL_RADIUS, P_POCKET_RADIUS
 from bearingsim.dynamics.journal.hybrid import N_JOURNAL_OUT
 from bearingsim.dynamics.journal.squeeze_film import N_SQUEEZE_OUT
-from bearingsim.dynamics.multibody.compiled import CompiledProblem, hht_chunk, kernel_address
+from bearingsim.dynamics.multibody.compiled import CompiledProblem, KernelFunction, hht_chunk
 from bearingsim.dynamics.multibody.joints import prescribe_velocity_blocks
 from bearingsim.dynamics.multibody.linear_solvers import BlockArrowMatrix, assemble_iteration_blocks
 
@@ -111,11 +111,10 @@ def log_step(t, diag, Z, has_cage, impact_speeds, log):
 
 
 @numba.njit(**NO_REFCOUNT)
-def bearing_chunk(kernels, model, log, settings, coords, work, out, max_steps):
-    """`multibody.compiled.hht_chunk` with the bearing's accepted-step hook and its force kernels
-    at the addresses `kernels` (tangent, residual-only; a module-level wrapper, so that numba
-    caches it)."""
-    return hht_chunk(kernels, accepted_step, model, log, settings, coords, work, out, max_steps)
+def bearing_chunk(kernel, model, log, settings, coords, work, out, max_steps):
+    """`multibody.compiled.hht_chunk` with the bearing's accepted-step hook and its force kernel
+    (a first-class function value; a module-level wrapper, so that numba caches it)."""
+    return hht_chunk(kernel, accepted_step, model, log, settings, coords, work, out, max_steps)
 
 
 def cage_arrays(pocket, journal, psi, impact_speeds) -> CageArrays:
@@ -265,16 +264,16 @@ class BearingModel:
         """Energy balance so far [J]: work of the drive and of the external loads, dissipated."""
         return dict(zip(("drive", "external", "dissipated"), map(float, self.log.energy)))
 
-    def compiled(self, addresses: bool = True) -> CompiledProblem:
-        """The compiled side for `multibody.compiled.integrate_compiled`; without `addresses` the
-        force kernel is not compiled and its address is 0 (`multibody.compiled.compile_loop`)."""
+    def compiled(self, compile_kernel: bool = True) -> CompiledProblem:
+        """The compiled side for `multibody.compiled.integrate_compiled`; without `compile_kernel`
+        the force kernel is not compiled, only typed (`multibody.compiled.compile_loop`)."""
         rows = np.array([layout.spin_row(self.params.ball_count)], dtype=np.int64)
         K, C = self._blocks
         n = np.zeros(self.n_dof)  # the kernel's argument types, as the loop passes them
         args = (0.0, n, n, n, self.arrays, False, n, n, self.diag, K, C)
         # one kernel for the tangent calls and Newton's residual-only calls (want_tangent at run time)
-        kernel = kernel_address(evaluate_bearing, args) if addresses else 0
-        return CompiledProblem(bearing_chunk, kernel, kernel, self.arrays, self.log, self.mass, rows, self.diag, K, C,
+        kernel = KernelFunction(evaluate_bearing, args, compile=compile_kernel)
+        return CompiledProblem(bearing_chunk, kernel, self.arrays, self.log, self.mass, rows, self.diag, K, C,
                                self.drain)
 
     # --- results -----------------------------------------------------------------------

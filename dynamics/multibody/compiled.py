@@ -15,18 +15,21 @@ What a problem supplies (`CompiledProblem`), with K and C in block-arrow form
 
     kernel(t, q, v, a, data, want_tangent, ma, g, diag, K, C) -> float
         fills ma = M a, g = g(t, q, v), its diagnostics `diag`, and K_t = -dg/dq,
-        C_t = -dg/dv when want_tangent (as the protocol's evaluate / jacobian); given as
-        the address of its compiled overload (`kernel_address`), called by `call_kernel`;
-    residual_kernel, of the same signature: the same ma, g and diag without tangents, called
-        in Newton's iterations (it may be the same address; a kernel of its own can be
-        compiled without what only the tangents need, such as reference counting);
+        C_t = -dg/dv when want_tangent (as the protocol's evaluate / jacobian; Newton's
+        iterations call it without); given as a numba first-class function value
+        (`KernelFunction`: one compiled overload, through the C entry numba compiles beside it);
     accepted(t, q, v, a, data, diag, hook) -> bool
         after each accepted step, from the diagnostics of its last evaluation; True asks
         for the chunk to end so that Python can drain what the hook collected;
     rows whose residual the kernel replaces by a prescribed velocity (`joints.py`).
 
-The kernel is called through its address because a dispatcher call links the kernel into the
-loop, where LLVM optimises it a second time (four times the compile time for the bearing). The hook is called through its dispatcher; numba cannot cache a function that keeps a
+The kernel is a first-class function value rather than a dispatcher because a dispatcher call
+links the kernel into the loop, where LLVM optimises it a second time (four times the compile
+time for the bearing); a function value is an address the loop calls, so loop and kernel are
+separate libraries that compile apart, even in separate processes (`compile_loop`). numba's C
+entry cannot pass an exception on: it reports it through `sys.unraisablehook` and returns 0.0,
+so `integrate_compiled` collects those reports and raises after the chunk (`kernel_errors`).
+The hook is called through its dispatcher; numba cannot cache a function that keeps a
 jitted function as a run-time value, so `hht_chunk`, which takes it, is inlined into one
 module-level wrapper per problem that passes its hook; the wrapper is cached like any other
 kernel.
@@ -38,7 +41,9 @@ and a step log (t, h, residual evaluations, factorisations) every `log_every` st
 
 from __future__ import annotations
 
+import contextlib
 import math
+import sys
 import time
 from dataclasses import dataclass, field
 from typing import Callable, NamedTuple
@@ -46,7 +51,6 @@ from typing import Callable, NamedTuple
 import numba
 import numpy as np
 from numba.core import types as nbtypes
-from numba.extending import intrinsic
 
 from .buffers import zeroed
 from .hht import NEWTON_CONVERGED, NEWTON_DIVERGED, hht_residual, newmark_kinematics, newton_verdict, \
@@ -177,17 +181,58 @@ class Output(NamedTuple):
     log_every: int
 
 
+class KernelFunction(nbtypes.WrapperAddressProtocol):
+    """One compiled overload of a force kernel as a numba first-class function value: the
+    overload of `dispatcher` for the types of `args` (compiled if needed), called through the C
+    entry numba compiles beside it (so the dispatcher keeps it: `compile_policy.FIRST_CLASS`).
+    Without `compile` only its type is known (address 0), which is all that compiling a loop
+    that takes it needs (`compile_loop`)."""
+
+    def __init__(self, dispatcher, args, compile: bool = True) -> None:
+        argtypes = tuple(numba.typeof(x) for x in args)
+        self._signature = nbtypes.float64(*argtypes)
+        self._address = 0
+        if not compile:
+            return
+        dispatcher.compile(argtypes)
+        cres = dispatcher.overloads[argtypes]
+        if cres.signature.return_type != nbtypes.float64:
+            raise TypeError(f"{dispatcher.__name__} returns {cres.signature.return_type}; the compiled loop "
+                            "calls force kernels that return float64")
+        self._address = cres.library.get_pointer_to_function(cres.fndesc.llvm_cfunc_wrapper_name)
+        if not self._address:
+            raise TypeError(f"{dispatcher.__name__} has no C entry: compile it with compile_policy.FIRST_CLASS")
+
+    def __wrapper_address__(self) -> int:
+        return self._address
+
+    def signature(self):
+        return self._signature
+
+
+@contextlib.contextmanager
+def kernel_errors():
+    """Collect the exceptions a kernel raised under a first-class call: numba's C entry reports
+    each through `sys.unraisablehook` (restored on exit) and returns 0.0 to the loop, which runs
+    on to the end of its chunk; the caller raises after the chunk (`integrate_compiled`)."""
+    caught = []
+    previous = sys.unraisablehook
+    sys.unraisablehook = caught.append
+    try:
+        yield caught
+    finally:
+        sys.unraisablehook = previous
+
+
 class CompiledProblem(NamedTuple):
-    """A problem's compiled side: `chunk(kernels, data, hook, settings, coords, work, out,
-    max_steps)` is its cached wrapper around `hht_chunk`; `kernel` and `residual_kernel` the
-    addresses of its compiled force kernels (`kernel_address`; the module docstring), passed
-    to `chunk` as the pair `kernels`; data and hook are the bundles its kernels and hook take;
-    diag, K and C the buffers its kernel fills; `drain()` empties what the hook collected
+    """A problem's compiled side: `chunk(kernel, data, hook, settings, coords, work, out,
+    max_steps)` is its cached wrapper around `hht_chunk`; `kernel` its compiled force kernel
+    (`KernelFunction`; the module docstring); data and hook are the bundles its kernel and hook
+    take; diag, K and C the buffers its kernel fills; `drain()` empties what the hook collected
     (called after every chunk)."""
 
     chunk: object
-    kernel: int
-    residual_kernel: int
+    kernel: KernelFunction
     data: tuple
     hook: tuple
     mass: np.ndarray
@@ -196,38 +241,6 @@ class CompiledProblem(NamedTuple):
     K: Blocks
     C: Blocks
     drain: Callable[[], None]
-
-
-@intrinsic
-def call_kernel(typingctx, address, args):
-    """Call the compiled force kernel at `address` (an int, `kernel_address`) with the tuple
-    `args`; returns its float64. A call through a pointer rather than through the dispatcher:
-    the kernel is not linked into the loop and optimised again with it, which is what made
-    compiling the loop cost as much as compiling the kernel, and a pointer passed as an
-    argument leaves the loop cacheable. The argument types must be those of the overload
-    the address belongs to (`kernel_address` takes them from the same arrays)."""
-    if not isinstance(address, nbtypes.Integer) or not isinstance(args, nbtypes.BaseTuple):
-        return None
-    argtys = tuple(args.types)
-
-    def codegen(context, builder, signature, llargs):
-        addr, packed = llargs
-        values = [builder.extract_value(packed, i) for i in range(len(argtys))]
-        fnty = context.call_conv.get_function_type(nbtypes.float64, argtys)
-        fnptr = builder.inttoptr(addr, fnty.as_pointer())
-        _, result = context.call_conv.call_function(builder, fnptr, nbtypes.float64, argtys, values)
-        return result
-
-    return nbtypes.float64(address, args), codegen
-
-
-def kernel_address(dispatcher, args) -> int:
-    """Address of `dispatcher`'s compiled overload for the types of `args` (compiled if needed),
-    for `call_kernel`."""
-    sig = tuple(numba.typeof(x) for x in args)
-    dispatcher.compile(sig)
-    cres = dispatcher.overloads[sig]
-    return int(cres.library.get_pointer_to_function(cres.fndesc.llvm_func_name))
 
 
 @numba.njit
@@ -241,11 +254,11 @@ def _norm(ls, co, x, y, coef, q_a, q_b):
 # _attempt -> _newton -> _factor; inlined, the loop compiles in about two thirds of the time
 # (`python -m benchmarks.cold_start`, docs/performance.md). The steps taken are the same.
 @numba.njit(inline="always")
-def _factor(kernels, data, ls, co, w, t1, q, v, a, h):
+def _factor(kernel, data, ls, co, w, t1, q, v, a, h):
     """Rebuild S = M + (1 - alpha)(gamma h C_t + beta h^2 K_t) at (t1, q, v, a) and factor it."""
     # bool(True), not True: numba types a constant as a literal type of its own, which is not the
-    # argument type of the overload `kernel_address` took the address of
-    call_kernel(kernels[0], (t1, q, v, a, data, bool(True), w.ma_t, w.g_t, w.diag, w.K, w.C))
+    # argument type of the kernel's function value (`KernelFunction`)
+    kernel(t1, q, v, a, data, bool(True), w.ma_t, w.g_t, w.diag, w.K, w.C)
     c_v = (1.0 - ls.alpha) * ls.gamma * h
     assemble_iteration_blocks(w.K, w.C, co.mass, 1.0, c_v, (1.0 - ls.alpha) * ls.beta * h * h, w.S)
     for i in co.prescribed_rows:
@@ -259,7 +272,7 @@ def _factor(kernels, data, ls, co, w, t1, q, v, a, h):
 
 
 @numba.njit(inline="always")
-def _newton(kernels, data, ls, co, w, t1, h, y, y1, fresh):
+def _newton(kernel, data, ls, co, w, t1, h, y, y1, fresh):
     """Newton on a_{n+1} (as `HHTStepper._newton`); returns _OK or a failure index."""
     q, v, a, g = y[0], y[1], y[2], y[3]
     q1, v1, a1, g1, dq1 = y1[0], y1[1], y1[2], y1[3], y1[4]
@@ -269,7 +282,7 @@ def _newton(kernels, data, ls, co, w, t1, h, y, y1, fresh):
     floor = NEWTON_FLOOR * _norm(ls, co, q, w.zeros, MACHINE_EPSILON, q, q)
     for k in range(ls.max_newton_iter):
         newmark_kinematics(q, v, a, a1, h, ls.beta, ls.gamma, co.rotation_slots, dq1, q1, v1)
-        call_kernel(kernels[1], (t1, q1, v1, a1, data, bool(False), w.ma, g1, w.diag, w.K, w.C))
+        kernel(t1, q1, v1, a1, data, bool(False), w.ma, g1, w.diag, w.K, w.C)
         w.counters[N_RESIDUALS] += 1
         r_max = hht_residual(w.ma, g1, g, ls.alpha, w.r)
         if r_max == math.inf:
@@ -277,7 +290,7 @@ def _newton(kernels, data, ls, co, w, t1, h, y, y1, fresh):
         if k > 0 and r_max <= ls.residual_tol:
             return _OK
         if rebuild:
-            if not _factor(kernels, data, ls, co, w, t1, q1, v1, a1, h):
+            if not _factor(kernel, data, ls, co, w, t1, q1, v1, a1, h):
                 return _SINGULAR
             fresh, rebuild = True, False
         block_arrow_solve(f.Dinv_T, f.F_T, f.DinvE_T, f.schur, f.piv_S, w.r, w.da)
@@ -297,7 +310,7 @@ def _newton(kernels, data, ls, co, w, t1, h, y, y1, fresh):
 
 
 @numba.njit(inline="always")
-def _attempt(kernels, data, ls, co, w, t, h, y, y1):
+def _attempt(kernel, data, ls, co, w, t, h, y, y1):
     """One attempted step (as `HHTStepper.step`): (error norm, _OK or a failure index)."""
     t1 = t + h
     h_prev = w.state[S_H_PREV]
@@ -306,10 +319,10 @@ def _attempt(kernels, data, ls, co, w, t, h, y, y1):
     if needs_refactor(w.state[S_STALE] > 0.0, w.state[S_H_FACTORED], h, ls.keep_across_steps,
                       ls.refactor_step_ratio):
         newmark_kinematics(y[0], y[1], y[2], y1[2], h, ls.beta, ls.gamma, co.rotation_slots, y1[4], y1[0], y1[1])
-        if not _factor(kernels, data, ls, co, w, t1, y1[0], y1[1], y1[2], h):
+        if not _factor(kernel, data, ls, co, w, t1, y1[0], y1[1], y1[2], h):
             return math.inf, _SINGULAR
         fresh = True
-    result = _newton(kernels, data, ls, co, w, t1, h, y, y1, fresh)
+    result = _newton(kernel, data, ls, co, w, t1, h, y, y1, fresh)
     if result != _OK:
         w.state[S_STALE] = 1.0
         return math.inf, result
@@ -352,7 +365,7 @@ def _record(ls, w, out, t, y):
 
 
 @numba.njit(inline="always")
-def hht_chunk(kernels, accepted, data, hook, ls, co, w, out, max_steps):
+def hht_chunk(kernel, accepted, data, hook, ls, co, w, out, max_steps):
     """Up to `max_steps` accepted HHT-α steps (the control flow of `time_loop.integrate`).
 
     Returns DONE at t1, CHUNK_END after max_steps or when the hook asks for a drain, or
@@ -371,7 +384,7 @@ def hht_chunk(kernels, accepted, data, hook, ls, co, w, out, max_steps):
             h = (ls.t1 - ls.t0) / ls.n_fixed
         cur = c[N_CUR]
         y, y1 = w.Y[cur], w.Y[1 - cur]
-        err, result = _attempt(kernels, data, ls, co, w, t, h, y, y1)
+        err, result = _attempt(kernel, data, ls, co, w, t, h, y, y1)
         if result != _OK:
             c[N_REJECTED] += 1
             c[N_NEWTON_FAILURES] += 1
@@ -447,6 +460,11 @@ class RunTrace:
     log: list = field(default_factory=list)
 
 
+# a raising kernel is a defect, not a numerical difficulty that a setting avoids
+_KERNEL_ERROR_HINT = ("report it with the scene; `time_loop.integrate`, the Python loop, runs the same problem and "
+                      "raises the kernel's exception where it happens")
+
+
 def integrate_compiled(problem, t0: float, t1: float, q0, v0, settings: HHTSettings | None = None, *,
                        sampler=None, record_dt: float = 0.0, log_every: int = 0,
                        on_chunk: Callable[[float, float], None] | None = None,
@@ -476,7 +494,14 @@ def integrate_compiled(problem, t0: float, t1: float, q0, v0, settings: HHTSetti
                                      record_dt, log_every, chunk_steps)
     stall = NewtonStallWatch(settings.alpha)
     while True:
-        status = cp.chunk((cp.kernel, cp.residual_kernel), cp.data, cp.hook, ls, co, w, out, chunk_steps)
+        t_chunk = w.state[S_T]
+        with kernel_errors() as raised:
+            status = cp.chunk(cp.kernel, cp.data, cp.hook, ls, co, w, out, chunk_steps)
+        if raised:
+            error = raised[0]
+            raise IntegrationError(t_chunk, w.state[S_H], f"the force kernel raised {error.exc_type.__name__}: "
+                                   f"{error.exc_value} in the chunk from this time on", _KERNEL_ERROR_HINT) \
+                from error.exc_value
         cp.drain()
         logged.append(out.log[:int(w.counters[N_LOGGED])].copy())
         w.counters[N_LOGGED] = 0
@@ -535,14 +560,15 @@ def _loop_arguments(problem, cp: CompiledProblem, settings: HHTSettings, span, s
 def compile_loop(problem, settings: HHTSettings | None = None, chunk_steps: int = 1000) -> None:
     """Compile (or load from numba's cache) the time loop of `problem` for the argument types
     `integrate_compiled` passes it, without compiling its force kernel
-    (`problem.compiled(addresses=False)`): the two are separate libraries (`call_kernel`), so a
-    second process can compile the kernel meanwhile."""
+    (`problem.compiled(compile_kernel=False)`): the two are separate libraries (the kernel is a
+    first-class function value, `KernelFunction`), so a second process can compile the kernel
+    meanwhile."""
     settings = settings or HHTSettings()
-    cp = problem.compiled(addresses=False)
+    cp = problem.compiled(compile_kernel=False)
     z = np.zeros(problem.n_dof)
     w, out, co, ls = _loop_arguments(problem, cp, settings, (0.0, settings.first_step), (z, z, z, z, np.zeros(0)),
                                      None, 0.0, 0, chunk_steps)
-    args = ((cp.kernel, cp.residual_kernel), cp.data, cp.hook, ls, co, w, out, chunk_steps)
+    args = (cp.kernel, cp.data, cp.hook, ls, co, w, out, chunk_steps)
     cp.chunk.compile(tuple(numba.typeof(x) for x in args))
 
 

@@ -9,6 +9,7 @@ border coordinate) whose kernel raises after a given time."""
 from __future__ import annotations
 
 import sys
+import threading
 
 import numba
 import numpy as np
@@ -16,7 +17,7 @@ import pytest
 
 from bearingsim.dynamics.multibody import IntegrationError, integrate
 from bearingsim.dynamics.multibody.compiled import CompiledProblem, KernelFunction, hht_chunk, \
-    integrate_compiled
+    integrate_compiled, kernel_errors
 from bearingsim.dynamics.multibody.linear_solvers import BlockArrowMatrix, BlockArrowSolver
 
 STIFFNESS, DAMPING, MASS = 1.0e4, 2.0, 1.0  # N/m, N s/m, kg: a 16 Hz oscillator
@@ -116,3 +117,42 @@ def test_a_kernel_without_a_c_entry_is_refused():
     n = np.zeros(2)
     with pytest.raises(TypeError, match="no C entry"):
         KernelFunction(_no_c_entry, problem._kernel_args(0.0, n, n, n, False, n, n))
+
+
+def test_runs_in_two_threads_get_their_own_kernels_errors():
+    """A threaded worker may run two points at once: the reports of numba's C entry are routed
+    to the run whose thread called the kernel. Chunks of 10 steps, so the threads alternate
+    between chunks many times over the run."""
+    outcomes: dict[str, object] = {}
+
+    def run(name: str, t_fail: float) -> None:
+        try:
+            outcomes[name] = integrate_compiled(Oscillator(t_fail), 0.0, 2e-2, *START, chunk_steps=10)[0]
+        except IntegrationError as exc:
+            outcomes[name] = exc
+
+    hook_before = sys.unraisablehook
+    threads = [threading.Thread(target=run, args=("fails", 5e-3)), threading.Thread(target=run, args=("runs", np.inf))]
+    for th in threads:
+        th.start()
+    for th in threads:
+        th.join()
+    assert isinstance(outcomes["fails"], IntegrationError)
+    assert outcomes["runs"].t == pytest.approx(2e-2, abs=0.0)
+    assert sys.unraisablehook is hook_before
+
+
+def test_a_report_outside_any_run_goes_to_the_previous_hook():
+    """While a run collects, a report from another thread reaches the hook that was in place."""
+    seen = []
+    previous = sys.unraisablehook
+    sys.unraisablehook = seen.append
+    try:
+        with kernel_errors() as caught:
+            other = threading.Thread(target=lambda: sys.unraisablehook("from another thread"))
+            other.start()
+            other.join()
+            sys.unraisablehook("from this thread")
+    finally:
+        sys.unraisablehook = previous
+    assert seen == ["from another thread"] and caught == ["from this thread"]

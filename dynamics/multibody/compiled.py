@@ -44,6 +44,7 @@ from __future__ import annotations
 import contextlib
 import math
 import sys
+import threading
 import time
 from dataclasses import dataclass, field
 from typing import Callable, NamedTuple
@@ -210,18 +211,47 @@ class KernelFunction(nbtypes.WrapperAddressProtocol):
         return self._signature
 
 
+# The threads inside `kernel_errors` blocks, each with the list its kernels' exceptions go to.
+# numba's C entry reports an exception in the thread that called the kernel, so the reports
+# are routed by thread: two runs in threads of one process (a threaded Dask worker) never see
+# each other's, and outside any block they go to the hook that was there before.
+_collecting: dict[int, list] = {}
+_collecting_lock = threading.Lock()
+_hook_outside: list = []
+
+
+def _route_unraisable(unraisable) -> None:
+    caught = _collecting.get(threading.get_ident())
+    if caught is not None:
+        caught.append(unraisable)
+    else:
+        (_hook_outside[0] if _hook_outside else sys.__unraisablehook__)(unraisable)
+
+
 @contextlib.contextmanager
 def kernel_errors():
-    """Collect the exceptions a kernel raised under a first-class call: numba's C entry reports
-    each through `sys.unraisablehook` (restored on exit) and returns 0.0 to the loop, which runs
-    on to the end of its chunk; the caller raises after the chunk (`integrate_compiled`)."""
-    caught = []
-    previous = sys.unraisablehook
-    sys.unraisablehook = caught.append
+    """Collect the exceptions a kernel raised under a first-class call in this thread: numba's C
+    entry reports each through `sys.unraisablehook` and returns 0.0 to the loop, which runs on to
+    the end of its chunk; the caller raises after the chunk (`integrate_compiled`). The hook is
+    in place only while a block is open in some thread, then restored."""
+    caught: list = []
+    me = threading.get_ident()
+    with _collecting_lock:
+        if not _collecting:
+            _hook_outside[:] = [sys.unraisablehook]
+            sys.unraisablehook = _route_unraisable
+        outer = _collecting.get(me)  # a block opened inside another in the same thread
+        _collecting[me] = caught
     try:
         yield caught
     finally:
-        sys.unraisablehook = previous
+        with _collecting_lock:
+            if outer is None:
+                del _collecting[me]
+            else:
+                _collecting[me] = outer
+            if not _collecting:
+                sys.unraisablehook = _hook_outside.pop()
 
 
 class CompiledProblem(NamedTuple):

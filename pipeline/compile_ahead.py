@@ -4,11 +4,11 @@ before the dynamic run.
 On a machine whose cache lacks the scene's kernels, the dynamic run waits minutes for numba
 to compile them, yet they depend on no result of the stages before it (identify, the
 quasi-static solution): only on the scene's kernel configuration (`kernel_cache`). So the
-command line starts a child process that compiles the longest of them, the force kernel, on
-another core, under that kernel's own lock; it needs no quasi-static solution. This process
-compiles the quasi-static kernels in their stage and the time loop at the start of the dynamic
-run, then waits on the force kernel's lock for what the child has not finished. On one core,
-or with the kernels cached, nothing is started.
+command line starts a child process that compiles the force kernel (without its tangent kernel)
+and the time loop on another core, under their own lock; they need no quasi-static solution. This
+process compiles the quasi-static kernels in their stage and the tangent kernel at the start of
+the dynamic run, then waits on the child's lock for what it has not finished: the two halves take
+about as long. On one core, or with the kernels cached, nothing is started.
 """
 
 from __future__ import annotations
@@ -67,10 +67,10 @@ def stop(child: subprocess.Popen | None) -> None:
 
 def _main() -> None:
     from .kernel_cache import ensure_compiled, force_configuration
-    from .warmup import compile_force_kernel
+    from .warmup import compile_force_and_loop
 
     scene = pickle.loads(sys.stdin.buffer.read())
-    ensure_compiled(scene, lambda: compile_force_kernel(scene), force_configuration(scene))
+    ensure_compiled(scene, lambda: compile_force_and_loop(scene), force_configuration(scene))
 
 
 if __name__ == "__main__":

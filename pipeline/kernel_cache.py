@@ -38,9 +38,15 @@ def kernel_configuration(scene) -> str:
 
 
 def force_configuration(scene) -> str:
-    """The configuration key of the scene's force kernel alone, compiled apart from the rest of
-    the dynamic run's kernels by `compile_ahead`."""
+    """The configuration key of the scene's force kernel and time loop, which a `compile_ahead`
+    child compiles while this process runs the stages before the dynamic run."""
     return kernel_configuration(scene) + "-force"
+
+
+def tangent_configuration(scene) -> str:
+    """The configuration key of the scene's tangent kernel, which this process compiles at the
+    start of the dynamic run while a `compile_ahead` child may still compile the force kernel."""
+    return kernel_configuration(scene) + "-tangent"
 
 
 def cache_directory() -> Path | None:
@@ -51,7 +57,7 @@ def cache_directory() -> Path | None:
 
 def compiled_marker(cache: Path, configuration: str) -> Path:
     """The file that says `cache` holds the kernels of `configuration` (a key of
-    `kernel_configuration`, `force_configuration`, or "quasistatic")."""
+    `kernel_configuration`, `force_configuration`, `tangent_configuration`, or "quasistatic")."""
     return cache / f".compiled-{configuration}"
 
 

@@ -21,18 +21,21 @@ def _without_fe_hinge(scene):
                                                   damping_ratio_time=scene.hinge.damping_ratio_time))
 
 
-def compile_force_kernel(scene) -> None:
-    """Compile (or load) the force kernel of `scene`'s dynamic run alone: it needs no quasi-static
-    solution (the inner race at its nominal position)."""
+def compile_force_and_loop(scene) -> None:
+    """Compile (or load) the force kernel of `scene`'s dynamic run, without its tangent kernel,
+    and the time loop: they need no quasi-static solution (the inner race at its nominal
+    position; only the argument types matter)."""
     import numpy as np
 
-    from bearingsim.dynamics.bearing.run import compile_force_kernel as compile_kernel
+    from bearingsim.dynamics.bearing.run import compile_force_kernel, compile_time_loop
 
     from .stages.simulate import check_dynamic_physics, model_params
 
     scene = _without_fe_hinge(scene)
     check_dynamic_physics(scene)
-    compile_kernel(model_params(scene, None, np.zeros(3), np.eye(3)))
+    params = model_params(scene, None, np.zeros(3), np.eye(3))
+    compile_force_kernel(params)
+    compile_time_loop(params, scene.solver)
 
 
 def compile_scene_kernels(scene) -> None:

@@ -418,12 +418,12 @@ def test_a_tangent_call_gives_the_residual_of_a_residual_only_call(case, lubrica
         out = []
         for want_tangent in (True, False):
             ma, g, diag = np.zeros(q.size), np.zeros(q.size), np.zeros(model.diag.size)
-            drive = evaluate_bearing(0.0, q, v, a, model.arrays, want_tangent, ma, g, diag, K, C)
+            drive = evaluate_bearing(0.0, q, v, a, model.kernel_data(), want_tangent, ma, g, diag, K, C)
             out.append((drive, ma, g, diag))
         assert np.abs(out[0][2]).max() > 1.0
         assert np.array_equal(out[0][1], out[1][1])  # M a
-        # float64: the tangent route's own arithmetic (the hinge's matrices, the traction with its
-        # Jacobian) rounds differently; float32: the traction's rounding as well
+        # float64: the tangent route's traction, computed with its Jacobian, rounds differently;
+        # float32: the residual passes' rounding as well
         tol = 1e-5 if float32 else 1e-12
         np.testing.assert_allclose(out[1][2], out[0][2], rtol=0, atol=tol * np.abs(out[0][2]).max())
         assert abs(out[1][0] - out[0][0]) <= tol * abs(out[0][0])
@@ -434,7 +434,7 @@ def test_a_tangent_call_gives_the_residual_of_a_residual_only_call(case, lubrica
                model.arrays.work.journal_squeeze, model.K.D, model.C.B]
     before = [sys.getrefcount(x) for x in watched]
     for i in range(50):
-        evaluate_bearing(0.0, q, v, a, model.arrays, i % 5 == 0, ma, g, diag, K, C)
+        evaluate_bearing(0.0, q, v, a, model.kernel_data(), i % 5 == 0, ma, g, diag, K, C)
     assert [sys.getrefcount(x) for x in watched] == before
 
 
@@ -461,9 +461,9 @@ def test_a_residual_call_clears_every_slot_it_reads_and_no_tangent_value_leaks_i
         K, C = model.K.blocks(), model.C.blocks()
         ma, g, diag = np.zeros(q.size), np.zeros(q.size), np.zeros(model.diag.size)
         if tangent_first:
-            evaluate_bearing(0.0, q_b, v_b, a, model.arrays, True, ma, g, diag, K, C)
+            evaluate_bearing(0.0, q_b, v_b, a, model.kernel_data(), True, ma, g, diag, K, C)
             assert np.abs(model.arrays.work.rows[:, sorted(tangent_only)]).max() > 0.0
-        drive = evaluate_bearing(0.0, q, v, a, model.arrays, False, ma, g, diag, K, C)
+        drive = evaluate_bearing(0.0, q, v, a, model.kernel_data(), False, ma, g, diag, K, C)
         out.append((drive, ma.copy(), g.copy(), diag.copy(), model.arrays.work.rows[:, sorted(cleared)].copy()))
     assert out[0][0] == out[1][0]
     for x, y in zip(out[0][1:], out[1][1:]):

@@ -174,19 +174,19 @@ def test_two_workers_of_an_outside_scheduler_compile_once(tmp_path):
             p.wait(30)
     logs = list((tmp_path / "xdg" / "bearingsim" / "numba").glob(f"*/{kernel_cache.LOG_FILE}"))
     assert len(logs) == 1
-    # one line a compiled configuration (the quasi-static kernels, the force kernel, the rest of the
-    # dynamic run's): each compiled once, by one of the workers
+    # one line a compiled configuration (the quasi-static kernels, the tangent kernel, the force
+    # kernel and time loop, the rest of the dynamic run's): each compiled once, by one of the workers
     import re
 
     compiled = [re.search(r"compiled configuration (\S+) ", line).group(1) for line in logs[0].read_text().splitlines()]
-    assert sorted(compiled) == sorted(set(compiled)) and len(compiled) == 3, compiled
+    assert sorted(compiled) == sorted(set(compiled)) and len(compiled) == 4, compiled
 
 
 @pytest.mark.slow
 def test_a_cold_run_compiles_its_dynamic_kernels_ahead_in_one_child(tmp_path):
-    """`bearingsim run` on an empty cache: the force kernel is compiled once, by the child
-    `compile_ahead` started (its pid in run.log), and the run itself compiles the rest and loads
-    the force kernel."""
+    """`bearingsim run` on an empty cache: the force kernel and the time loop are compiled once,
+    by the child `compile_ahead` started (its pid in run.log), the tangent kernel once by the run
+    itself, which then loads what the child compiled."""
     import re
     import subprocess
     import sys
@@ -205,7 +205,9 @@ def test_a_cold_run_compiles_its_dynamic_kernels_ahead_in_one_child(tmp_path):
     notes = (cache / kernel_cache.LOG_FILE).read_text().splitlines()
     force = [line for line in notes if "-force " in line]
     assert len(force) == 1 and f"pid {child.group(1)} " in force[0], notes
-    rest = [line for line in notes if "-force " not in line and "quasistatic" not in line]
+    tangent = [line for line in notes if "-tangent " in line]
+    assert len(tangent) == 1 and f"pid {child.group(1)} " not in tangent[0], notes
+    rest = [line for line in notes if not any(part in line for part in ("-force ", "-tangent ", "quasistatic"))]
     assert len(rest) == 1 and f"pid {child.group(1)} " not in rest[0], notes
 
 

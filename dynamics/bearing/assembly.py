@@ -1,5 +1,6 @@
-"""The bearing's residual pieces in one numba kernel: M a, g(t, q, v) and (on request) the
-block-arrow tangents K_t = -dg/dq, C_t = -dg/dv (docs/model.md §4–§9, paper eq. 8).
+"""The bearing's residual and its tangents as two numba kernels: `evaluate_bearing` gives M a,
+g(t, q, v) and the diagnostics and, on request, calls `bearing_tangents` for the block-arrow
+tangents K_t = -dg/dq, C_t = -dg/dv (docs/model.md §4–§9, paper eq. 8).
 
 Per evaluation: 2Z ball–race contacts (race_forces), Z ball–pocket contacts and one
 cage–race journal (cage_forces), the viscoelastic hinge (M.19–M.20), external loads on
@@ -27,7 +28,7 @@ from bearingsim.dynamics.multibody.rigid_body import gyroscopic_moment
 from bearingsim.dynamics.multibody.small import mm, mtv_into, mv, mv_into
 
 from .bundles import Ball, Bodies, Body
-from .cage_forces import journal_diag, journal_forces, pocket_diag, pocket_forces, pocket_tangent
+from .cage_forces import journal_diag, journal_forces, journal_tangent, pocket_diag, pocket_forces, pocket_tangent
 from .channels import (
     DB, DB_AI, DB_HI, DB_PMI, DB_QI, DB_SRRI, DG_DRIVE, DG_FLAGS, DG_P_DISS, DG_P_DRIVE, DG_P_EXT,
     DG_V_HERTZ, DG_V_HINGE, N_DG,
@@ -66,47 +67,29 @@ def mass_diagonal(fp, ip, n):
 
 
 @numba.njit(**FIRST_CLASS)
-def evaluate_bearing(t, q, v, a, model, want_tangent, ma, g, diag, K, C):
+def evaluate_bearing(t, q, v, a, data, want_tangent, ma, g, diag, K, C):
     """Fill ma = M a, g = g(t, q, v), diag (channels.py) and, when want_tangent, the
-    tangent blocks K, C (`linear_solvers.Blocks`). model: `bundles.ModelArrays`.
-    Returns the drive moment [N m] that holds the inner-race spin (M.52).
+    tangent blocks K, C (`linear_solvers.Blocks`). data: `bundles.BearingData` (the model's
+    arrays and its tangent kernel). Returns the drive moment [N m] that holds the inner-race
+    spin (M.52).
 
     One kernel for the Newton iterations' residual-only calls and the refactorisations' tangent
-    calls, with want_tangent a run-time flag: the residual path allocates nothing and runs
-    without reference counting (`NO_REFCOUNT`); the tangent terms, which build small arrays, are
-    kernels of their own with reference counting (`_ball_tangents`, `_hinge_tangent`,
-    `_inner_race_tangent`, `_cage_tangent`), called only when want_tangent. Compiled once, its
-    code is optimised once (docs/performance.md, *Compiling*)."""
-    fp, ip = model.fp, model.ip
-    Z = ip[IP_Z]
+    calls, with want_tangent a run-time flag. The residual allocates nothing and runs without
+    reference counting (`NO_REFCOUNT`); with want_tangent the contact rows keep their tangent
+    ingredients, and the tangent blocks are then filled by `bearing_tangents`, which this kernel
+    calls as a first-class function value (`data.tangents`): the two are separate libraries that
+    compile apart, in two processes on a machine's first run (docs/performance.md, *Compiling*)."""
+    model = data.arrays
+    ip = model.ip
     g[:] = 0.0
     diag[:] = 0.0
     for i in range(ma.shape[0]):
         ma[i] = model.mass[i] * a[i]
-    if want_tangent:
-        for M in (K, C):
-            M.D[:] = 0.0
-            M.E[:] = 0.0
-            M.F[:] = 0.0
-            M.B[:] = 0.0
     # the model's scratch (`bundles.ResidualWork`), not fresh arrays: ~16 allocations per call
     # with their reference counts would show in a profile of the run
     work = model.work
-    o_i = BALL_DOF * Z
-    R_i = work.R_inner
-    crv_to_matrix_into(q[o_i + 3:o_i + 6], R_i)
-    mv_into(R_i, v[o_i + 3:o_i + 6], work.w_inner)
-    inner = Body(q[o_i:o_i + 3], R_i, v[o_i:o_i + 3], work.w_inner)
-    outer = work.outer
-    outer.w[2] = fp[FP_OMEGA_O]  # the parameters are the one source of the outer race's speed
-    cage = inner  # a placeholder of the same type: read only when the bearing has a cage
-    if ip[IP_CAGE]:
-        o_c = o_i + RACE_DOF
-        R_c = work.R_cage
-        crv_to_matrix_into(q[o_c + 3:o_c + 6], R_c)
-        mv_into(R_c, v[o_c + 3:o_c + 6], work.w_cage)
-        cage = Body(q[o_c:o_c + 3], R_c, v[o_c:o_c + 3], work.w_cage)
-    bodies = Bodies(inner, outer, cage)
+    _turn_bodies(q, v, model)
+    bodies = _bodies(q, v, model)
     loads = work.loads
     for i in range(3):
         loads.F_inner[i] = 0.0
@@ -116,9 +99,61 @@ def evaluate_bearing(t, q, v, a, model, want_tangent, ma, g, diag, K, C):
     rows = work.rows  # one row per ball-race contact: inner 2k, outer 2k + 1
     pocket_rows = work.pocket_rows
     _ball_forces(q, v, model, bodies, work.scratch, rows, pocket_rows, g, diag, loads, bool(want_tangent))
+    drive = _border(t, v, model, bodies, loads, ma, g, diag)
     if want_tangent:
-        _ball_tangents(v, model, bodies, rows, pocket_rows, q, K, C)
-    return _border(t, v, model, bodies, loads, ma, g, diag, K.B, C.B, want_tangent)
+        data.tangents(q, v, model, K, C)
+    return drive
+
+
+@numba.njit(**FIRST_CLASS)
+def bearing_tangents(q, v, model, K, C):
+    """The tangent blocks K = -dg/dq, C = -dg/dv (`linear_solvers.Blocks`) at the state that
+    `evaluate_bearing` has just evaluated with want_tangent, from what it left in the model's
+    scratch (`bundles.ResidualWork`: the contact and pocket rows, the border bodies' rotations,
+    the material moments, the cage–land row). model: `bundles.ModelArrays`. Returns 0.0.
+
+    The tangent terms build small arrays: they are kernels with reference counting
+    (`_ball_tangents`, `_hinge_tangent`, `_inner_race_tangent`, `_cage_tangent`), added in a
+    fixed order (balls, hinge, inner race, cage, cage land)."""
+    for M in (K, C):
+        M.D[:] = 0.0
+        M.E[:] = 0.0
+        M.F[:] = 0.0
+        M.B[:] = 0.0
+    bodies = _bodies(q, v, model)
+    work = model.work
+    _ball_tangents(v, model, bodies, work.rows, work.pocket_rows, q, K, C)
+    _border_tangents(v, model, bodies, K.B, C.B)
+    return 0.0
+
+
+@numba.njit(cache=True, inline="always")
+def _turn_bodies(q, v, model):
+    """The rotations and spatial angular velocities of the inner race and the cage at (q, v),
+    and the outer race's speed, into the model's scratch (`_bodies` reads them)."""
+    fp, ip, work = model.fp, model.ip, model.work
+    o_i = BALL_DOF * ip[IP_Z]
+    crv_to_matrix_into(q[o_i + 3:o_i + 6], work.R_inner)
+    mv_into(work.R_inner, v[o_i + 3:o_i + 6], work.w_inner)
+    work.outer.w[2] = fp[FP_OMEGA_O]  # the parameters are the one source of the outer race's speed
+    if ip[IP_CAGE]:
+        o_c = o_i + RACE_DOF
+        crv_to_matrix_into(q[o_c + 3:o_c + 6], work.R_cage)
+        mv_into(work.R_cage, v[o_c + 3:o_c + 6], work.w_cage)
+
+
+@numba.njit(cache=True, inline="always")
+def _bodies(q, v, model):
+    """The inner race, outer race and cage as `bundles.Bodies`: views of q and v and the
+    rotations `_turn_bodies` left in the model's scratch."""
+    ip, work = model.ip, model.work
+    o_i = BALL_DOF * ip[IP_Z]
+    inner = Body(q[o_i:o_i + 3], work.R_inner, v[o_i:o_i + 3], work.w_inner)
+    cage = inner  # a placeholder of the same type: read only when the bearing has a cage
+    if ip[IP_CAGE]:
+        o_c = o_i + RACE_DOF
+        cage = Body(q[o_c:o_c + 3], work.R_cage, v[o_c:o_c + 3], work.w_cage)
+    return Bodies(inner, work.outer, cage)
 
 
 @numba.njit(**NO_REFCOUNT, **INTERNAL)
@@ -329,14 +364,14 @@ def _load_coupling(k, off, res, GB, R_r, K):
 
 
 @numba.njit(cache=True, inline="always")
-def _border(t, v, model, bodies, loads, ma, g, diag, Kb, Cb, want_tangent):
+def _border(t, v, model, bodies, loads, ma, g, diag):
     """Inner race (loads M.53, hinge M.54, gyroscopic, spin M.52) and cage (journal §8,
-    gyroscopic); Kb, Cb: the border blocks of the tangents. Returns the drive moment.
+    gyroscopic). Returns the drive moment.
 
     The residual terms are written without temporaries (`mtv_into` into the model's scratch, and
     `rigid_body.gyroscopic_moment`'s arithmetic on scalars, so the same bits): ~30 small arrays
-    per call would show in a profile of the run. The tangent blocks, needed at a refactorisation only, keep the
-    array helpers, and reuse the material moments the residual computed."""
+    per call would show in a profile of the run. The material moments stay in the scratch for the
+    tangents (`_border_tangents`)."""
     fp, ip, hinge, work = model.fp, model.ip, model.hinge, model.work
     inner, cage = bodies.inner, bodies.cage
     o_i = BALL_DOF * ip[IP_Z]
@@ -358,31 +393,23 @@ def _border(t, v, model, bodies, loads, ma, g, diag, Kb, Cb, want_tangent):
     if ip[IP_GYRO]:
         _add_gyroscopic(fp[FP_JIX], fp[FP_JIX], fp[FP_JIZ], Om_i, g, o_i + 3)
     if ip[IP_HINGE]:
-        if want_tangent:
-            _hinge_tangent(inner, Om_i, hinge, v, o_i, g, diag, Kb, Cb)
-        else:  # the residual-only call of every Newton iteration: no tangent blocks
-            diag[DG_P_DISS] += add_hinge_force(inner.x, R_i, inner.v, Om_i, hinge.x_A, hinge.R_A, hinge.H_u,
-                                               hinge.H_psi, hinge.G_u, hinge.G_psi, g, o_i)
+        diag[DG_P_DISS] += add_hinge_force(inner.x, R_i, inner.v, Om_i, hinge.x_A, hinge.R_A, hinge.H_u,
+                                           hinge.H_psi, hinge.G_u, hinge.G_psi, g, o_i)
         diag[DG_V_HINGE] = hinge_energy(inner.x, R_i, hinge.x_A, hinge.R_A, hinge.H_u, hinge.H_psi)
-    if want_tangent:
-        _inner_race_tangent(fp, bool(ip[IP_GYRO]), Om_i, m_load, m_contact, Kb, Cb)
     if ip[IP_CAGE]:
         o_c = o_i + RACE_DOF
         Om_c = v[o_c + 3:o_c + 6]
         for i in range(3):
             g[o_c + i] += loads.F_cage[i]
-        mtv_into(cage.R, loads.M_cage, m_contact)  # the inner race's moment is spent
+        m_cage = work.moment_cage
+        mtv_into(cage.R, loads.M_cage, m_cage)
         for i in range(3):
-            g[o_c + 3 + i] += m_contact[i]
-        if want_tangent:
-            _cage_tangent(fp, bool(ip[IP_GYRO]), Om_c, m_contact, Kb, Cb)
+            g[o_c + 3 + i] += m_cage[i]
         if ip[IP_GYRO]:
             _add_gyroscopic(fp[FP_JCX], fp[FP_JCX], fp[FP_JCZ], Om_c, g, o_c + 3)
         if ip[IP_JOURNAL]:
             jres = work.journal_row
-            cage_block = slice(CAGE_BORDER, CAGE_BORDER + CAGE_DOF)
-            power = journal_forces(cage, bodies.outer, model.cage.journal, jres, work.journal_squeeze, g, o_c,
-                                   bool(want_tangent), Kb[cage_block, cage_block], Cb[cage_block, cage_block])
+            power = journal_forces(cage, bodies.outer, model.cage.journal, jres, work.journal_squeeze, g, o_c)
             journal_diag(jres, diag)
             diag[DG_P_DISS] -= power
     drive = prescribe_velocity_residual(o_i + 5, v, fp[FP_OMEGA_I], 1.0, ma, g)
@@ -391,17 +418,33 @@ def _border(t, v, model, bodies, loads, ma, g, diag, Kb, Cb, want_tangent):
     return drive
 
 
+@numba.njit(cache=True, inline="always")
+def _border_tangents(v, model, bodies, Kb, Cb):
+    """The border blocks Kb, Cb of the tangents: hinge, inner race (its moments held fixed in
+    space, gyroscopic damping), cage (the same) and the cage–land journal, from what `_border`
+    left in the model's scratch."""
+    fp, ip, work = model.fp, model.ip, model.work
+    o_i = BALL_DOF * ip[IP_Z]
+    Om_i = v[o_i + 3:o_i + 6]
+    if ip[IP_HINGE]:
+        _hinge_tangent(bodies.inner, Om_i, model.hinge, Kb, Cb)
+    _inner_race_tangent(fp, bool(ip[IP_GYRO]), Om_i, work.moment_load, work.moment_contact, Kb, Cb)
+    if ip[IP_CAGE]:
+        o_c = o_i + RACE_DOF
+        _cage_tangent(fp, bool(ip[IP_GYRO]), v[o_c + 3:o_c + 6], work.moment_cage, Kb, Cb)
+        if ip[IP_JOURNAL]:
+            cage_block = slice(CAGE_BORDER, CAGE_BORDER + CAGE_DOF)
+            journal_tangent(work.journal_row, Kb[cage_block, cage_block], Cb[cage_block, cage_block])
+
+
 # The border's tangent terms: kernels with reference counting (they build small arrays), called
-# by `evaluate_bearing` only when it wants tangents.
+# by `bearing_tangents`.
 @numba.njit(**WITH_REFCOUNT, **INTERNAL)
-def _hinge_tangent(inner, Om_i, hinge, v, o_i, g, diag, Kb, Cb):
-    """The hinge's force into g[o_i:o_i + 6], its dissipated power v^T C v into diag and its
-    tangents into the inner race's border blocks, all from `hinge_forces` (a residual-only call
-    adds the force and power with `add_hinge_force`, equal to rounding)."""
-    gh, Kh, Ch = hinge_forces(inner.x, inner.R, inner.v, Om_i, hinge.x_A, hinge.R_A, hinge.H_u, hinge.H_psi,
-                              hinge.G_u, hinge.G_psi)
-    g[o_i:o_i + 6] += gh
-    diag[DG_P_DISS] += mv(Ch, v[o_i:o_i + 6]) @ v[o_i:o_i + 6]
+def _hinge_tangent(inner, Om_i, hinge, Kb, Cb):
+    """The hinge's tangents into the inner race's border blocks, from `hinge_forces` (whose force
+    the residual adds with `add_hinge_force`, equal to rounding)."""
+    _, Kh, Ch = hinge_forces(inner.x, inner.R, inner.v, Om_i, hinge.x_A, hinge.R_A, hinge.H_u, hinge.H_psi,
+                             hinge.G_u, hinge.G_psi)
     Kb[INNER_BORDER:INNER_BORDER + 6, INNER_BORDER:INNER_BORDER + 6] += Kh
     Cb[INNER_BORDER:INNER_BORDER + 6, INNER_BORDER:INNER_BORDER + 6] += Ch
 

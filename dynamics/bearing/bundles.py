@@ -107,7 +107,7 @@ class ResidualWork(NamedTuple):
     contact rows (2Z, N_RC) and pocket rows (Z, N_POCKET_OUT), the contacts' scratch, the
     border load sums, the outer race (x = 0, R = I, v = 0; the kernel sets w = (0, 0, omega_o)
     from the parameters), the rotation (3x3) and spatial angular velocity (3) of the inner race
-    and the cage, the external loads, two material moments (3), the cage–land result row and its film's scratch. Like
+    and the cage, the external loads, three material moments (3), the cage–land result row and its film's scratch. Like
     the traction rule's workspace it belongs to one model: one evaluation at a time."""
 
     rows: np.ndarray
@@ -121,8 +121,9 @@ class ResidualWork(NamedTuple):
     w_cage: np.ndarray
     ext_f: np.ndarray  # external force on the inner race (3) [N]
     ext_m: np.ndarray  # external moment (3) [N m]
-    moment_contact: np.ndarray  # contact moment sum on a border body, material (3) [N m]
+    moment_contact: np.ndarray  # contact moment sum on the inner race, material (3) [N m]
     moment_load: np.ndarray  # external moment on the inner race, material (3) [N m]
+    moment_cage: np.ndarray  # contact moment sum on the cage, material (3) [N m]
     journal_row: np.ndarray  # the cage–land result row (journal/hybrid.py, N_JOURNAL_OUT)
     journal_squeeze: np.ndarray  # the dynamic cage film's scratch (journal/squeeze_film.py, N_SQUEEZE_OUT)
 
@@ -141,3 +142,12 @@ class ModelArrays(NamedTuple):
     hinge: HingeArrays
     work: ResidualWork
 
+
+
+class BearingData(NamedTuple):
+    """What the force kernel (`assembly.evaluate_bearing`) takes besides the state: the model's
+    arrays and its tangent kernel (`assembly.bearing_tangents`) as a numba first-class function
+    value (`multibody.compiled.KernelFunction`), so that the two compile as separate libraries."""
+
+    arrays: ModelArrays
+    tangents: object

@@ -74,13 +74,13 @@ def pocket_tangent(k, x_b, cage, pp, pres, K, C):
 
 
 @numba.njit(**KERNEL)
-def journal_forces(cage, race, jp, jres, squeeze, g, cage_off, want_tangent, Kb, Cb):
+def journal_forces(cage, race, jp, jres, squeeze, g, cage_off):
     """Cage on its guiding land (docs/model.md §8): cage and race are `bundles.Body` (the
     race turns about z); force and torque about z on the cage (spatial), into the cage rows
-    g[cage_off:cage_off+6]; the `cage_race_journal` row into jres (squeeze: the dynamic
-    film's scratch, N_SQUEEZE_OUT); tangents into Kb, Cb, the cage's own 6x6 blocks. Returns
-    the power of the journal forces on the cage [W] (negative: dissipated). Allocates nothing:
-    the residual of every Newton iteration calls it."""
+    g[cage_off:cage_off+6]; the `cage_race_journal` row, with the derivatives `journal_tangent`
+    reads, into jres (squeeze: the dynamic film's scratch, N_SQUEEZE_OUT). Returns the power
+    of the journal forces on the cage [W] (negative: dissipated). Allocates nothing: the
+    residual of every Newton iteration calls it."""
     vel0, vel1 = cage.v[0] - race.v[0], cage.v[1] - race.v[1]
     w_race_z = race.w[2]
     out = jres
@@ -92,13 +92,18 @@ def journal_forces(cage, race, jp, jres, squeeze, g, cage_off, want_tangent, Kb,
     for i in range(3):
         g[cage_off + i] += F[i]
         g[cage_off + 3 + i] += cage.R[2, i] * T
-    if want_tangent:
-        _subtract_planar(Kb, out, J_OUT_DF_DPOS, J_OUT_DT_DPOS)
-        _subtract_planar(Cb, out, J_OUT_DF_DVEL, J_OUT_DT_DVEL)
-        Cb[0, 5] -= out[J_OUT_DF_DOMEGA_CAGE]
-        Cb[1, 5] -= out[J_OUT_DF_DOMEGA_CAGE + 1]
-        Cb[5, 5] -= out[J_OUT_DT_DOMEGA_CAGE]
     return F[0] * vel0 + F[1] * vel1 + T * (cage.w[2] - w_race_z)
+
+
+@numba.njit(**KERNEL)
+def journal_tangent(jres, Kb, Cb):
+    """The cage–land journal's tangents into Kb, Cb, the cage's own 6x6 blocks, from the row
+    `journal_forces` left in jres."""
+    _subtract_planar(Kb, jres, J_OUT_DF_DPOS, J_OUT_DT_DPOS)
+    _subtract_planar(Cb, jres, J_OUT_DF_DVEL, J_OUT_DT_DVEL)
+    Cb[0, 5] -= jres[J_OUT_DF_DOMEGA_CAGE]
+    Cb[1, 5] -= jres[J_OUT_DF_DOMEGA_CAGE + 1]
+    Cb[5, 5] -= jres[J_OUT_DT_DOMEGA_CAGE]
 
 
 @numba.njit(**KERNEL)

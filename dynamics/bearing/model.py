@@ -1,7 +1,8 @@
 """`BearingModel`: the ball bearing as a `dynamics.multibody` residual problem.
 
 Implements the protocol of dynamics/multibody/problem.py: `evaluate` and `jacobian` call
-one numba kernel (assembly.evaluate_bearing); `on_accepted_step` logs ball–pocket impacts
+the force kernel (assembly.evaluate_bearing, which calls assembly.bearing_tangents for the
+tangents); `on_accepted_step` logs ball–pocket impacts
 and integrates the energy balance from the diagnostics of the converged state.
 """
 
@@ -22,9 +23,9 @@ from bearingsim.dynamics.multibody.joints import prescribe_velocity_blocks
 from bearingsim.dynamics.multibody.linear_solvers import BlockArrowMatrix, assemble_iteration_blocks
 
 from . import channels, layout
-from .assembly import evaluate_bearing, mass_diagonal
+from .assembly import bearing_tangents, evaluate_bearing, mass_diagonal
 from .params import IP_CAGE, IP_Z
-from .bundles import Body, BorderLoads, CageArrays, ModelArrays, ResidualWork
+from .bundles import BearingData, Body, BorderLoads, CageArrays, ModelArrays, ResidualWork
 from .race_forces import N_RC, contact_scratch
 from .channels import (
     DB, DB_POCKET, DB_POCKET_APPROACH, DB_POCKET_IN_CONTACT, DB_POCKET_ORBITAL, DG_P_DISS, DG_P_DRIVE,
@@ -82,9 +83,11 @@ class AcceptedStepLog(NamedTuple):
 
 
 @numba.njit(**KERNEL)
-def accepted_step(t, q, v, a, model, diag, log):
+def accepted_step(t, q, v, a, data, diag, log):
     """Impact log and energy balance from the accepted step's diagnostics (docs/model.md §7,
-    §10); returns True when the impact log is nearly full (empty it: `BearingModel.drain`)."""
+    §10); returns True when the impact log is nearly full (empty it: `BearingModel.drain`).
+    data: `bundles.BearingData`."""
+    model = data.arrays
     return log_step(t, diag, model.ip[IP_Z], model.ip[IP_CAGE] != 0, model.cage.impact_speeds, log)
 
 
@@ -111,10 +114,10 @@ def log_step(t, diag, Z, has_cage, impact_speeds, log):
 
 
 @numba.njit(**NO_REFCOUNT)
-def bearing_chunk(kernel, model, log, settings, coords, work, out, max_steps):
+def bearing_chunk(kernel, data, log, settings, coords, work, out, max_steps):
     """`multibody.compiled.hht_chunk` with the bearing's accepted-step hook and its force kernel
     (a first-class function value; a module-level wrapper, so that numba caches it)."""
-    return hht_chunk(kernel, accepted_step, model, log, settings, coords, work, out, max_steps)
+    return hht_chunk(kernel, accepted_step, data, log, settings, coords, work, out, max_steps)
 
 
 def cage_arrays(pocket, journal, psi, impact_speeds) -> CageArrays:
@@ -133,6 +136,7 @@ def residual_work(Z: int) -> ResidualWork:
         outer=Body(np.zeros(3), np.eye(3), np.zeros(3), np.zeros(3)),
         R_inner=np.zeros((3, 3)), w_inner=np.zeros(3), R_cage=np.zeros((3, 3)), w_cage=np.zeros(3),
         ext_f=np.zeros(3), ext_m=np.zeros(3), moment_contact=np.zeros(3), moment_load=np.zeros(3),
+        moment_cage=np.zeros(3),
         journal_row=np.zeros(N_JOURNAL_OUT), journal_squeeze=np.zeros(N_SQUEEZE_OUT))
 
 
@@ -198,6 +202,7 @@ class BearingModel:
             cage=cage_arrays(P.pocket, P.journal, P.pocket_psi, self.impact_speeds), hinge=P.hinge,
             work=residual_work(Z))
         self._blocks = (self.K.blocks(), self.C.blocks())
+        self._data = None
         self._kernel_call = _Kernel(self.n_dof)
         self.impact_threshold = impact_force_threshold
         width = len(IMPACT_FIELDS)
@@ -209,7 +214,7 @@ class BearingModel:
     # --- protocol --------------------------------------------------------------------
     def _kernel(self, t, q, v, a, ma, g, want_tangent):
         K, C = self._blocks
-        return self._kernel_call(t, q, v, a, self.arrays, want_tangent, ma, g, self.diag, K, C)
+        return self._kernel_call(t, q, v, a, self.kernel_data(), want_tangent, ma, g, self.diag, K, C)
 
     def evaluate(self, t, q, v, a, ma_out, g_out) -> None:
         self._kernel(t, q, v, a, ma_out, g_out, False)
@@ -264,17 +269,40 @@ class BearingModel:
         """Energy balance so far [J]: work of the drive and of the external loads, dissipated."""
         return dict(zip(("drive", "external", "dissipated"), map(float, self.log.energy)))
 
+    def kernel_data(self, compile_tangents: bool = True) -> BearingData:
+        """The force kernel's `bundles.BearingData`: the arrays and the tangent kernel
+        (`assembly.bearing_tangents`) as a first-class function value, compiled (or loaded) once;
+        without `compile_tangents` only typed, which is all that compiling a caller needs."""
+        if self._data is not None:
+            return self._data
+        K, C = self._blocks
+        n = np.zeros(self.n_dof)  # the tangent kernel's argument types, as the force kernel passes them
+        tangents = KernelFunction(bearing_tangents, (n, n, self.arrays, K, C), compile=compile_tangents)
+        data = BearingData(self.arrays, tangents)
+        if compile_tangents:
+            self._data = data
+        return data
+
+    def force_kernel(self, compile_force: bool = True, compile_tangents: bool = True) -> KernelFunction:
+        """The force kernel (`assembly.evaluate_bearing`) as a first-class function value for the
+        argument types the time loop passes it, compiled (or loaded) or only typed. Compiled
+        without its tangent kernel, it is for compiling alone (another process may compile the
+        tangent kernel meanwhile) and must not be called."""
+        K, C = self._blocks
+        n = np.zeros(self.n_dof)
+        args = (0.0, n, n, n, self.kernel_data(compile_tangents), False, n, n, self.diag, K, C)
+        return KernelFunction(evaluate_bearing, args, compile=compile_force)
+
     def compiled(self, compile_kernel: bool = True) -> CompiledProblem:
         """The compiled side for `multibody.compiled.integrate_compiled`; without `compile_kernel`
-        the force kernel is not compiled, only typed (`multibody.compiled.compile_loop`)."""
+        the force and tangent kernels are not compiled, only typed
+        (`multibody.compiled.compile_loop`)."""
         rows = np.array([layout.spin_row(self.params.ball_count)], dtype=np.int64)
         K, C = self._blocks
-        n = np.zeros(self.n_dof)  # the kernel's argument types, as the loop passes them
-        args = (0.0, n, n, n, self.arrays, False, n, n, self.diag, K, C)
         # one kernel for the tangent calls and Newton's residual-only calls (want_tangent at run time)
-        kernel = KernelFunction(evaluate_bearing, args, compile=compile_kernel)
-        return CompiledProblem(bearing_chunk, kernel, self.arrays, self.log, self.mass, rows, self.diag, K, C,
-                               self.drain)
+        kernel = self.force_kernel(compile_kernel, compile_kernel)
+        return CompiledProblem(bearing_chunk, kernel, self.kernel_data(compile_kernel), self.log, self.mass, rows,
+                               self.diag, K, C, self.drain)
 
     # --- results -----------------------------------------------------------------------
     def channel(self, name: str) -> np.ndarray | float:

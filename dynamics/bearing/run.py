@@ -174,9 +174,14 @@ def compile_time_loop(params: BearingModelParams, settings: HHTSettings) -> None
 
 
 def compile_force_kernel(params: BearingModelParams) -> None:
-    """Compile (or load) the force kernel of a run of `params` alone, for the argument types the
-    time loop passes it (`BearingModel.compiled`)."""
-    BearingModel(params.with_float32_residual()).compiled()
+    """Compile (or load) the force kernel of a run of `params` alone, without its tangent kernel,
+    for the argument types the time loop passes it (`BearingModel.force_kernel`)."""
+    BearingModel(params.with_float32_residual()).force_kernel(compile_force=True, compile_tangents=False)
+
+
+def compile_tangent_kernel(params: BearingModelParams) -> None:
+    """Compile (or load) the tangent kernel of a run of `params` alone (`BearingModel.kernel_data`)."""
+    BearingModel(params.with_float32_residual()).kernel_data(compile_tangents=True)
 
 
 def warm_up_compiled_loop(model: BearingModel, q0, v0, settings: HHTSettings, duration: float) -> None:

@@ -96,15 +96,21 @@ def _quasistatic_result(stage_dir) -> dict | None:
 
 
 def compile_dynamic_kernels(scene: Scene, params, start) -> None:
-    """Compile (or load) the kernels of the dynamic run: the time loop alone first, then the force
-    kernel under its own lock (which a `compile_ahead` child may hold, compiling it meanwhile),
-    then the first steps of the run, with everything compiled."""
-    from bearingsim.dynamics.bearing.run import compile_force_kernel, compile_time_loop, load_kernels
+    """Compile (or load) the kernels of the dynamic run: the tangent kernel first, then the force
+    kernel and the time loop under their own lock (which a `compile_ahead` child may hold,
+    compiling them meanwhile), then the first steps of the run, with everything compiled. Each
+    of the three compiles apart from the others: they call each other as first-class functions."""
+    from bearingsim.dynamics.bearing.run import compile_force_kernel, compile_tangent_kernel, compile_time_loop, \
+        load_kernels
 
-    from ..kernel_cache import ensure_compiled, force_configuration
+    from ..kernel_cache import ensure_compiled, force_configuration, tangent_configuration
 
-    compile_time_loop(params, scene.solver)
-    ensure_compiled(scene, lambda: compile_force_kernel(params), force_configuration(scene))
+    def force_and_loop() -> None:
+        compile_force_kernel(params)
+        compile_time_loop(params, scene.solver)
+
+    ensure_compiled(scene, lambda: compile_tangent_kernel(params), tangent_configuration(scene))
+    ensure_compiled(scene, force_and_loop, force_configuration(scene))
     load_kernels(params, start, scene.solver)
 
 

@@ -1,6 +1,6 @@
 """The shape of the product code (docs/contributing.md, docs/architecture.md), read with `ast`:
 no import cycles, function-level imports included; the import directions between the packages;
-at most 12 parameters a function; no hand-written LLVM IR.
+at most 12 parameters a function; no hand-written LLVM IR; no dated lines.
 
 Import cycles through function-level imports hide from a module-level import graph, and a
 function of 21 parameters is a bundle that was never named; both were found in review, so this
@@ -10,6 +10,7 @@ test reads every import statement and every signature of the installed packages.
 from __future__ import annotations
 
 import ast
+import re
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[1]
@@ -108,6 +109,15 @@ def long_signatures(path: Path) -> list[tuple[str, int]]:
     return out
 
 
+# a calendar date (2026-11-27) or a month and year (Nov 2026): measurement-diary lines, which live
+# in git and docs/performance.md, not in code (docs/contributing.md); a citation's bare year is fine
+DATED = re.compile(r"\b(19|20)\d\d-[01]\d-[0-3]\d\b|\b(Jan|Feb|Mar|Apr|May|Jun|Jul|Aug|Sep|Oct|Nov|Dec)[a-z]*\.? (19|20)\d\d\b")
+
+
+def dated_lines(source: str) -> list[str]:
+    return [line.strip() for line in source.splitlines() if DATED.search(line)]
+
+
 def ir_building_imports(source: str) -> list[str]:
     """The imports in `source`, at any depth, that build LLVM IR by hand (IR_BUILDING)."""
     found = []
@@ -130,6 +140,8 @@ def test_the_checks_find_a_cycle_and_a_long_signature(tmp_path):
     long.write_text("def f(" + ", ".join(f"x{i}" for i in range(13)) + "):\n    pass\n"
                     "def g(self, " + ", ".join(f"x{i}" for i in range(12)) + "):\n    pass\n")
     assert long_signatures(long) == [("f", 13)]
+    assert dated_lines("x = 1  # measured 2026-11-27\n# Lugt (2001), eq. 3\n# as of Nov 2026\n") == [
+        "x = 1  # measured 2026-11-27", "# as of Nov 2026"]
     ir = "import llvmlite.ir as ir\ndef f():\n    from numba.extending import intrinsic, overload\n"
     assert ir_building_imports(ir) == ["llvmlite.ir", "numba.extending.intrinsic"]
 
@@ -157,4 +169,10 @@ def test_no_hand_written_llvm_ir():
     names and to numba's internal calling convention (docs/contributing.md)."""
     found = {str(path.relative_to(REPO)): names for path in product_modules().values()
              if (names := ir_building_imports(path.read_text(encoding="utf-8")))}
+    assert found == {}
+
+
+def test_no_dated_lines():
+    found = {str(path.relative_to(REPO)): lines for path in product_modules().values()
+             if (lines := dated_lines(path.read_text(encoding="utf-8")))}
     assert found == {}

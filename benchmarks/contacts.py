@@ -31,10 +31,10 @@ def repeat_loop(evaluate):
     """A numba loop calling the force kernel `evaluate` (`evaluate_bearing` of one version of
     the package) n times: no Python dispatch in the figure."""
     @numba.njit
-    def repeat(n, t, q, v, a, arrays, want_tangent, ma, g, diag, K, C):
+    def repeat(n, t, q, v, a, data, want_tangent, ma, g, diag, K, C):
         s = 0.0
         for _ in range(n):
-            s += evaluate(t, q, v, a, arrays, want_tangent, ma, g, diag, K, C)
+            s += evaluate(t, q, v, a, data, want_tangent, ma, g, diag, K, C)
         return s
     return repeat
 
@@ -49,7 +49,7 @@ def _time_kernel(model, q, v, want_tangent: bool, number: int, repeat: int = 25,
     loop = loop or _repeat
     a = np.zeros(model.n_dof)
     ma, g = np.zeros(model.n_dof), np.zeros(model.n_dof)
-    args = (0.0, q, v, a, model.arrays, want_tangent, ma, g, model.diag, model.K.blocks(), model.C.blocks())
+    args = (0.0, q, v, a, model.kernel_data(), want_tangent, ma, g, model.diag, model.K.blocks(), model.C.blocks())
     loop(1, *args)
     best = float("inf")
     for _ in range(repeat):

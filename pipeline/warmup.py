@@ -27,15 +27,13 @@ def compile_force_and_loop(scene) -> None:
     position; only the argument types matter)."""
     import numpy as np
 
-    from bearingsim.dynamics.bearing.run import compile_force_kernel, compile_time_loop
+    from bearingsim.dynamics.bearing.run import compile_force_kernel_and_loop
 
     from .stages.simulate import check_dynamic_physics, model_params
 
     scene = _without_fe_hinge(scene)
     check_dynamic_physics(scene)
-    params = model_params(scene, None, np.zeros(3), np.eye(3))
-    compile_force_kernel(params)
-    compile_time_loop(params, scene.solver)
+    compile_force_kernel_and_loop(model_params(scene, None, np.zeros(3), np.eye(3)), scene.solver)
 
 
 def compile_scene_kernels(scene) -> None:

@@ -317,7 +317,7 @@ def test_the_direct_kernel_call_is_taken_only_for_arrays_it_can_read(dry):
     n = model.n_dof
     model.evaluate(0.0, q, v, np.zeros(n), np.zeros(n), np.zeros(n))  # types the direct call
     call = model._kernel_call
-    assert call.entries.get(False) is not None and call._fits(np.zeros(n))
+    assert call.entry is not None and call._fits(np.zeros(n))
     for bad in (np.zeros(2 * n)[::2], np.zeros(n, dtype=np.float32), np.zeros(n, dtype=np.int64),
                 np.zeros(n + 1), np.zeros((1, n)), list(np.zeros(n))):
         assert not call._fits(bad), bad

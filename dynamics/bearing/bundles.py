@@ -143,7 +143,6 @@ class ModelArrays(NamedTuple):
     work: ResidualWork
 
 
-
 class BearingData(NamedTuple):
     """What the force kernel (`assembly.evaluate_bearing`) takes besides the state: the model's
     arrays and its tangent kernel (`assembly.bearing_tangents`) as a numba first-class function

@@ -154,22 +154,20 @@ class _Kernel:
 
     def __init__(self, n_dof: int):
         self.n = n_dof
-        self.entries = {}
+        self.entry = None  # the compiled overload, once a call with state arrays that fit found it
 
     def _fits(self, x) -> bool:
         return (type(x) is np.ndarray and x.dtype == np.float64 and x.ndim == 1 and x.shape[0] == self.n
                 and x.flags.c_contiguous)
 
-    def __call__(self, t, q, v, a, arrays, want_tangent, ma, g, diag, K, C):
-        want_tangent = bool(want_tangent)
-        args = (float(t), q, v, a, arrays, want_tangent, ma, g, diag, K, C)
+    def __call__(self, t, q, v, a, data, want_tangent, ma, g, diag, K, C):
+        args = (float(t), q, v, a, data, bool(want_tangent), ma, g, diag, K, C)
         fits = self._fits(q) and self._fits(v) and self._fits(a) and self._fits(ma) and self._fits(g)
-        entry = self.entries.get(want_tangent)
-        if entry is not None and fits:
-            return entry(*args)
+        if self.entry is not None and fits:
+            return self.entry(*args)
         drive = evaluate_bearing(*args)
-        if entry is None and fits:
-            self.entries[want_tangent] = evaluate_bearing.get_overload(tuple(numba.typeof(x) for x in args))
+        if self.entry is None and fits:
+            self.entry = evaluate_bearing.get_overload(tuple(numba.typeof(x) for x in args))
         return drive
 
 

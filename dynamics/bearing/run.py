@@ -173,10 +173,13 @@ def compile_time_loop(params: BearingModelParams, settings: HHTSettings) -> None
     compile_loop(BearingModel(params.with_float32_residual()), settings)
 
 
-def compile_force_kernel(params: BearingModelParams) -> None:
-    """Compile (or load) the force kernel of a run of `params` alone, without its tangent kernel,
-    for the argument types the time loop passes it (`BearingModel.force_kernel`)."""
+def compile_force_kernel_and_loop(params: BearingModelParams, settings: HHTSettings) -> None:
+    """Compile (or load) the force kernel of a run of `params` without its tangent kernel, for the
+    argument types the time loop passes it (`BearingModel.force_kernel`), and the time loop
+    (`compile_time_loop`): one half of the dynamic run's kernels, which a second process may
+    compile while this one compiles the other (`compile_tangent_kernel`)."""
     BearingModel(params.with_float32_residual()).force_kernel(compile_force=True, compile_tangents=False)
+    compile_time_loop(params, settings)
 
 
 def compile_tangent_kernel(params: BearingModelParams) -> None:

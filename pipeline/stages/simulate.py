@@ -100,17 +100,12 @@ def compile_dynamic_kernels(scene: Scene, params, start) -> None:
     kernel and the time loop under their own lock (which a `compile_ahead` child may hold,
     compiling them meanwhile), then the first steps of the run, with everything compiled. Each
     of the three compiles apart from the others: they call each other as first-class functions."""
-    from bearingsim.dynamics.bearing.run import compile_force_kernel, compile_tangent_kernel, compile_time_loop, \
-        load_kernels
+    from bearingsim.dynamics.bearing.run import compile_force_kernel_and_loop, compile_tangent_kernel, load_kernels
 
     from ..kernel_cache import ensure_compiled, force_configuration, tangent_configuration
 
-    def force_and_loop() -> None:
-        compile_force_kernel(params)
-        compile_time_loop(params, scene.solver)
-
     ensure_compiled(scene, lambda: compile_tangent_kernel(params), tangent_configuration(scene))
-    ensure_compiled(scene, force_and_loop, force_configuration(scene))
+    ensure_compiled(scene, lambda: compile_force_kernel_and_loop(params, scene.solver), force_configuration(scene))
     load_kernels(params, start, scene.solver)
 
 

@@ -14,7 +14,6 @@ about as long. On one core, or with the kernels cached, nothing is started.
 from __future__ import annotations
 
 import logging
-import os
 import pickle
 import subprocess
 import sys
@@ -22,21 +21,15 @@ import sys
 log = logging.getLogger("bearingsim")
 
 
-def _cores() -> int:
-    try:
-        return len(os.sched_getaffinity(0))
-    except AttributeError:  # not on Linux
-        return os.cpu_count() or 1
-
-
 def start(scene, stage_names: list[str]) -> subprocess.Popen | None:
     """Start the child for `scene` when `stage_names` (the stages this command will run,
     dependencies included) contain the dynamic run, numba's cache is configured and lacks the
     scene's kernels, and this process may use more than one core. Returns the child, or None."""
+    from .cores import usable_cores
     from .kernel_cache import cache_directory, compiled_marker, force_configuration, kernel_configuration
 
     cache = cache_directory()
-    if "simulate" not in stage_names or cache is None or _cores() < 2:
+    if "simulate" not in stage_names or cache is None or usable_cores() < 2:
         return None
     if any(compiled_marker(cache, key).exists() for key in (kernel_configuration(scene), force_configuration(scene))):
         return None

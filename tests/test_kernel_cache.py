@@ -71,18 +71,18 @@ def test_one_configurations_compile_does_not_hold_up_anothers(tmp_path, monkeypa
 
 
 def test_compile_ahead_starts_only_for_a_dynamic_run_on_a_cold_cache_and_several_cores(tmp_path, monkeypatch):
-    from bearingsim.pipeline import compile_ahead
+    from bearingsim.pipeline import compile_ahead, cores
 
     started = []
     monkeypatch.setattr(compile_ahead.subprocess, "Popen", lambda *a, **k: started.append(a) or _FakeChild())
     scene = load_scene("helicopter-b-given-hinge")
     cache = tmp_path / "cache"
     monkeypatch.setenv("NUMBA_CACHE_DIR", str(cache))
-    monkeypatch.setattr(compile_ahead, "_cores", lambda: 2)
+    monkeypatch.setattr(cores, "usable_cores", lambda: 2)
     assert compile_ahead.start(scene, ["quasistatic"]) is None  # no dynamic run
-    monkeypatch.setattr(compile_ahead, "_cores", lambda: 1)
+    monkeypatch.setattr(cores, "usable_cores", lambda: 1)
     assert compile_ahead.start(scene, ["quasistatic", "simulate"]) is None  # one core: nothing to overlap
-    monkeypatch.setattr(compile_ahead, "_cores", lambda: 2)
+    monkeypatch.setattr(cores, "usable_cores", lambda: 2)
     child = compile_ahead.start(scene, ["quasistatic", "simulate"])
     assert isinstance(child, _FakeChild) and len(started) == 1
     assert pickle.loads(bytes(child.stdin.data)) == scene  # the child compiles for this very scene

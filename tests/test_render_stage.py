@@ -219,3 +219,26 @@ def test_drift_check_compares_directions_on_the_circle():
     assert "drifts" in row[4]
     (row,) = drift_rows({"cage_eps_mean": [0.5, 0.52]})
     assert row[4] == "4 %"
+
+
+def test_fe_renders_drawn_beside_are_the_ones_drawn_here(run_dir, tmp_path, monkeypatch):
+    """On two cores the report draws the FE load cases in a second process while it draws the
+    burn zone: the same records and byte for byte the same files as drawn in this process."""
+    from bearingsim.pipeline import cores
+    from bearingsim.pipeline.render import run_report
+
+    run, scene, _ = run_dir
+    here, beside = tmp_path / "here", tmp_path / "beside"
+    here.mkdir()
+    beside.mkdir()
+    with run_report.fe_renders(scene, run / "identify", here, False, lambda text, f: None, beside=False) as records:
+        drawn_here = records()
+    # drawing in this process now fails: the records below can only come from the second one
+    monkeypatch.setattr(run_report, "render_fe_cases", lambda *a: pytest.fail("drawn in this process"))
+    monkeypatch.setattr(cores, "usable_cores", lambda: 2)
+    with run_report.fe_renders(scene, run / "identify", beside, False, lambda text, f: None, beside=True) as records:
+        drawn_beside = records()
+    assert drawn_here and drawn_beside == drawn_here
+    assert sorted(p.name for p in here.iterdir()) == sorted(p.name for p in beside.iterdir()) == ["fe_fx.png", "fe_fx.vtu"]
+    for path in here.iterdir():
+        assert (beside / path.name).read_bytes() == path.read_bytes(), path.name

@@ -13,7 +13,10 @@ when the series lack the cage.
 
 from __future__ import annotations
 
+import logging
 import math
+import multiprocessing
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Callable
 
@@ -54,7 +57,7 @@ def render_fe_cases(scene, identify_dir: Path, out_dir: Path, show: bool,
     records = []
     cases = find_cases(identify_dir)
     for n, case in enumerate(cases):
-        progress(f"FE deflection {case.axis}", 0.1 + 0.5 * n / max(1, len(cases)))
+        progress(f"FE deflection {case.axis}", 0.75 + 0.15 * n / max(1, len(cases)))
         record = render_case(case, out_dir / f"fe_{case.axis}.png", out_dir / f"fe_{case.axis}.vtu",
                              scene.name, show=show)
         record["vtu"] = f"fe_{case.axis}.vtu"
@@ -220,6 +223,44 @@ def render_paraview(scene, simulate_dir: Path, out_dir: Path, burn_map=None) -> 
     return {k: f"{PARAVIEW_DIR}/{v}" for k, v in files.items()}
 
 
+def _render_fe_cases_beside(scene, identify_dir: Path, out_dir: Path) -> list[dict]:
+    """`render_fe_cases` off-screen in a second process, whose progress nobody shows."""
+    return render_fe_cases(scene, identify_dir, out_dir, False, lambda text, fraction: None)
+
+
+@contextmanager
+def fe_renders(scene, identify_dir: Path | None, out_dir: Path, show: bool,
+               progress: Callable[[str, float], None], beside: bool):
+    """Yield a function that returns the FE load cases' render records (`render_fe_cases`; [] when
+    there is no identify stage). With `beside`, on a machine with a second core, they are drawn in
+    a second process while this one draws the burn zone and the ParaView series: they read only
+    the identify stage, and the two take about as long. Otherwise, and when the second process
+    cannot start or dies, they are drawn here."""
+    from concurrent.futures import ProcessPoolExecutor
+    from concurrent.futures.process import BrokenProcessPool
+
+    from ..cores import usable_cores
+
+    if identify_dir is None:
+        yield lambda: []
+        return
+    if show or not beside or usable_cores() < 2:
+        yield lambda: render_fe_cases(scene, identify_dir, out_dir, show, progress)
+        return
+    with ProcessPoolExecutor(max_workers=1, mp_context=multiprocessing.get_context("spawn")) as pool:
+        job = pool.submit(_render_fe_cases_beside, scene, identify_dir, out_dir)
+
+        def records() -> list[dict]:
+            try:
+                return job.result()
+            except BrokenProcessPool as exc:
+                logging.getLogger("bearingsim").warning(
+                    "the FE renders' second process died (%s): drawing them in this process", exc)
+                return render_fe_cases(scene, identify_dir, out_dir, show, progress)
+
+        yield records
+
+
 def write_run_report(scene, run_dir: Path, upstream: dict[str, Path], out_dir: Path,
                      progress: Callable[[str, float], None] = lambda text, f: None,
                      show: bool = False) -> dict:
@@ -230,21 +271,22 @@ def write_run_report(scene, run_dir: Path, upstream: dict[str, Path], out_dir: P
     from .report import write_report_html
 
     run_dir, out_dir = Path(run_dir), Path(out_dir)
-    fe_records = []
-    if "identify" in upstream:
-        fe_records = render_fe_cases(scene, upstream["identify"], out_dir, show, progress)
     burn = orbit = summary = paraview = None
     sim = upstream.get("simulate")
-    if sim is not None and (sim / "timeseries.h5").is_file():
-        progress("burn zone", 0.65)
-        summary_path = sim / "summary.json"
-        summary = json.loads(summary_path.read_text()) if summary_path.is_file() else None
-        maps: dict = {}
-        burn = render_burn_zone(scene, sim, summary, out_dir, show, maps)
-        progress("verdict", 0.8)
-        orbit = render_verdict_orbit(scene, sim, summary, out_dir)
-        progress("ParaView series", 0.85)
-        paraview = render_paraview(scene, sim, out_dir, maps.get("burn_zone"))
+    has_series = sim is not None and (sim / "timeseries.h5").is_file()
+    with fe_renders(scene, upstream.get("identify"), out_dir, show, progress, beside=has_series) as fe_records:
+        if has_series:
+            progress("burn zone", 0.3)
+            summary_path = sim / "summary.json"
+            summary = json.loads(summary_path.read_text()) if summary_path.is_file() else None
+            maps: dict = {}
+            burn = render_burn_zone(scene, sim, summary, out_dir, show, maps)
+            progress("verdict", 0.6)
+            orbit = render_verdict_orbit(scene, sim, summary, out_dir)
+            progress("ParaView series", 0.7)
+            paraview = render_paraview(scene, sim, out_dir, maps.get("burn_zone"))
+        progress("FE deflections", 0.8)
+        fe_records = fe_records()
     progress("report", 0.9)
     write_report_html(out_dir / REPORT_FILE, scene, run_dir, upstream, out_dir, fe_records, burn,
                       evidence={"orbit": orbit})

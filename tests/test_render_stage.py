@@ -242,3 +242,29 @@ def test_fe_renders_drawn_beside_are_the_ones_drawn_here(run_dir, tmp_path, monk
     assert sorted(p.name for p in here.iterdir()) == sorted(p.name for p in beside.iterdir()) == ["fe_fx.png", "fe_fx.vtu"]
     for path in here.iterdir():
         assert (beside / path.name).read_bytes() == path.read_bytes(), path.name
+
+
+@pytest.mark.parametrize("failure", ["cannot start", "dies"])
+def test_fe_renders_fall_back_to_this_process(run_dir, tmp_path, monkeypatch, caplog, failure):
+    """A second process that cannot start, or dies, costs the overlap, not the renders: they are
+    drawn here, with a warning that says why."""
+    from concurrent.futures import Future, ProcessPoolExecutor
+    from concurrent.futures.process import BrokenProcessPool
+
+    from bearingsim.pipeline import cores
+    from bearingsim.pipeline.render import run_report
+
+    def submit(self, *args, **kwargs):
+        if failure == "cannot start":
+            raise OSError(11, "Resource temporarily unavailable")
+        future = Future()
+        future.set_exception(BrokenProcessPool("a worker was killed"))
+        return future
+
+    run, scene, _ = run_dir
+    monkeypatch.setattr(cores, "usable_cores", lambda: 2)
+    monkeypatch.setattr(ProcessPoolExecutor, "submit", submit)
+    with run_report.fe_renders(scene, run / "identify", tmp_path, False, lambda text, f: None, beside=True) as records:
+        drawn = records()
+    assert [r["file"] for r in drawn] == ["fe_fx.png"] and (tmp_path / "fe_fx.png").is_file()
+    assert "drawing them in this process" in caplog.text

@@ -244,19 +244,30 @@ def fe_renders(scene, identify_dir: Path | None, out_dir: Path, show: bool,
     if identify_dir is None:
         yield lambda: []
         return
+
+    def here() -> list[dict]:
+        return render_fe_cases(scene, identify_dir, out_dir, show, progress)
+
     if show or not beside or usable_cores() < 2:
-        yield lambda: render_fe_cases(scene, identify_dir, out_dir, show, progress)
+        yield here
         return
     with ProcessPoolExecutor(max_workers=1, mp_context=multiprocessing.get_context("spawn")) as pool:
-        job = pool.submit(_render_fe_cases_beside, scene, identify_dir, out_dir)
+        try:
+            job = pool.submit(_render_fe_cases_beside, scene, identify_dir, out_dir)
+        except OSError as exc:  # no process could be started (process or memory limits)
+            logging.getLogger("bearingsim").warning(
+                "the FE renders' second process could not start (%s): drawing them in this process", exc)
+            job = None
 
         def records() -> list[dict]:
+            if job is None:
+                return here()
             try:
                 return job.result()
             except BrokenProcessPool as exc:
                 logging.getLogger("bearingsim").warning(
                     "the FE renders' second process died (%s): drawing them in this process", exc)
-                return render_fe_cases(scene, identify_dir, out_dir, show, progress)
+                return here()
 
         yield records
 
@@ -274,7 +285,7 @@ def write_run_report(scene, run_dir: Path, upstream: dict[str, Path], out_dir: P
     burn = orbit = summary = paraview = None
     sim = upstream.get("simulate")
     has_series = sim is not None and (sim / "timeseries.h5").is_file()
-    with fe_renders(scene, upstream.get("identify"), out_dir, show, progress, beside=has_series) as fe_records:
+    with fe_renders(scene, upstream.get("identify"), out_dir, show, progress, beside=has_series) as draw_fe:
         if has_series:
             progress("burn zone", 0.3)
             summary_path = sim / "summary.json"
@@ -286,7 +297,7 @@ def write_run_report(scene, run_dir: Path, upstream: dict[str, Path], out_dir: P
             progress("ParaView series", 0.7)
             paraview = render_paraview(scene, sim, out_dir, maps.get("burn_zone"))
         progress("FE deflections", 0.8)
-        fe_records = fe_records()
+        fe_records = draw_fe()
     progress("report", 0.9)
     write_report_html(out_dir / REPORT_FILE, scene, run_dir, upstream, out_dir, fe_records, burn,
                       evidence={"orbit": orbit})

@@ -89,3 +89,73 @@ def test_ctrl_c_of_a_real_sweep_is_one_message(tmp_path):
     assert proc.returncode == 130, err[-3000:]
     assert "interrupted (Ctrl-C)" in err and "Traceback" not in err and "killing" not in err
     assert not list(out.rglob(".*.tmp"))
+
+
+
+def _interrupt_handler_name():
+    return getattr(signal.getsignal(signal.SIGINT), "__qualname__", "")
+
+
+def test_a_sweep_and_its_workers_go_down_quietly_on_ctrl_c():
+    """A local cluster's workers take the same Ctrl-C as the sweep; each process silences its
+    Dask logging before its own handler goes on (pipeline/sweep/quiet_interrupt.py)."""
+    pytest.importorskip("distributed")
+    from bearingsim.pipeline.sweep.driver import dask_client
+
+    before = signal.getsignal(signal.SIGINT)
+    with dask_client(workers=1) as client:
+        assert _interrupt_handler_name() == "silence_then.<locals>.on_interrupt"
+        names = client.run(_interrupt_handler_name)
+    assert list(names.values()) == ["silence_then.<locals>.on_interrupt"]
+    assert signal.getsignal(signal.SIGINT) is before
+
+
+def test_ctrl_c_silences_dask_then_raises_as_before():
+    import logging
+
+    from bearingsim.pipeline.sweep.quiet_interrupt import QUIET_ON_INTERRUPT, quiet_on_interrupt
+
+    levels = {name: logging.getLogger(name).level for name in QUIET_ON_INTERRUPT}
+    try:
+        with pytest.raises(KeyboardInterrupt), quiet_on_interrupt():
+            signal.getsignal(signal.SIGINT)(signal.SIGINT, None)
+        assert all(logging.getLogger(name).level == logging.CRITICAL for name in QUIET_ON_INTERRUPT)
+    finally:
+        for name, level in levels.items():
+            logging.getLogger(name).setLevel(level)
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+
+
+def test_a_worker_silences_dask_then_hands_on():
+    import logging
+
+    from bearingsim.pipeline.sweep.quiet_interrupt import QUIET_ON_INTERRUPT, silence_then
+
+    levels = {name: logging.getLogger(name).level for name in QUIET_ON_INTERRUPT}
+    seen = []
+    try:
+        silence_then(lambda signum, frame: seen.append(signum))(signal.SIGINT, None)
+        assert all(logging.getLogger(name).level == logging.CRITICAL for name in QUIET_ON_INTERRUPT)
+    finally:
+        for name, level in levels.items():
+            logging.getLogger(name).setLevel(level)
+    assert seen == [signal.SIGINT]
+
+
+def test_the_quiet_handler_keeps_the_default_action():
+    """Without a Python handler before it, the process ends by the signal, as it would have."""
+    code = ("import signal; from bearingsim.pipeline.sweep.quiet_interrupt import silence_then; "
+            "silence_then(signal.SIG_DFL)(signal.SIGINT, None); print('still running')")
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert result.returncode == -signal.SIGINT and "still running" not in result.stdout
+
+
+def test_a_worker_that_ignores_ctrl_c_keeps_ignoring_it():
+    from bearingsim.pipeline.sweep.quiet_interrupt import dask_setup
+
+    before = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        dask_setup(None)
+        assert signal.getsignal(signal.SIGINT) == signal.SIG_IGN
+    finally:
+        signal.signal(signal.SIGINT, before)

@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import dataclasses
 import json
-import logging
 import time
 import uuid
 import warnings
@@ -29,6 +28,7 @@ from typing import Callable
 from ..artefacts import OutputRefused, atomic_write_json, atomic_write_text
 from ..scene import NAME_MAX, apply_overrides, check_name, read_scene_table, resolve
 from ..schema import SceneError
+from . import quiet_interrupt
 from .point_runner import PointRequest, finished_record, run_point
 from .points import SweepPoint, expand, point_table, scene_hash
 from .spec import MAX_POINTS, SweepSection, build_sweep_section, check_size, with_command_line
@@ -320,15 +320,11 @@ def dask_client(scheduler: str | None = None, workers: int = 2):
                            "`pip install 'bearingsim[sweep]'` (or `pip install '.[sweep]'` in a checkout)") from exc
 
     if scheduler:
-        with Client(scheduler) as client:
+        with quiet_interrupt.quiet_on_interrupt(), Client(scheduler) as client:
             yield client
         return
-    with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                      dashboard_address=":0") as cluster, Client(cluster) as client:
-        try:
+    with quiet_interrupt.quiet_on_interrupt():
+        # the preload: the workers go down quietly on Ctrl-C too
+        with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0",
+                          preload=[quiet_interrupt.__name__]) as cluster, Client(cluster) as client:
             yield client
-        except KeyboardInterrupt:
-            # the cluster is closed on the way out: its warnings about the workers it stops
-            # ("still alive ... killing") are expected, not news to the user
-            logging.getLogger("distributed").setLevel(logging.CRITICAL)
-            raise

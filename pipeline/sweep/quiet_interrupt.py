@@ -1,0 +1,69 @@
+"""Ctrl-C during a sweep reads as one message, not as Dask's logs from what goes down with it.
+
+Ctrl-C in a terminal reaches every process of its group: the process that runs the sweep and
+the worker processes of its local cluster. The sweep reports the interruption once and closes
+the cluster; meanwhile Dask, in both, logs what it meets on the way down (connections closing
+under a worker, a cancelled call in the client's event-loop thread, workers stopped by force).
+Those logs are expected after Ctrl-C, not news to the user, and some come from other threads
+before the interruption reaches any `except`. So the handler of SIGINT silences Dask's loggers
+first, then does what it would have done anyway: in the sweep's process
+(`quiet_on_interrupt`, around `driver.dask_client`), and in each local worker (`dask_setup`, a
+worker preload).
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import signal
+import threading
+from contextlib import contextmanager
+
+QUIET_ON_INTERRUPT = ("distributed", "tornado", "asyncio")
+
+
+def silence_then(previous):
+    """A SIGINT handler that silences the loggers `QUIET_ON_INTERRUPT`, then hands the signal
+    to `previous`: a Python handler (Python's own raises KeyboardInterrupt; a worker's event
+    loop cancels its main task), or the default action (the process ends by the signal)."""
+    def on_interrupt(signum, frame):
+        for name in QUIET_ON_INTERRUPT:
+            logging.getLogger(name).setLevel(logging.CRITICAL)
+        if callable(previous):
+            previous(signum, frame)
+        else:
+            signal.signal(signum, signal.SIG_DFL)
+            os.kill(os.getpid(), signum)
+    return on_interrupt
+
+
+def _replaceable() -> bool:
+    """Signals can only be handled in a process's main thread; a process that ignores SIGINT,
+    or whose handler is not Python's, is left as it is."""
+    if threading.current_thread() is not threading.main_thread():
+        return False
+    previous = signal.getsignal(signal.SIGINT)
+    return previous is not None and previous != signal.SIG_IGN
+
+
+@contextmanager
+def quiet_on_interrupt():
+    """While the block runs, SIGINT first silences Dask's logging in this process. The loggers
+    stay silent after an interrupted block: the client's event-loop thread may still report on
+    the interrupted call after the cluster has gone down (distributed's `sync` cancels it from a
+    callback that can fail)."""
+    if not _replaceable():
+        yield
+        return
+    previous = signal.signal(signal.SIGINT, silence_then(signal.getsignal(signal.SIGINT)))
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
+def dask_setup(worker) -> None:
+    """Called by Dask in each worker process as it starts (a nanny's worker runs its event
+    loop in the process's main thread)."""
+    if _replaceable():
+        signal.signal(signal.SIGINT, silence_then(signal.getsignal(signal.SIGINT)))

@@ -227,3 +227,38 @@ def test_the_time_loop_compiled_alone_is_the_one_a_run_calls():
     assert len(signatures) >= 1
     simulate_bearing(params, start, settings, 4 * settings.first_step, 1e-5)
     assert set(bearing_chunk.overloads) == signatures
+
+
+_SAME_BITS_RUN = """
+import hashlib, json
+import numpy as np
+from bearingsim.dynamics.bearing import simulate_bearing
+from bearingsim.pipeline.scene import load_scene
+from bearingsim.pipeline.stages.simulate import build_model
+
+scene = load_scene("helicopter-b-given-hinge")
+params, start = build_model(scene)
+run = simulate_bearing(params, start, scene.solver, 0.05, 1e-5)
+channels = run.channels()
+digest = hashlib.sha256(np.ascontiguousarray(run.q).tobytes())
+for name in sorted(channels):
+    digest.update(np.ascontiguousarray(channels[name].data).tobytes())
+print(json.dumps({"steps": run.stats["steps"], "newton": run.stats["newton_iterations"],
+                  "factorizations": run.stats["factorizations"], "hash": digest.hexdigest()}))
+"""
+
+
+@pytest.mark.slow
+def test_a_run_that_compiled_its_kernels_repeats_bit_for_bit_from_the_cache(tmp_path):
+    """The first run on a machine compiles every kernel; later runs load them. Both must run the
+    same code: the same steps and the same bits in every channel over 50 ms of case b (a
+    multiply-add fused differently in the two parts them after ≈ 15 ms, docs/model.md §9)."""
+    import json
+    import subprocess
+    import sys
+
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "numba"))
+    runs = [json.loads(subprocess.run([sys.executable, "-c", _SAME_BITS_RUN], env=env, cwd=tmp_path, check=True,
+                                      capture_output=True, text=True).stdout.splitlines()[-1]) for _ in range(2)]
+    assert (tmp_path / "numba").is_dir()
+    assert runs[0] == runs[1]

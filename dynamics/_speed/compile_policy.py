@@ -41,3 +41,9 @@ INTERNAL = {"no_cpython_wrapper": True}
 # for "no pole", which must compare correctly), and numpy's error model so that `/` carries no
 # zero-division branch.
 VEC = {"fastmath": {"nsz", "arcp", "contract", "afn", "reassoc"}, "error_model": "numpy", **NO_REFCOUNT}
+
+# A vectorised pass whose results must not depend on where it was compiled: with "contract" LLVM
+# may fuse multiply-adds differently in a kernel's own library and in the copies linked into its
+# callers, and a process that compiled the kernels then runs other bits than one that loaded them
+# from the cache (docs/model.md §9: `traction.fast._slip_and_table_index`).
+VEC_UNFUSED = {**VEC, "fastmath": VEC["fastmath"] - {"contract"}}

@@ -58,7 +58,7 @@ from bearingsim.dynamics.lubrication import rheology
 from bearingsim.dynamics.traction import laws
 from bearingsim.dynamics.traction.laws import dispatch
 from bearingsim.dynamics._speed.aligned import CACHE_LINE, empty_aligned
-from bearingsim.dynamics._speed.compile_policy import KERNEL, NO_REFCOUNT, VEC
+from bearingsim.dynamics._speed.compile_policy import KERNEL, NO_REFCOUNT, VEC, VEC_UNFUSED
 from bearingsim.dynamics._speed.simd_math import log_array, log_array32
 from bearingsim.dynamics._speed.table_lookup import last_position32, lerp_picked32, pick_rows, split_position32
 from bearingsim.dynamics.traction.nodes import max_nodes, pack_rule, place_nodes
@@ -138,9 +138,11 @@ class _NodeValues(NamedTuple):
     ash: np.ndarray
 
 
-@numba.njit(**VEC)
+@numba.njit(**VEC_UNFUSED)
 def _slip_and_table_index(X, Y, n, a, b, p_h, du0, dv0, w_s, inv_p_step, f_index, r):
-    """Per node: fractional index of p = p_h sqrt(1 - X^2 - Y^2) in the eta table, |s| [m/s]."""
+    """Per node: fractional index of p = p_h sqrt(1 - X^2 - Y^2) in the eta table, |s| [m/s].
+    Without fused multiply-adds (`compile_policy.VEC_UNFUSED`), so that a run that compiled this
+    pass and one that loaded it from the cache run the same bits (docs/model.md §9)."""
     for m in range(n):
         q = 1.0 - X[m] * X[m] - Y[m] * Y[m]
         f_index[m] = p_h * math.sqrt(max(q, 0.0)) * inv_p_step

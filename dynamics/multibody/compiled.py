@@ -61,7 +61,7 @@ from .linear_solvers import Blocks, BlockArrowMatrix, BlockArrowSolver, assemble
     block_arrow_factor, block_arrow_solve
 from .newton import needs_refactor
 from .problem import check_problem, checked_error_scales
-from .results import IntegrationError, NewtonStallWatch, Result, Solution, SolverStats
+from .results import IntegrationError, NewtonStallWatch, Result, Solution, SolverStats, damping_first
 from .sampling import Samples, StepEnds, hermite_fill
 from .settings import HHTSettings, JacobianReuse
 from .step_control import AT_MIN_STEP, LAST_STEP_STRETCH, MACHINE_EPSILON, NEWTON_FLOOR, proposed_step, \
@@ -541,7 +541,8 @@ def integrate_compiled(problem, t0: float, t1: float, q0, v0, settings: HHTSetti
         if status >= FAILED:
             result = FAILURES[status - FAILED]
             where = "at the minimum step" if settings.adaptive else "at the fixed step"
-            raise IntegrationError(w.state[S_T_FAIL], w.state[S_H_FAIL], f"{result.value} {where}", result.hint)
+            raise IntegrationError(w.state[S_T_FAIL], w.state[S_H_FAIL], f"{result.value} {where}",
+                                   damping_first(result.hint, settings.alpha))
         stall.check(w.state[S_T], w.state[S_H], stats.steps, stats.newton_failures)
         if on_chunk is not None:
             on_chunk(w.state[S_T], w.state[S_H])

@@ -48,6 +48,15 @@ class IntegrationError(RuntimeError):
                          f"Try: {hint}.")
 
 
+def damping_first(hint: str, alpha: float) -> str:
+    """What to try after Newton failed at the smallest step: with alpha = 0 (HHT-α as the
+    trapezoidal rule) a stiff contact's highest frequencies are not damped at all, and more
+    numerical damping comes before the rest of `hint`."""
+    if alpha > 0.0:
+        return hint
+    return f"more numerical damping first: solver.alpha between 0.05 and 0.333333 (it is {alpha:g}); then {hint}"
+
+
 class NewtonStallWatch:
     """Stops a run whose step control has locked into a cycle of Newton failures.
 

@@ -17,7 +17,7 @@ import numpy as np
 from .hht import HHTState, HHTStepper
 from .linear_solvers import DenseSolver
 from .problem import check_problem, checked_error_scales
-from .results import IntegrationError, NewtonStallWatch, Result, Solution, SolverStats
+from .results import IntegrationError, NewtonStallWatch, Result, Solution, SolverStats, damping_first
 from .settings import HHTSettings
 from .step_control import AT_MIN_STEP, LAST_STEP_STRETCH, next_step
 
@@ -90,7 +90,7 @@ def integrate(problem, t0: float, t1: float, q0, v0, settings: HHTSettings | Non
             if not settings.adaptive or h <= settings.min_step * AT_MIN_STEP:
                 stats.wall_time = time.perf_counter() - wall0
                 where = "at the minimum step" if settings.adaptive else "at the fixed step"
-                raise IntegrationError(t, h, f"{result.value} {where}", result.hint)
+                raise IntegrationError(t, h, f"{result.value} {where}", damping_first(result.hint, settings.alpha))
             h = max(h * settings.newton_failure_factor, settings.min_step)
             continue
         if settings.adaptive and err > 1.0:

@@ -91,7 +91,6 @@ def test_ctrl_c_of_a_real_sweep_is_one_message(tmp_path):
     assert not list(out.rglob(".*.tmp"))
 
 
-
 def _interrupt_handler_name():
     return getattr(signal.getsignal(signal.SIGINT), "__qualname__", "")
 
@@ -110,35 +109,38 @@ def test_a_sweep_and_its_workers_go_down_quietly_on_ctrl_c():
     assert signal.getsignal(signal.SIGINT) is before
 
 
-def test_ctrl_c_silences_dask_then_raises_as_before():
+@pytest.fixture
+def dask_log_levels():
+    """The levels of the loggers a Ctrl-C silences, read after the test; restored afterwards."""
     import logging
 
-    from bearingsim.pipeline.sweep.quiet_interrupt import QUIET_ON_INTERRUPT, quiet_on_interrupt
+    from bearingsim.pipeline.sweep.quiet_interrupt import QUIET_ON_INTERRUPT
 
-    levels = {name: logging.getLogger(name).level for name in QUIET_ON_INTERRUPT}
-    try:
-        with pytest.raises(KeyboardInterrupt), quiet_on_interrupt():
-            signal.getsignal(signal.SIGINT)(signal.SIGINT, None)
-        assert all(logging.getLogger(name).level == logging.CRITICAL for name in QUIET_ON_INTERRUPT)
-    finally:
-        for name, level in levels.items():
-            logging.getLogger(name).setLevel(level)
+    before = {name: logging.getLogger(name).level for name in QUIET_ON_INTERRUPT}
+    yield lambda: {logging.getLogger(name).level for name in QUIET_ON_INTERRUPT}
+    for name, level in before.items():
+        logging.getLogger(name).setLevel(level)
+
+
+def test_ctrl_c_silences_dask_then_raises_as_before(dask_log_levels):
+    import logging
+
+    from bearingsim.pipeline.sweep.quiet_interrupt import quiet_on_interrupt
+
+    with pytest.raises(KeyboardInterrupt), quiet_on_interrupt():
+        signal.getsignal(signal.SIGINT)(signal.SIGINT, None)
+    assert dask_log_levels() == {logging.CRITICAL}
     assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
 
 
-def test_a_worker_silences_dask_then_hands_on():
+def test_a_worker_silences_dask_then_hands_on(dask_log_levels):
     import logging
 
-    from bearingsim.pipeline.sweep.quiet_interrupt import QUIET_ON_INTERRUPT, silence_then
+    from bearingsim.pipeline.sweep.quiet_interrupt import silence_then
 
-    levels = {name: logging.getLogger(name).level for name in QUIET_ON_INTERRUPT}
     seen = []
-    try:
-        silence_then(lambda signum, frame: seen.append(signum))(signal.SIGINT, None)
-        assert all(logging.getLogger(name).level == logging.CRITICAL for name in QUIET_ON_INTERRUPT)
-    finally:
-        for name, level in levels.items():
-            logging.getLogger(name).setLevel(level)
+    silence_then(lambda signum, frame: seen.append(signum))(signal.SIGINT, None)
+    assert dask_log_levels() == {logging.CRITICAL}
     assert seen == [signal.SIGINT]
 
 

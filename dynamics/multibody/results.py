@@ -48,13 +48,18 @@ class IntegrationError(RuntimeError):
                          f"Try: {hint}.")
 
 
+def _more_damping(alpha: float) -> str:
+    """The advice both failures of an undamped run lead with (`damping_first`, `NewtonStallWatch`)."""
+    return f"solver.alpha between 0.05 and 0.333333 (it is {alpha:g}"
+
+
 def damping_first(hint: str, alpha: float) -> str:
     """What to try after Newton failed at the smallest step: with alpha = 0 (HHT-α as the
     trapezoidal rule) a stiff contact's highest frequencies are not damped at all, and more
     numerical damping comes before the rest of `hint`."""
     if alpha > 0.0:
         return hint
-    return f"more numerical damping first: solver.alpha between 0.05 and 0.333333 (it is {alpha:g}); then {hint}"
+    return f"more numerical damping first: {_more_damping(alpha)}); then {hint}"
 
 
 class NewtonStallWatch:
@@ -88,8 +93,8 @@ class NewtonStallWatch:
                 t, h, f"Newton failed on {ratio:.0%} of the last {self.WINDOW} accepted steps, and on at least "
                       f"{self.RATIO:.0%} for {self.WINDOWS * self.WINDOW} steps: the step control is cycling between "
                       f"a failing step and a quarter of it",
-                f"more numerical damping: solver.alpha between 0.05 and 0.333333 (it is {self.alpha:g}; 0.05 and "
-                f"the default 0.1 take case b through the start-up where 0 cycles)")
+                f"more numerical damping: {_more_damping(self.alpha)}; 0.05 and the default 0.1 take case b through "
+                f"the start-up where 0 cycles)")
 
 
 @dataclass

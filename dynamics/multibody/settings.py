@@ -39,8 +39,8 @@ class HHTSettings:
 
     alpha: float = field(default=0.1, metadata={
         "unit": "-", "ge": 0.0, "le": 1.0 / 3.0,
-        "doc": "HHT-alpha numerical damping (0: trapezoidal rule, which in case b cycles through Newton failures "
-               "once the cage rubs its land: the run stops with an error naming this key)"})
+        "doc": "HHT-alpha numerical damping (0: trapezoidal rule, with which case b's Newton fails once the cage "
+               "rubs its land: the run stops with an error naming this key)"})
     first_step: float = field(default=1e-6, metadata={"unit": "s", "gt": 0.0, "doc": "first time step"})
     min_step: float = field(default=1e-8, metadata={
         "unit": "s", "gt": 0.0, "doc": "smallest step before the run gives up"})

@@ -37,13 +37,17 @@ def silence_then(previous):
     return on_interrupt
 
 
-def _replaceable() -> bool:
-    """Signals can only be handled in a process's main thread; a process that ignores SIGINT,
-    or whose handler is not Python's, is left as it is."""
+def _install() -> object:
+    """Put `silence_then` before this process's SIGINT handler; returns the handler it replaced,
+    or None where it was left alone: signals can only be handled in a process's main thread, and
+    a process that ignores SIGINT, or whose handler is not Python's, is left as it is."""
     if threading.current_thread() is not threading.main_thread():
-        return False
+        return None
     previous = signal.getsignal(signal.SIGINT)
-    return previous is not None and previous != signal.SIG_IGN
+    if previous is None or previous == signal.SIG_IGN:
+        return None
+    signal.signal(signal.SIGINT, silence_then(previous))
+    return previous
 
 
 @contextmanager
@@ -52,18 +56,15 @@ def quiet_on_interrupt():
     stay silent after an interrupted block: the client's event-loop thread may still report on
     the interrupted call after the cluster has gone down (distributed's `sync` cancels it from a
     callback that can fail)."""
-    if not _replaceable():
-        yield
-        return
-    previous = signal.signal(signal.SIGINT, silence_then(signal.getsignal(signal.SIGINT)))
+    previous = _install()
     try:
         yield
     finally:
-        signal.signal(signal.SIGINT, previous)
+        if previous is not None:
+            signal.signal(signal.SIGINT, previous)
 
 
 def dask_setup(worker) -> None:
     """Called by Dask in each worker process as it starts (a nanny's worker runs its event
     loop in the process's main thread)."""
-    if _replaceable():
-        signal.signal(signal.SIGINT, silence_then(signal.getsignal(signal.SIGINT)))
+    _install()

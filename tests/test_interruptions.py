@@ -91,6 +91,16 @@ def test_ctrl_c_of_a_real_sweep_is_one_message(tmp_path):
     assert not list(out.rglob(".*.tmp"))
 
 
+@pytest.fixture(autouse=True)
+def python_sigint_handler():
+    """Python's own SIGINT handler during each test, as in an interactive shell: a job started in
+    the background of a non-interactive shell inherits SIGINT ignored, which `quiet_interrupt`
+    rightly keeps."""
+    outside = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, outside)
+
+
 def _interrupt_handler_name():
     return getattr(signal.getsignal(signal.SIGINT), "__qualname__", "")
 

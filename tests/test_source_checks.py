@@ -5,6 +5,12 @@ reads again after the loop, is how a race contact's tangent calls came to read t
 wrong contact angle (the damping block's `for j in range(3)` overwrote the race table position
 `j`; tests/test_bearing_model.py). numba kernels use short index names a lot,
 so the check covers the whole package.
+
+An array assigned to a slice inside a numba kernel (`K[:3, :3] = A`, `K[3:, 3:] += A`) makes numba
+compile its shape-mismatch error path, string formatting included, into that kernel: seconds of a
+machine's first run each (docs/performance.md, *Why the first run compiles for minutes*). Kernels
+copy such blocks with loops (`multibody.small.add_into`, `copy_into`); filling a slice with a
+constant stays allowed.
 """
 
 import ast
@@ -56,4 +62,55 @@ def test_no_loop_target_clobbers_a_live_name_in_the_package():
     for package in PACKAGES:
         for path in sorted((REPO / package).rglob("*.py")):
             found += [f"{path.relative_to(REPO)} {hit}" for hit in loop_targets_that_clobber(path.read_text())]
+    assert found == []
+
+
+def _is_kernel(fn) -> bool:
+    for decorator in fn.decorator_list:
+        f = decorator.func if isinstance(decorator, ast.Call) else decorator
+        if (isinstance(f, ast.Attribute) and f.attr in ("njit", "jit")) or (isinstance(f, ast.Name) and f.id in ("njit", "jit")):
+            return True
+    return False
+
+
+def arrays_assigned_to_slices(source: str) -> list[str]:
+    """'function:line' of every assignment (plain or augmented) of a non-constant value to a sliced
+    subscript inside a function decorated with numba's `njit` or `jit`."""
+    found = []
+    for fn in ast.walk(ast.parse(source)):
+        if not (isinstance(fn, ast.FunctionDef) and _is_kernel(fn)):
+            continue
+        for node in ast.walk(fn):
+            targets = node.targets if isinstance(node, ast.Assign) else [node.target] if isinstance(node, ast.AugAssign) else []
+            value = getattr(node, "value", None)
+            constant = isinstance(value, ast.Constant) or (isinstance(value, ast.UnaryOp) and isinstance(value.operand, ast.Constant))
+            for target in targets:
+                index = target.slice if isinstance(target, ast.Subscript) else None
+                parts = index.elts if isinstance(index, ast.Tuple) else [index]
+                if any(isinstance(part, ast.Slice) for part in parts) and not constant:
+                    found.append(f"{fn.name}:{node.lineno}")
+    return found
+
+
+def test_the_check_finds_an_array_assigned_to_a_slice_in_a_kernel():
+    source = """
+@numba.njit(**KERNEL)
+def tangent(K, A, g):
+    K[:3, :3] += A
+    g[3:] = A[0]
+    K[3:, 3:] = 0.0
+    g[0] = A[0, 0]
+
+
+def python_side(K, A):
+    K[:3, :3] = A
+"""
+    assert arrays_assigned_to_slices(source) == ["tangent:4", "tangent:5"]
+
+
+def test_no_kernel_in_the_package_assigns_an_array_to_a_slice():
+    found = []
+    for package in PACKAGES:
+        for path in sorted((REPO / package).rglob("*.py")):
+            found += [f"{path.relative_to(REPO)} {hit}" for hit in arrays_assigned_to_slices(path.read_text())]
     assert found == []

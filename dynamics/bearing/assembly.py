@@ -24,8 +24,8 @@ from bearingsim.dynamics.lubrication.film import film_central_nvm_batch
 from bearingsim.dynamics.multibody.crv import crv_to_matrix_into, skew
 from bearingsim.dynamics.multibody.hinge import add_hinge_force, hinge_energy, hinge_forces
 from bearingsim.dynamics.multibody.joints import prescribe_velocity_residual
-from bearingsim.dynamics.multibody.rigid_body import gyroscopic_moment
-from bearingsim.dynamics.multibody.small import mm, mtv_into, mv, mv_into
+from bearingsim.dynamics.multibody.rigid_body import gyroscopic_damping
+from bearingsim.dynamics.multibody.small import add_into, eye3, mm, mtv_into, mv, mv_into
 
 from .bundles import Ball, Bodies, Body
 from .cage_forces import journal_diag, journal_forces, journal_tangent, pocket_diag, pocket_forces, pocket_tangent
@@ -285,7 +285,7 @@ def _race_term(k, off, res, race, Om_r, w_b, D, K, C):
     ex, ey, n = res[RC_EX:RC_EX + 3], res[RC_EY:RC_EY + 3], res[RC_N:RC_N + 3]
     SA = np.empty((3, 6))
     SB = np.empty((3, 6))
-    slip_map(ex, ey, n, res[RC_PB:RC_PB + 3], np.eye(3), SA)
+    slip_map(ex, ey, n, res[RC_PB:RC_PB + 3], eye3(), SA)
     slip_map(ex, ey, n, res[RC_PR:RC_PR + 3], race.R, SB)
     Jt = res[RC_JT:RC_JT + 9].copy().reshape(3, 3)
     add_pair(k, off, Jt, SA, SB, C)
@@ -352,9 +352,11 @@ def _load_coupling(k, off, res, GB, R_r, K):
     if off < 0:
         return
     nG = n @ GB  # (6,): d delta / d W_race
+    wm = R_r.T @ res[RC_WTR + 3:RC_WTR + 6]  # material moment rows
     wr = np.empty(6)
-    wr[:3] = res[RC_WTR:RC_WTR + 3]
-    wr[3:] = R_r.T @ res[RC_WTR + 3:RC_WTR + 6]  # material moment rows
+    for i in range(3):  # element by element, not a slice assignment (`small.add_into`)
+        wr[i] = res[RC_WTR + i]
+        wr[3 + i] = wm[i]
     for i in range(6):
         for j in range(6):
             K.E[k, i, off + j] -= slope * wb[i] * nG[j]
@@ -389,7 +391,7 @@ def _border(t, v, model, bodies, loads, ma, g, diag):
     mtv_into(R_i, ext_m, m_load)
     for i in range(3):
         g[o_i + 3 + i] += m_contact[i] + m_load[i]
-    diag[DG_P_EXT] = ext_f @ inner.v + ext_m @ inner.w
+    diag[DG_P_EXT] = _dot3(ext_f, inner.v) + _dot3(ext_m, inner.w)
     if ip[IP_GYRO]:
         _add_gyroscopic(fp[FP_JIX], fp[FP_JIX], fp[FP_JIZ], Om_i, g, o_i + 3)
     if ip[IP_HINGE]:
@@ -445,8 +447,8 @@ def _hinge_tangent(inner, Om_i, hinge, Kb, Cb):
     the residual adds with `add_hinge_force`, equal to rounding)."""
     _, Kh, Ch = hinge_forces(inner.x, inner.R, inner.v, Om_i, hinge.x_A, hinge.R_A, hinge.H_u, hinge.H_psi,
                              hinge.G_u, hinge.G_psi)
-    Kb[INNER_BORDER:INNER_BORDER + 6, INNER_BORDER:INNER_BORDER + 6] += Kh
-    Cb[INNER_BORDER:INNER_BORDER + 6, INNER_BORDER:INNER_BORDER + 6] += Ch
+    add_into(Kb[INNER_BORDER:INNER_BORDER + 6, INNER_BORDER:INNER_BORDER + 6], Kh)
+    add_into(Cb[INNER_BORDER:INNER_BORDER + 6, INNER_BORDER:INNER_BORDER + 6], Ch)
 
 
 @numba.njit(**WITH_REFCOUNT, **INTERNAL)
@@ -455,10 +457,9 @@ def _inner_race_tangent(fp, gyro, Om_i, m_load, m_contact, Kb, Cb):
     rotation increment: K = -(R^T m)~ each (rigid_body.material_moment_of_spatial_moment), with
     m_load, m_contact the material moments; with gyro, the gyroscopic damping block."""
     i3 = INNER_BORDER + 3
-    Kb[i3:i3 + 3, i3:i3 + 3] += -skew(m_load) - skew(m_contact)
+    add_into(Kb[i3:i3 + 3, i3:i3 + 3], -skew(m_load) - skew(m_contact))
     if gyro:
-        Cb[i3:i3 + 3, i3:i3 + 3] += gyroscopic_moment(np.diag(np.array([fp[FP_JIX], fp[FP_JIX], fp[FP_JIZ]])),
-                                                      Om_i)[1]
+        add_into(Cb[i3:i3 + 3, i3:i3 + 3], gyroscopic_damping(_diagonal(fp[FP_JIX], fp[FP_JIX], fp[FP_JIZ]), Om_i))
 
 
 @numba.njit(**WITH_REFCOUNT, **INTERNAL)
@@ -466,10 +467,23 @@ def _cage_tangent(fp, gyro, Om_c, m_contact, Kb, Cb):
     """The cage's contact moment held fixed in space (m_contact: material) and, with gyro, its
     gyroscopic damping block."""
     c3 = CAGE_BORDER + 3
-    Kb[c3:c3 + 3, c3:c3 + 3] += -skew(m_contact)
+    add_into(Kb[c3:c3 + 3, c3:c3 + 3], -skew(m_contact))
     if gyro:
-        Cb[c3:c3 + 3, c3:c3 + 3] += gyroscopic_moment(np.diag(np.array([fp[FP_JCX], fp[FP_JCX], fp[FP_JCZ]])),
-                                                      Om_c)[1]
+        add_into(Cb[c3:c3 + 3, c3:c3 + 3], gyroscopic_damping(_diagonal(fp[FP_JCX], fp[FP_JCX], fp[FP_JCZ]), Om_c))
+
+
+@numba.njit(cache=True, inline="always")
+def _dot3(a, b):
+    """a . b of two 3-vectors, not numba's `@` (a library of its own on a machine's first run)."""
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+@numba.njit(cache=True, inline="always")
+def _diagonal(a, b, c):
+    """diag(a, b, c) (3x3), without `np.diag`'s own library."""
+    J = np.zeros((3, 3))
+    J[0, 0], J[1, 1], J[2, 2] = a, b, c
+    return J
 
 
 @numba.njit(cache=True, inline="always")

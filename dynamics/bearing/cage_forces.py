@@ -20,6 +20,8 @@ from bearingsim.dynamics.contact.pocket import (
     P_V_REG, _pocket_contact_into,
 )
 
+from bearingsim.dynamics.multibody.small import eye3, outer
+
 from .channels import (
     DB_POCKET, DB_POCKET_APPROACH, DB_POCKET_FRICTION_POWER, DB_POCKET_IN_CONTACT, DB_POCKET_ORBITAL,
     DG_AZIMUTH, DG_EPS, DG_FILM_POWER, DG_FRICTION_POWER, DG_FX, DG_FY, DG_METAL, DG_MIN_FILM, DG_TORQUE,
@@ -54,10 +56,10 @@ def pocket_tangent(k, x_b, cage, pp, pres, K, C):
     blocks."""
     n = pres[P_OUT_NORMAL:P_OUT_NORMAL + 3]
     p = pres[P_OUT_POINT:P_OUT_POINT + 3]
-    nn = np.outer(n, n)
+    nn = outer(n, n)
     GA = np.empty((3, 6))
     GB = np.empty((3, 6))
-    I3 = np.eye(3)
+    I3 = eye3()
     point_map(p - x_b, I3, GA)
     point_map(p - cage.x, cage.R, GB)
     # normal stiffness along n (contact point on the wall moves with the ball centre)
@@ -99,8 +101,9 @@ def journal_forces(cage, race, jp, jres, squeeze, g, cage_off):
 def journal_tangent(jres, Kb, Cb):
     """The cage–land journal's tangents into Kb, Cb, the cage's own 6x6 blocks, from the row
     `journal_forces` left in jres."""
-    _subtract_planar(Kb, jres, J_OUT_DF_DPOS, J_OUT_DT_DPOS)
-    _subtract_planar(Cb, jres, J_OUT_DF_DVEL, J_OUT_DT_DVEL)
+    # offsets typed int64, not Literal[int]: numba compiles a callee once per literal argument
+    _subtract_planar(Kb, jres, np.int64(J_OUT_DF_DPOS), np.int64(J_OUT_DT_DPOS))
+    _subtract_planar(Cb, jres, np.int64(J_OUT_DF_DVEL), np.int64(J_OUT_DT_DVEL))
     Cb[0, 5] -= jres[J_OUT_DF_DOMEGA_CAGE]
     Cb[1, 5] -= jres[J_OUT_DF_DOMEGA_CAGE + 1]
     Cb[5, 5] -= jres[J_OUT_DT_DOMEGA_CAGE]

@@ -167,9 +167,10 @@ def race_contact_normal(ball, race, is_outer, fp, ip, table, cbuf, carry, res, w
     # k_h and the Hertz semi-axes per sqrt(delta) from the race table (no cube root); the
     # major axis b_y lies across the rolling direction
     j, t, step = table_position(table, cbuf[OUT_ALPHA])
-    k_h = hermite(table, j, TAB_KH, t, step)[0]
-    b_y = hermite(table, j, TAB_SEMI_AXES, t, step)[0] * sqrt_delta
-    a_x = hermite(table, j, TAB_SEMI_AXES + 2, t, step)[0] * sqrt_delta
+    # columns typed int64, not Literal[int]: numba compiles a callee once per literal argument
+    k_h = hermite(table, j, np.int64(TAB_KH), t, step)[0]
+    b_y = hermite(table, j, np.int64(TAB_SEMI_AXES), t, step)[0] * sqrt_delta
+    a_x = hermite(table, j, np.int64(TAB_SEMI_AXES + 2), t, step)[0] * sqrt_delta
     # relative normal velocity: delta grows when the ball moves against n relative to the race
     vr_p0 = v_r[0] + w_r[1] * (p[2] - x_r[2]) - w_r[2] * (p[1] - x_r[1])
     vr_p1 = v_r[1] + w_r[2] * (p[0] - x_r[0]) - w_r[0] * (p[2] - x_r[2])

@@ -208,10 +208,11 @@ def hertz_table_eval(table, alpha):
     """
     sign = 1.0 if alpha >= 0.0 else -1.0
     j, t, step = table_position(table, alpha)
-    k_h, dk = hermite(table, j, TAB_KH, t, step)
-    kappa, _ = hermite(table, j, TAB_KAPPA, t, step)
-    c_a, _ = hermite(table, j, TAB_CA, t, step)
-    c_b, _ = hermite(table, j, TAB_CB, t, step)
+    # columns typed int64, not Literal[int]: numba compiles a callee once per literal argument
+    k_h, dk = hermite(table, j, np.int64(TAB_KH), t, step)
+    kappa, _ = hermite(table, j, np.int64(TAB_KAPPA), t, step)
+    c_a, _ = hermite(table, j, np.int64(TAB_CA), t, step)
+    c_b, _ = hermite(table, j, np.int64(TAB_CB), t, step)
     return k_h, sign * dk, kappa, c_a, c_b
 
 

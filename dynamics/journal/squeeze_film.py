@@ -136,8 +136,9 @@ def squeeze_film_force(ex, ey, vx, vy, omega, c_film, k_film, eps_clip, out):
     # back to the global frame: out = R (.) R^T with R = [[erx, etx], [ery, ety]]
     out[0] = f_r * erx + f_t * etx
     out[1] = f_r * ery + f_t * ety
-    _rotate_sym(d_rr, d_rt, d_tt, erx, ery, out, 2)
-    _rotate_sym(-k_film * a_rr, -k_film * a_rt, -k_film * a_tt, erx, ery, out, 6)
+    # offsets typed int64, not Literal[int]: numba compiles a callee once per literal argument
+    _rotate_sym(d_rr, d_rt, d_tt, erx, ery, out, np.int64(2))
+    _rotate_sym(-k_film * a_rr, -k_film * a_rt, -k_film * a_tt, erx, ery, out, np.int64(6))
 
 
 @numba.njit(**KERNEL)

@@ -27,15 +27,16 @@ import numpy as np
 from bearingsim.dynamics._speed.compile_policy import KERNEL
 
 from .crv import skew
-from .small import mm, mtv, mtv3, mv
+from .small import add_into, mm, mtv, mtv3, mv, outer
 
 
 @numba.njit(**KERNEL)
 def _hinge_psi_terms(R_A, R_B, Omega_B):
     """P (2x3), psi (2) [rad], B_psi (2x3) and psi_dot (2) [rad/s] of M.15–M.16."""
     P = np.empty((2, 3))
-    P[0, :] = R_A[:, 1]
-    P[1, :] = -R_A[:, 0]
+    for j in range(3):
+        P[0, j] = R_A[j, 1]
+        P[1, j] = -R_A[j, 0]
     psi = -mv(P, R_B[:, 2])
     e3t = np.zeros((3, 3))
     e3t[0, 1] = -1.0
@@ -57,13 +58,17 @@ def hinge_forces(x_B, R_B, x_B_dot, Omega_B, x_A, R_A, H_u, H_psi, G_u, G_psi):
     u_dot = mtv(R_A, x_B_dot)
     P, psi, B_psi, psi_dot = _hinge_psi_terms(R_A, R_B, Omega_B)
     f_psi = H_psi * psi + G_psi * psi_dot
+    # element by element, not slice assignments (`small.add_into`)
     g = np.zeros(6)
-    g[:3] = -mv(R_A, mv(H_u, u) + mv(G_u, u_dot))
-    g[3:] = -mtv(B_psi, f_psi)
+    f = mv(R_A, mv(H_u, u) + mv(G_u, u_dot))
+    tau = mtv(B_psi, f_psi)
+    for i in range(3):
+        g[i] = -f[i]
+        g[3 + i] = -tau[i]
     K = np.zeros((6, 6))
     C = np.zeros((6, 6))
-    K[:3, :3] = mm(mm(R_A, H_u), R_A.T)
-    C[:3, :3] = mm(mm(R_A, G_u), R_A.T)
+    add_into(K[:3, :3], mm(mm(R_A, H_u), R_A.T))
+    add_into(C[:3, :3], mm(mm(R_A, G_u), R_A.T))
     # tau = e3~ R^T P^T f_psi; d/dTheta of R^T w is (R^T w)~, of psi is B_psi, of psi_dot is
     # -P R (e3~ Omega)~.
     e3t = np.zeros((3, 3))
@@ -73,10 +78,11 @@ def hinge_forces(x_B, R_B, x_B_dot, Omega_B, x_A, R_A, H_u, H_psi, G_u, G_psi):
     dpsi_dot = -mm(mm(P, R_B), skew(mv(e3t, Omega_B)))
     df = np.empty((2, 3))
     for i in range(2):
-        df[i, :] = H_psi[i] * B_psi[i, :] + G_psi[i] * dpsi_dot[i, :]
-    K[3:, 3:] = -mm(e3t, skew(mv(RtPt, f_psi)) + mm(RtPt, df))
+        for j in range(3):
+            df[i, j] = H_psi[i] * B_psi[i, j] + G_psi[i] * dpsi_dot[i, j]
+    add_into(K[3:, 3:], -mm(e3t, skew(mv(RtPt, f_psi)) + mm(RtPt, df)))
     for i in range(2):
-        C[3:, 3:] += G_psi[i] * np.outer(B_psi[i, :], B_psi[i, :])
+        add_into(C[3:, 3:], G_psi[i] * outer(B_psi[i, :], B_psi[i, :]))
     return g, K, C
 
 

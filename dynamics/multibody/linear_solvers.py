@@ -31,6 +31,8 @@ import numpy as np
 
 from bearingsim.dynamics._speed.compile_policy import KERNEL, NO_REFCOUNT, WITH_REFCOUNT
 
+from .small import copy_into
+
 
 @numba.njit(**KERNEL)
 def lu_factor_inplace(A, piv):
@@ -112,13 +114,13 @@ def block_arrow_factor(D, E, F, B, LU_D, piv_D, Dinv_T, F_T, DinvE_T, S, piv_S):
     (Z, m, m), F_T (Z, m, nb), DinvE_T (Z, nb, m)), and the LU of the Schur complement
     S = B - sum_k F_k D_k^-1 E_k. Returns False if any pivot vanishes."""
     Z, m, nb = E.shape[0], E.shape[1], E.shape[2]
-    S[:, :] = B
+    copy_into(S, B)
     DinvE = np.empty((m, nb))
     for k in range(Z):
-        LU_D[k, :, :] = D[k]
+        copy_into(LU_D[k], D[k])
         if not lu_factor_inplace(LU_D[k], piv_D[k]):
             return False
-        DinvE[:, :] = E[k]
+        copy_into(DinvE, E[k])
         lu_solve_columns_inplace(LU_D[k], piv_D[k], DinvE)
         S -= F[k] @ DinvE
         inv = Dinv_T[k]

@@ -30,8 +30,14 @@ def gyroscopic_moment(J, Omega):
     C_gyr = -dg_gyr/dOmega = Omega~ J - (J Omega)~ [N m s]."""
     JO = mv(J, Omega)
     g = -np.cross(Omega, JO)
-    C = mm(skew(Omega), J) - skew(JO)
-    return g, C
+    return g, gyroscopic_damping(J, Omega)
+
+
+@numba.njit(**KERNEL)
+def gyroscopic_damping(J, Omega):
+    """C_gyr = Omega~ J - (J Omega)~ [N m s] of `gyroscopic_moment` alone, for tangents that need
+    no moment (and so no `np.cross`, a library of its own on a machine's first run)."""
+    return mm(skew(Omega), J) - skew(mv(J, Omega))
 
 
 @numba.njit(**KERNEL)

@@ -73,3 +73,42 @@ def mtv3(A, x0, x1, x2):
     return (A[0, 0] * x0 + A[1, 0] * x1 + A[2, 0] * x2,
             A[0, 1] * x0 + A[1, 1] * x1 + A[2, 1] * x2,
             A[0, 2] * x0 + A[1, 2] * x1 + A[2, 2] * x2)
+
+
+@numba.njit(**KERNEL)
+def outer(a, b):
+    """a b^T for small vectors a (n) and b (m): numba's `np.outer` is a library function of its
+    own for every caller, compiled on a machine's first run (docs/performance.md)."""
+    C = np.empty((a.shape[0], b.shape[0]))
+    for i in range(a.shape[0]):
+        for j in range(b.shape[0]):
+            C[i, j] = a[i] * b[j]
+    return C
+
+
+@numba.njit(**KERNEL)
+def add_into(M, A):
+    """M += A elementwise for small matrices of one shape (M may be a view). As loops: numba's
+    array-to-array slice assignment (`M[a:b, c:d] += A`) compiles a shape-mismatch error path with
+    string formatting in every kernel that uses it, seconds of a machine's first run."""
+    for i in range(A.shape[0]):
+        for j in range(A.shape[1]):
+            M[i, j] += A[i, j]
+
+
+@numba.njit(**KERNEL)
+def copy_into(M, A):
+    """M = A elementwise for small matrices of one shape (M may be a view), for the reason of
+    `add_into`."""
+    for i in range(A.shape[0]):
+        for j in range(A.shape[1]):
+            M[i, j] = A[i, j]
+
+
+@numba.njit(**KERNEL)
+def eye3():
+    """The 3x3 identity, without `np.eye`'s own library (see `outer`)."""
+    I = np.zeros((3, 3))
+    for i in range(3):
+        I[i, i] = 1.0
+    return I

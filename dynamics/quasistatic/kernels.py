@@ -91,8 +91,9 @@ def ball_residual(x_r, x_z, ci_r, ci_z, co_r, co_z, grooves, m_om2, g_i, g_o):
     g_i, g_o [N]: frozen gyroscopic friction magnitudes along τ = (−n_z, n_r) at the
     inner/outer contact (applied only while that contact is loaded; its Jacobian is neglected).
     """
-    ci = contact_2d(ci_r - x_r, ci_z - x_z, grooves.gap_i, grooves.tab_i, False)
-    co = contact_2d(co_r - x_r, co_z - x_z, grooves.gap_o, grooves.tab_o, True)
+    # flags typed bool, not Literal[bool]: numba compiles a callee once per literal argument
+    ci = contact_2d(ci_r - x_r, ci_z - x_z, grooves.gap_i, grooves.tab_i, np.bool_(False))
+    co = contact_2d(co_r - x_r, co_z - x_z, grooves.gap_o, grooves.tab_o, np.bool_(True))
     res_r = ci[3] + co[3] + m_om2 * x_r
     res_z = ci[4] + co[4]
     fr_r = fr_z = 0.0
@@ -281,6 +282,7 @@ def ball_kinematics(alpha_i, alpha_o, x_r, D, omega_i, omega_o, inner_control):
     sol = np.empty(3)
     for c in range(3):
         mc = m.copy()
-        mc[:, c] = rhs
+        for i in range(3):  # not `mc[:, c] = rhs`: see `multibody.small.add_into`
+            mc[i, c] = rhs[i]
         sol[c] = np.linalg.det(mc) / det
     return sol[0], sol[1], sol[2]

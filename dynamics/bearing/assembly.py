@@ -105,7 +105,7 @@ def evaluate_bearing(t, q, v, a, data, want_tangent, ma, g, diag, K, C):
     return drive
 
 
-@numba.njit(**FIRST_CLASS)
+@numba.njit(**FIRST_CLASS, **INTERNAL)  # called only as a first-class function value
 def bearing_tangents(q, v, model, K, C):
     """The tangent blocks K = -dg/dq, C = -dg/dv (`linear_solvers.Blocks`) at the state that
     `evaluate_bearing` has just evaluated with want_tangent, from what it left in the model's

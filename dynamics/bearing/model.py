@@ -14,7 +14,7 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
-from bearingsim.dynamics._speed.compile_policy import KERNEL, NO_REFCOUNT
+from bearingsim.dynamics._speed.compile_policy import INTERNAL, KERNEL, NO_REFCOUNT
 from bearingsim.dynamics.contact.pocket import N_POCKET_OUT, P_BALL_RADIUS, P_POCKET_RADIUS
 from bearingsim.dynamics.journal.hybrid import N_JOURNAL_OUT
 from bearingsim.dynamics.journal.squeeze_film import N_SQUEEZE_OUT
@@ -82,7 +82,7 @@ class AcceptedStepLog(NamedTuple):
     threshold: np.ndarray
 
 
-@numba.njit(**KERNEL)
+@numba.njit(**KERNEL, **INTERNAL)  # called only by the compiled loop
 def accepted_step(t, q, v, a, data, diag, log):
     """Impact log and energy balance from the accepted step's diagnostics (docs/model.md §7,
     §10); returns True when the impact log is nearly full (empty it: `BearingModel.drain`).

@@ -53,6 +53,8 @@ import numba
 import numpy as np
 from numba.core import types as nbtypes
 
+from bearingsim.dynamics._speed.compile_policy import INTERNAL, KERNEL
+
 from .buffers import zeroed
 from .hht import NEWTON_CONVERGED, NEWTON_DIVERGED, hht_residual, newmark_kinematics, newton_verdict, \
     predict_acceleration, subtract_inplace
@@ -273,8 +275,10 @@ class CompiledProblem(NamedTuple):
     drain: Callable[[], None]
 
 
-@numba.njit
+@numba.njit(**KERNEL, **INTERNAL)
 def _norm(ls, co, x, y, coef, q_a, q_b):
+    """The step controller's scaled norm of x - y with the loop's settings and coordinates
+    (`step_control.scaled_difference_norm`), for the three places in the loop that take it."""
     return scaled_difference_norm(x, y, coef, q_a, q_b, co.weights, co.scales, ls.atol, ls.rtol, ls.use_max)
 
 

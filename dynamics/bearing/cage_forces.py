@@ -19,7 +19,6 @@ from bearingsim.dynamics.contact.pocket import (
     P_OUT_MOMENT_CAGE, P_OUT_NORMAL, P_OUT_ORBITAL_POSITION, P_OUT_POINT, P_OUT_SLIDING_SPEED,
     P_V_REG, _pocket_contact_into,
 )
-
 from bearingsim.dynamics.multibody.small import eye3, outer
 
 from .channels import (

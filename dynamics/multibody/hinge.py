@@ -27,7 +27,7 @@ import numpy as np
 from bearingsim.dynamics._speed.compile_policy import KERNEL
 
 from .crv import skew
-from .small import add_into, mm, mtv, mtv3, mv, outer
+from .small import add_into, copy_into, mm, mtv, mtv3, mv, outer
 
 
 @numba.njit(**KERNEL)
@@ -67,8 +67,8 @@ def hinge_forces(x_B, R_B, x_B_dot, Omega_B, x_A, R_A, H_u, H_psi, G_u, G_psi):
         g[3 + i] = -tau[i]
     K = np.zeros((6, 6))
     C = np.zeros((6, 6))
-    add_into(K[:3, :3], mm(mm(R_A, H_u), R_A.T))
-    add_into(C[:3, :3], mm(mm(R_A, G_u), R_A.T))
+    copy_into(K[:3, :3], mm(mm(R_A, H_u), R_A.T))
+    copy_into(C[:3, :3], mm(mm(R_A, G_u), R_A.T))
     # tau = e3~ R^T P^T f_psi; d/dTheta of R^T w is (R^T w)~, of psi is B_psi, of psi_dot is
     # -P R (e3~ Omega)~.
     e3t = np.zeros((3, 3))
@@ -80,7 +80,7 @@ def hinge_forces(x_B, R_B, x_B_dot, Omega_B, x_A, R_A, H_u, H_psi, G_u, G_psi):
     for i in range(2):
         for j in range(3):
             df[i, j] = H_psi[i] * B_psi[i, j] + G_psi[i] * dpsi_dot[i, j]
-    add_into(K[3:, 3:], -mm(e3t, skew(mv(RtPt, f_psi)) + mm(RtPt, df)))
+    copy_into(K[3:, 3:], -mm(e3t, skew(mv(RtPt, f_psi)) + mm(RtPt, df)))
     for i in range(2):
         add_into(C[3:, 3:], G_psi[i] * outer(B_psi[i, :], B_psi[i, :]))
     return g, K, C

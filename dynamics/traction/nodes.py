@@ -124,7 +124,10 @@ def max_nodes(rule: np.ndarray) -> int:
 
 @numba.njit(cache=True, inline="always")
 def _block(rule, start, length):
-    """View of one block of the packed rule (sliced views let LLVM vectorise; offset indexing did not)."""
+    """View of one block of the packed rule (sliced views let LLVM vectorise; offset indexing did not).
+
+    Inlined, not called: as a function of its own it would inherit its callers' compiling without
+    reference counting, under which numba returns an argument array itself but no view of it."""
     return rule[start:start + length]
 
 

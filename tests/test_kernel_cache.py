@@ -215,18 +215,18 @@ def test_the_time_loop_compiled_alone_is_the_one_a_run_calls():
     """`compile_time_loop` compiles the loop for the argument types of a real run without
     compiling the force kernel: the run that follows must find that overload and compile no
     other (a second overload would be a second compile on a cold cache)."""
-    from bearingsim.dynamics.bearing.model import bearing_chunk
     from bearingsim.dynamics.bearing.run import compile_time_loop, simulate_bearing
+    from bearingsim.dynamics.multibody.compiled import hht_chunk
     from bearingsim.dynamics.multibody.settings import HHTSettings
     from tests.bearing_fixtures import reference_model
 
     params, start = reference_model()
     settings = HHTSettings()
     compile_time_loop(params, settings)
-    signatures = set(bearing_chunk.overloads)
+    signatures = set(hht_chunk.overloads)
     assert len(signatures) >= 1
     simulate_bearing(params, start, settings, 4 * settings.first_step, 1e-5)
-    assert set(bearing_chunk.overloads) == signatures
+    assert set(hht_chunk.overloads) == signatures
 
 
 _SAME_BITS_RUN = """

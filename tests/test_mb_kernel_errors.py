@@ -16,8 +16,8 @@ import numpy as np
 import pytest
 
 from bearingsim.dynamics.multibody import IntegrationError, integrate
-from bearingsim.dynamics.multibody.compiled import CompiledProblem, KernelFunction, hht_chunk, \
-    integrate_compiled, kernel_errors
+from bearingsim.dynamics.multibody.compiled import CompiledProblem, KernelFunction, integrate_compiled, \
+    kernel_errors
 from bearingsim.dynamics.multibody.linear_solvers import BlockArrowMatrix, BlockArrowSolver
 
 STIFFNESS, DAMPING, MASS = 1.0e4, 2.0, 1.0  # N/m, N s/m, kg: a 16 Hz oscillator
@@ -38,14 +38,12 @@ def _oscillator_forces(t, q, v, a, data, want_tangent, ma, g, diag, K, C):
     return 0.0
 
 
-@numba.njit(cache=True)
-def _never_drain(t, q, v, a, data, diag, hook):
-    return False
-
-
 @numba.njit(cache=True, _nrt=False)
-def _oscillator_chunk(kernel, data, hook, settings, coords, work, out, max_steps):
-    return hht_chunk(kernel, _never_drain, data, hook, settings, coords, work, out, max_steps)
+def _never_drain(t, q, v, a, data, diag, hook):
+    """The accepted-step hook: raises once t passes hook[0], never asks for a drain."""
+    if t > hook[0]:
+        raise ValueError("the oscillator's hook fails past its given time")
+    return bool(False)  # a plain bool: the constant False is typed as a literal, not the hook's return type
 
 
 class Oscillator:
@@ -55,8 +53,9 @@ class Oscillator:
     rotation_slots = np.zeros(0, dtype=np.int64)
     error_weights = np.ones(2)
 
-    def __init__(self, t_fail: float) -> None:
+    def __init__(self, t_fail: float, t_hook_fails: float = np.inf) -> None:
         self.data = np.array([t_fail])
+        self.hook = np.array([t_hook_fails])
         self.diag = np.zeros(1)
         self.K, self.C = (BlockArrowMatrix.zeros(1, 1, 1).blocks() for _ in range(2))
 
@@ -74,7 +73,9 @@ class Oscillator:
     def compiled(self, compile_kernel: bool = True) -> CompiledProblem:
         n = np.zeros(2)
         kernel = KernelFunction(_oscillator_forces, self._kernel_args(0.0, n, n, n, False, n, n), compile_kernel)
-        return CompiledProblem(_oscillator_chunk, kernel, self.data, np.zeros(1), np.full(2, MASS),
+        accepted = KernelFunction(_never_drain, (0.0, n, n, n, self.data, self.diag, self.hook), compile_kernel,
+                                  returns=numba.types.boolean)
+        return CompiledProblem(kernel, accepted, self.data, self.hook, np.full(2, MASS),
                                np.zeros(0, dtype=np.int64), self.diag, self.K, self.C, lambda: None)
 
 
@@ -90,6 +91,15 @@ def test_a_kernel_that_raises_stops_the_compiled_run_with_its_exception():
     assert "ValueError" in error.reason and "fails past its given time" in error.reason
     assert error.t <= 5e-3  # the start of the chunk in which the kernel raised
     assert sys.unraisablehook is hook_before  # numba's reports go back where they went
+
+
+def test_an_accepted_step_hook_that_raises_stops_the_compiled_run_too():
+    """The hook is a first-class function value like the kernel, with the same C entry."""
+    with pytest.raises(IntegrationError) as failure:
+        integrate_compiled(Oscillator(t_fail=np.inf, t_hook_fails=5e-3), 0.0, 2e-2, *START, chunk_steps=50)
+    assert isinstance(failure.value.__cause__, ValueError)
+    assert "hook fails past its given time" in failure.value.reason
+    assert failure.value.t <= 5e-3
 
 
 def test_the_same_oscillator_runs_through_when_its_kernel_does_not_raise():

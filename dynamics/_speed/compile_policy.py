@@ -5,7 +5,7 @@ updates it with an atomic add inside a non-inlined call (NRT_incref / NRT_decref
 pruning pass leaves most of these in place across calls, and in the force kernel of the
 reference bearing they were the largest single cost in a profile (docs/performance.md).
 Kernels that allocate nothing and return no array need none of it (`NO_REFCOUNT`). The
-compiled time loop (`bearing.model.bearing_chunk`) and the block-arrow solve use it too.
+compiled time loop (`multibody.compiled.hht_chunk`) and the block-arrow solve use it too.
 
 With `_nrt=False` numba refuses to compile an allocation, an array return, or a call to
 a function that returns an array, so these kernels can only borrow the caller's arrays
@@ -22,8 +22,8 @@ KERNEL = {"cache": True, "no_cfunc_wrapper": True}
 
 NO_REFCOUNT = {**KERNEL, "_nrt": False}
 
-# A force kernel that the compiled time loop receives as a first-class function value
-# (multibody/compiled.py, `KernelFunction`): it keeps its C-callable wrapper.
+# A kernel that the compiled time loop receives as a first-class function value (the force kernel,
+# the accepted-step hook; multibody/compiled.py, `KernelFunction`): it keeps its C-callable wrapper.
 FIRST_CLASS = {**NO_REFCOUNT, "no_cfunc_wrapper": False}
 
 # Kernels that allocate and are called from a `NO_REFCOUNT` kernel: numba compiles a callee with

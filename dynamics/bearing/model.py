@@ -14,11 +14,11 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
-from bearingsim.dynamics._speed.compile_policy import INTERNAL, KERNEL, NO_REFCOUNT
+from bearingsim.dynamics._speed.compile_policy import FIRST_CLASS, INTERNAL, KERNEL
 from bearingsim.dynamics.contact.pocket import N_POCKET_OUT, P_BALL_RADIUS, P_POCKET_RADIUS
 from bearingsim.dynamics.journal.hybrid import N_JOURNAL_OUT
 from bearingsim.dynamics.journal.squeeze_film import N_SQUEEZE_OUT
-from bearingsim.dynamics.multibody.compiled import CompiledProblem, KernelFunction, hht_chunk
+from bearingsim.dynamics.multibody.compiled import CompiledProblem, KernelFunction
 from bearingsim.dynamics.multibody.joints import prescribe_velocity_blocks
 from bearingsim.dynamics.multibody.linear_solvers import BlockArrowMatrix, assemble_iteration_blocks
 
@@ -82,7 +82,7 @@ class AcceptedStepLog(NamedTuple):
     threshold: np.ndarray
 
 
-@numba.njit(**KERNEL, **INTERNAL)  # called only by the compiled loop
+@numba.njit(**FIRST_CLASS, **INTERNAL)  # called only by the compiled loop, as a function value
 def accepted_step(t, q, v, a, data, diag, log):
     """Impact log and energy balance from the accepted step's diagnostics (docs/model.md §7,
     §10); returns True when the impact log is nearly full (empty it: `BearingModel.drain`).
@@ -111,13 +111,6 @@ def log_step(t, diag, Z, has_cage, impact_speeds, log):
         log.last[1 + i] = powers[i]
     log.last[4] = 1.0
     return log.count[0] > log.events.shape[0] - Z
-
-
-@numba.njit(**NO_REFCOUNT)
-def bearing_chunk(kernel, data, log, settings, coords, work, out, max_steps):
-    """`multibody.compiled.hht_chunk` with the bearing's accepted-step hook and its force kernel
-    (a first-class function value; a module-level wrapper, so that numba caches it)."""
-    return hht_chunk(kernel, accepted_step, data, log, settings, coords, work, out, max_steps)
 
 
 def cage_arrays(pocket, journal, psi, impact_speeds) -> CageArrays:
@@ -299,8 +292,11 @@ class BearingModel:
         K, C = self._blocks
         # one kernel for the tangent calls and Newton's residual-only calls (want_tangent at run time)
         kernel = self.force_kernel(compile_kernel, compile_kernel)
-        return CompiledProblem(bearing_chunk, kernel, self.kernel_data(compile_kernel), self.log, self.mass, rows,
-                               self.diag, K, C, self.drain)
+        data = self.kernel_data(compile_kernel)
+        n = np.zeros(self.n_dof)  # the hook's argument types, as the time loop passes them
+        accepted = KernelFunction(accepted_step, (0.0, n, n, n, data, self.diag, self.log), compile_kernel,
+                                  returns=numba.types.boolean)
+        return CompiledProblem(kernel, accepted, data, self.log, self.mass, rows, self.diag, K, C, self.drain)
 
     # --- results -----------------------------------------------------------------------
     def channel(self, name: str) -> np.ndarray | float:

@@ -16,23 +16,23 @@ What a problem supplies (`CompiledProblem`), with K and C in block-arrow form
     kernel(t, q, v, a, data, want_tangent, ma, g, diag, K, C) -> float
         fills ma = M a, g = g(t, q, v), its diagnostics `diag`, and K_t = -dg/dq,
         C_t = -dg/dv when want_tangent (as the protocol's evaluate / jacobian; Newton's
-        iterations call it without); given as a numba first-class function value
-        (`KernelFunction`: one compiled overload, through the C entry numba compiles beside it);
+        iterations call it without);
     accepted(t, q, v, a, data, diag, hook) -> bool
         after each accepted step, from the diagnostics of its last evaluation; True asks
         for the chunk to end so that Python can drain what the hook collected;
     rows whose residual the kernel replaces by a prescribed velocity (`joints.py`).
 
-The kernel is a first-class function value rather than a dispatcher because a dispatcher call
-links the kernel into the loop, where LLVM optimises it a second time (four times the compile
-time for the bearing); a function value is an address the loop calls, so loop and kernel are
-separate libraries that compile apart, even in separate processes (`compile_loop`). numba's C
-entry cannot pass an exception on: it reports it through `sys.unraisablehook` and returns 0.0,
-so `integrate_compiled` collects those reports and raises after the chunk (`kernel_errors`).
-The hook is called through its dispatcher; numba cannot cache a function that keeps a
-jitted function as a run-time value, so `hht_chunk`, which takes it, is inlined into one
-module-level wrapper per problem that passes its hook; the wrapper is cached like any other
-kernel.
+Both are numba first-class function values (`KernelFunction`: one compiled overload, called
+through the C entry numba compiles beside it), not dispatchers. A dispatcher call links the
+callee into the loop, where LLVM optimises it a second time (four times the compile time for
+the bearing's force kernel); a function value is an address the loop calls, so loop, kernel and
+hook are separate libraries that compile apart, even in separate processes (`compile_loop`). It
+also keeps the loop one cached function for every problem: numba cannot cache a function that
+holds a jitted function as a run-time value, and a loop that called its hook as a dispatcher had
+to be copied into one wrapper per problem, a copy of its whole IR that numba makes in time
+growing with the square of the loop's size. numba's C entry cannot pass an exception on: it
+reports it through `sys.unraisablehook` and returns 0.0 (False), so `integrate_compiled` collects
+those reports and raises after the chunk (`kernel_errors`).
 
 Output per chunk: Hermite samples at fixed times (`sampling.hermite_fill`), step-end
 records (t, q, v, diag) at the first accepted step at or after each multiple of `record_dt`,
@@ -53,7 +53,7 @@ import numba
 import numpy as np
 from numba.core import types as nbtypes
 
-from bearingsim.dynamics._speed.compile_policy import INTERNAL, KERNEL
+from bearingsim.dynamics._speed.compile_policy import INTERNAL, KERNEL, NO_REFCOUNT
 
 from .buffers import zeroed
 from .hht import NEWTON_CONVERGED, NEWTON_DIVERGED, hht_residual, newmark_kinematics, newton_verdict, \
@@ -185,23 +185,23 @@ class Output(NamedTuple):
 
 
 class KernelFunction(nbtypes.WrapperAddressProtocol):
-    """One compiled overload of a force kernel as a numba first-class function value: the
-    overload of `dispatcher` for the types of `args` (compiled if needed), called through the C
-    entry numba compiles beside it (so the dispatcher keeps it: `compile_policy.FIRST_CLASS`).
+    """One compiled overload of a kernel as a numba first-class function value: the overload of
+    `dispatcher` for the types of `args` (compiled if needed), returning `returns`, called through
+    the C entry numba compiles beside it (so the dispatcher keeps it: `compile_policy.FIRST_CLASS`).
     Without `compile` only its type is known (address 0), which is all that compiling a loop
     that takes it needs (`compile_loop`)."""
 
-    def __init__(self, dispatcher, args, compile: bool = True) -> None:
+    def __init__(self, dispatcher, args, compile: bool = True, returns=nbtypes.float64) -> None:
         argtypes = tuple(numba.typeof(x) for x in args)
-        self._signature = nbtypes.float64(*argtypes)
+        self._signature = returns(*argtypes)
         self._address = 0
         if not compile:
             return
         dispatcher.compile(argtypes)
         cres = dispatcher.overloads[argtypes]
-        if cres.signature.return_type != nbtypes.float64:
+        if cres.signature.return_type != returns:
             raise TypeError(f"{dispatcher.__name__} returns {cres.signature.return_type}; the compiled loop "
-                            "calls force kernels that return float64")
+                            f"calls it as a function returning {returns}")
         self._address = cres.library.get_pointer_to_function(cres.fndesc.llvm_cfunc_wrapper_name)
         if not self._address:
             raise TypeError(f"{dispatcher.__name__} has no C entry: compile it with compile_policy.FIRST_CLASS")
@@ -257,14 +257,13 @@ def kernel_errors():
 
 
 class CompiledProblem(NamedTuple):
-    """A problem's compiled side: `chunk(kernel, data, hook, settings, coords, work, out,
-    max_steps)` is its cached wrapper around `hht_chunk`; `kernel` its compiled force kernel
-    (`KernelFunction`; the module docstring); data and hook are the bundles its kernel and hook
-    take; diag, K and C the buffers its kernel fills; `drain()` empties what the hook collected
-    (called after every chunk)."""
+    """A problem's compiled side for `hht_chunk`: `kernel` its compiled force kernel and
+    `accepted` its accepted-step hook (`KernelFunction`s; the module docstring); data and hook
+    the bundles they take; diag, K and C the buffers its kernel fills; `drain()` empties what
+    the hook collected (called after every chunk)."""
 
-    chunk: object
     kernel: KernelFunction
+    accepted: KernelFunction
     data: tuple
     hook: tuple
     mass: np.ndarray
@@ -284,7 +283,7 @@ def _norm(ls, co, x, y, coef, q_a, q_b):
 
 # The loop's helpers below are inlined into `hht_chunk` in numba's IR (inline="always"). As
 # functions of their own, numba compiled each into a library with its callees linked in, and
-# LLVM optimised and emitted that code again at every level of the chain bearing_chunk ->
+# LLVM optimised and emitted that code again at every level of the chain hht_chunk ->
 # _attempt -> _newton -> _factor; inlined, the loop compiles in about two thirds of the time
 # (`python -m benchmarks.cold_start`, docs/performance.md). The steps taken are the same.
 @numba.njit(inline="always")
@@ -398,7 +397,7 @@ def _record(ls, w, out, t, y):
     w.state[S_T_LOGGED] = t
 
 
-@numba.njit(inline="always")
+@numba.njit(**NO_REFCOUNT)
 def hht_chunk(kernel, accepted, data, hook, ls, co, w, out, max_steps):
     """Up to `max_steps` accepted HHT-α steps (the control flow of `time_loop.integrate`).
 
@@ -530,10 +529,10 @@ def integrate_compiled(problem, t0: float, t1: float, q0, v0, settings: HHTSetti
     while True:
         t_chunk = w.state[S_T]
         with kernel_errors() as raised:
-            status = cp.chunk(cp.kernel, cp.data, cp.hook, ls, co, w, out, chunk_steps)
+            status = hht_chunk(cp.kernel, cp.accepted, cp.data, cp.hook, ls, co, w, out, chunk_steps)
         if raised:
             error = raised[0]
-            raise IntegrationError(t_chunk, w.state[S_H], f"the force kernel raised {error.exc_type.__name__}: "
+            raise IntegrationError(t_chunk, w.state[S_H], f"a kernel raised {error.exc_type.__name__}: "
                                    f"{error.exc_value} in the chunk from this time on", _KERNEL_ERROR_HINT) \
                 from error.exc_value
         cp.drain()
@@ -603,8 +602,8 @@ def compile_loop(problem, settings: HHTSettings | None = None, chunk_steps: int 
     z = np.zeros(problem.n_dof)
     w, out, co, ls = _loop_arguments(problem, cp, settings, (0.0, settings.first_step), (z, z, z, z, np.zeros(0)),
                                      None, 0.0, 0, chunk_steps)
-    args = (cp.kernel, cp.data, cp.hook, ls, co, w, out, chunk_steps)
-    cp.chunk.compile(tuple(numba.typeof(x) for x in args))
+    args = (cp.kernel, cp.accepted, cp.data, cp.hook, ls, co, w, out, chunk_steps)
+    hht_chunk.compile(tuple(numba.typeof(x) for x in args))
 
 
 def _finish(stats: SolverStats, w: Work, wall0: float) -> None:

@@ -4,9 +4,11 @@
 
 Runs a 1 ms `simulate` of the scene twice in this process's children: once with an empty numba
 cache (a fresh machine, or the first run after the dynamics code changed) and once with the cache
-that run filled, and reports the difference. Then, in-process with an empty cache, it lists the
-kernels that take longest to compile (numba's `numba:compile` events, outermost dispatchers only,
-nested compilations counted inside their caller). Run it on a quiet machine.
+that run filled, and reports the difference. Then, in-process with an empty cache, it splits the
+simulate stage's compiling into the time spent inside LLVM (numba's `numba:llvm_lock` events: every
+call into the LLVM library holds that lock) and the rest, numba's typing and lowering in Python,
+and lists the kernels that take longest to compile (`numba:compile` events, outermost dispatchers
+only, nested compilations counted inside their caller). Run it on a quiet machine.
 """
 
 from __future__ import annotations
@@ -28,8 +30,9 @@ def timed_run(scene: str, cache: Path, out: Path) -> float:
     return time.perf_counter() - t0
 
 
-def compile_profile(scene: str, cache: Path, top: int = 12) -> list[tuple[str, float]]:
-    """(kernel, seconds) of the outermost compilations of a 1 ms run with an empty cache."""
+def compile_profile(scene: str, cache: Path, top: int = 12) -> tuple[float, float, list[tuple[str, float]]]:
+    """(seconds compiling, of them inside LLVM, [(kernel, seconds)] of the outermost compilations)
+    of a 1 ms run with an empty cache."""
     os.environ["NUMBA_CACHE_DIR"] = str(cache)
     from numba.core import event
 
@@ -40,7 +43,7 @@ def compile_profile(scene: str, cache: Path, top: int = 12) -> list[tuple[str, f
     stack: list[list] = []
     totals: dict[str, float] = {}
 
-    class Outermost(event.Listener):
+    class Kernels(event.Listener):
         def on_start(self, ev):
             stack.append([ev.data["dispatcher"].py_func.__qualname__, time.perf_counter()])
 
@@ -49,11 +52,29 @@ def compile_profile(scene: str, cache: Path, top: int = 12) -> list[tuple[str, f
             if not stack:
                 totals[name] = totals.get(name, 0.0) + time.perf_counter() - t0
 
+    class Outermost(event.Listener):
+        """Seconds between the outermost start and end events of one event kind."""
+
+        def __init__(self) -> None:
+            self.depth, self.seconds, self.t0 = 0, 0.0, 0.0
+
+        def on_start(self, ev) -> None:
+            if self.depth == 0:
+                self.t0 = time.perf_counter()
+            self.depth += 1
+
+        def on_end(self, ev) -> None:
+            self.depth -= 1
+            if self.depth == 0:
+                self.seconds += time.perf_counter() - self.t0
+
+    compiling, llvm = Outermost(), Outermost()
     scene_obj = load_scene(scene, ["solver.duration=1e-3"])
-    with event.install_listener("numba:compile", Outermost()):
+    with event.install_listener("numba:compile", Kernels()), event.install_listener("numba:compile", compiling), \
+            event.install_listener("numba:llvm_lock", llvm):
         params, start = build_model(scene_obj, None)
         simulate_bearing(params, start, scene_obj.solver, 1e-3, 1e-5)
-    return sorted(totals.items(), key=lambda kv: -kv[1])[:top]
+    return compiling.seconds, llvm.seconds, sorted(totals.items(), key=lambda kv: -kv[1])[:top]
 
 
 def main(argv=None) -> None:
@@ -66,8 +87,10 @@ def main(argv=None) -> None:
         warm = timed_run(args.scene, tmp / "cache", tmp / "warm")
         print(f"{args.scene}, 1 ms simulate: cold cache {cold:.1f} s, warm cache {warm:.1f} s: "
               f"compiling costs {cold - warm:.1f} s once (load average {os.getloadavg()[0]:.2f})")
-        rows = compile_profile(args.scene, tmp / "cache2")
-    print("longest compilations (outermost kernels, in-process, simulate stage only):")
+        compiling, llvm, rows = compile_profile(args.scene, tmp / "cache2")
+    print(f"in-process, simulate stage only: {compiling:.1f} s compiling, of which {llvm:.1f} s inside LLVM and "
+          f"{compiling - llvm:.1f} s numba's typing and lowering in Python")
+    print("longest compilations (outermost kernels):")
     for name, seconds in rows:
         print(f"  {seconds:6.1f} s  {name}")
 

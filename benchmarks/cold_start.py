@@ -7,8 +7,10 @@ cache (a fresh machine, or the first run after the dynamics code changed) and on
 that run filled, and reports the difference. Then, in-process with an empty cache, it splits the
 simulate stage's compiling into the time spent inside LLVM (numba's `numba:llvm_lock` events: every
 call into the LLVM library holds that lock) and the rest, numba's typing and lowering in Python,
-and lists the kernels that take longest to compile (`numba:compile` events, outermost dispatchers
-only, nested compilations counted inside their caller). Run it on a quiet machine.
+counts the variables numba typed and the calls it resolved (by wrapping numba's type-inference
+pass for that run), and lists the kernels that take longest to compile (`numba:compile` events,
+outermost dispatchers only, nested compilations counted inside their caller). Run it on a quiet
+machine.
 """
 
 from __future__ import annotations
@@ -30,11 +32,11 @@ def timed_run(scene: str, cache: Path, out: Path) -> float:
     return time.perf_counter() - t0
 
 
-def compile_profile(scene: str, cache: Path, top: int = 12) -> tuple[float, float, list[tuple[str, float]]]:
-    """(seconds compiling, of them inside LLVM, [(kernel, seconds)] of the outermost compilations)
-    of a 1 ms run with an empty cache."""
+def compile_profile(scene: str, cache: Path, top: int = 12) -> tuple[float, float, dict, list[tuple[str, float]]]:
+    """(seconds compiling, of them inside LLVM, {"compilations", "variables", "calls"} typed,
+    [(kernel, seconds)] of the outermost compilations) of a 1 ms run with an empty cache."""
     os.environ["NUMBA_CACHE_DIR"] = str(cache)
-    from numba.core import event
+    from numba.core import event, typed_passes
 
     from bearingsim.dynamics.bearing.run import simulate_bearing
     from bearingsim.pipeline.scene import load_scene
@@ -68,13 +70,27 @@ def compile_profile(scene: str, cache: Path, top: int = 12) -> tuple[float, floa
             if self.depth == 0:
                 self.seconds += time.perf_counter() - self.t0
 
+    typed = {"compilations": 0, "variables": 0, "calls": 0}
+    infer = typed_passes.BaseTypeInference.run_pass
+
+    def counting_inference(self, state):
+        changed = infer(self, state)
+        typed["compilations"] += 1
+        typed["variables"] += len(state.typemap)
+        typed["calls"] += len(state.calltypes)
+        return changed
+
     compiling, llvm = Outermost(), Outermost()
     scene_obj = load_scene(scene, ["solver.duration=1e-3"])
-    with event.install_listener("numba:compile", Kernels()), event.install_listener("numba:compile", compiling), \
-            event.install_listener("numba:llvm_lock", llvm):
-        params, start = build_model(scene_obj, None)
-        simulate_bearing(params, start, scene_obj.solver, 1e-3, 1e-5)
-    return compiling.seconds, llvm.seconds, sorted(totals.items(), key=lambda kv: -kv[1])[:top]
+    typed_passes.BaseTypeInference.run_pass = counting_inference
+    try:
+        with event.install_listener("numba:compile", Kernels()), event.install_listener("numba:compile", compiling), \
+                event.install_listener("numba:llvm_lock", llvm):
+            params, start = build_model(scene_obj, None)
+            simulate_bearing(params, start, scene_obj.solver, 1e-3, 1e-5)
+    finally:
+        typed_passes.BaseTypeInference.run_pass = infer
+    return compiling.seconds, llvm.seconds, typed, sorted(totals.items(), key=lambda kv: -kv[1])[:top]
 
 
 def main(argv=None) -> None:
@@ -87,9 +103,10 @@ def main(argv=None) -> None:
         warm = timed_run(args.scene, tmp / "cache", tmp / "warm")
         print(f"{args.scene}, 1 ms simulate: cold cache {cold:.1f} s, warm cache {warm:.1f} s: "
               f"compiling costs {cold - warm:.1f} s once (load average {os.getloadavg()[0]:.2f})")
-        compiling, llvm, rows = compile_profile(args.scene, tmp / "cache2")
+        compiling, llvm, typed, rows = compile_profile(args.scene, tmp / "cache2")
     print(f"in-process, simulate stage only: {compiling:.1f} s compiling, of which {llvm:.1f} s inside LLVM and "
-          f"{compiling - llvm:.1f} s numba's typing and lowering in Python")
+          f"{compiling - llvm:.1f} s numba's typing and lowering in Python; {typed['compilations']} compilations "
+          f"typed {typed['variables']} variables and resolved {typed['calls']} calls")
     print("longest compilations (outermost kernels):")
     for name, seconds in rows:
         print(f"  {seconds:6.1f} s  {name}")

@@ -28,11 +28,12 @@ callee into the loop, where LLVM optimises it a second time (four times the comp
 the bearing's force kernel); a function value is an address the loop calls, so loop, kernel and
 hook are separate libraries that compile apart, even in separate processes (`compile_loop`). It
 also keeps the loop one cached function for every problem: numba cannot cache a function that
-holds a jitted function as a run-time value, and a loop that called its hook as a dispatcher had
-to be copied into one wrapper per problem, a copy of its whole IR that numba makes in time
-growing with the square of the loop's size. numba's C entry cannot pass an exception on: it
-reports it through `sys.unraisablehook` and returns 0.0 (False), so `integrate_compiled` collects
-those reports and raises after the chunk (`kernel_errors`).
+holds a jitted function as a run-time value, so a loop that called its hook through a dispatcher
+would have to be inlined into one wrapper per problem: a copy of the loop's whole IR, which numba
+makes block by block with the function's whole scope each time (time growing as blocks times
+variables). numba's C entry cannot pass an exception on: it reports it through
+`sys.unraisablehook` and returns 0.0 (False), so `integrate_compiled` collects those reports and
+raises after the chunk (`kernel_errors`).
 
 Output per chunk: Hermite samples at fixed times (`sampling.hermite_fill`), step-end
 records (t, q, v, diag) at the first accepted step at or after each multiple of `record_dt`,

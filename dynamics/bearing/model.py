@@ -287,14 +287,16 @@ class BearingModel:
     def compiled(self, compile_kernel: bool = True) -> CompiledProblem:
         """The compiled side for `multibody.compiled.integrate_compiled`; without `compile_kernel`
         the force and tangent kernels are not compiled, only typed
-        (`multibody.compiled.compile_loop`)."""
+        (`multibody.compiled.compile_loop`). The accepted-step hook is compiled (or loaded) either
+        way: it is small and goes with the loop, so the process that compiles the loop ahead of a
+        machine's first run compiles it too (pipeline/compile_ahead.py)."""
         rows = np.array([layout.spin_row(self.params.ball_count)], dtype=np.int64)
         K, C = self._blocks
         # one kernel for the tangent calls and Newton's residual-only calls (want_tangent at run time)
         kernel = self.force_kernel(compile_kernel, compile_kernel)
         data = self.kernel_data(compile_kernel)
         n = np.zeros(self.n_dof)  # the hook's argument types, as the time loop passes them
-        accepted = KernelFunction(accepted_step, (0.0, n, n, n, data, self.diag, self.log), compile_kernel,
+        accepted = KernelFunction(accepted_step, (0.0, n, n, n, data, self.diag, self.log),
                                   returns=numba.types.boolean)
         return CompiledProblem(kernel, accepted, data, self.log, self.mass, rows, self.diag, K, C, self.drain)
 

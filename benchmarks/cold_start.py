@@ -38,6 +38,8 @@ def compile_profile(scene: str, cache: Path, top: int = 12) -> tuple[float, floa
     os.environ["NUMBA_CACHE_DIR"] = str(cache)
     from numba.core import event, typed_passes
 
+    from benchmarks.numba_events import Outermost
+
     from bearingsim.dynamics.bearing.run import simulate_bearing
     from bearingsim.pipeline.scene import load_scene
     from bearingsim.pipeline.stages.simulate import build_model
@@ -53,22 +55,6 @@ def compile_profile(scene: str, cache: Path, top: int = 12) -> tuple[float, floa
             name, t0 = stack.pop()
             if not stack:
                 totals[name] = totals.get(name, 0.0) + time.perf_counter() - t0
-
-    class Outermost(event.Listener):
-        """Seconds between the outermost start and end events of one event kind."""
-
-        def __init__(self) -> None:
-            self.depth, self.seconds, self.t0 = 0, 0.0, 0.0
-
-        def on_start(self, ev) -> None:
-            if self.depth == 0:
-                self.t0 = time.perf_counter()
-            self.depth += 1
-
-        def on_end(self, ev) -> None:
-            self.depth -= 1
-            if self.depth == 0:
-                self.seconds += time.perf_counter() - self.t0
 
     typed = {"compilations": 0, "variables": 0, "calls": 0}
     infer = typed_passes.BaseTypeInference.run_pass

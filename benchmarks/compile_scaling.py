@@ -58,6 +58,8 @@ import numpy as np
 import numba
 from numba.core import event
 
+from benchmarks.numba_events import Outermost
+
 sys.path.insert(0, sys.argv[1])
 mod = importlib.import_module("kernel")
 x, out = np.random.rand({n_arrays}) + 1.0, np.zeros({n_out})
@@ -75,21 +77,6 @@ def tiny(x, out):  # numba's own first-use costs, paid before the timing
 tiny(x, out)
 
 
-class Outermost(event.Listener):
-    def __init__(self):
-        self.depth, self.seconds, self.t0 = 0, 0.0, 0.0
-
-    def on_start(self, ev):
-        if self.depth == 0:
-            self.t0 = time.perf_counter()
-        self.depth += 1
-
-    def on_end(self, ev):
-        self.depth -= 1
-        if self.depth == 0:
-            self.seconds += time.perf_counter() - self.t0
-
-
 llvm = Outermost()
 with event.install_listener("numba:llvm_lock", llvm):
     t0 = time.perf_counter()
@@ -105,7 +92,7 @@ def compile_time(k: int, shape: str) -> tuple[float, float]:
         Path(tmp, "kernel.py").write_text(kernel_source(k, shape))
         env = dict(os.environ, NUMBA_CACHE_DIR=str(Path(tmp, "cache")))
         done = subprocess.run([sys.executable, "-c", _CHILD, tmp, shape], env=env, check=True, capture_output=True,
-                              text=True)
+                              text=True, cwd=Path(__file__).resolve().parents[1])  # where `benchmarks` imports from
     wall, llvm = map(float, done.stdout.split())
     return wall, llvm
 

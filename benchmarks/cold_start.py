@@ -1,6 +1,6 @@
 """First-run cost of the numba kernels (docs/performance.md).
 
-    python -m benchmarks.cold_start [SCENE]
+    python -m benchmarks.cold_start [SCENE] [--flag-pairs N]
 
 Runs a 1 ms `simulate` of the scene twice in this process's children: once with an empty numba
 cache (a fresh machine, or the first run after the dynamics code changed) and once with the cache
@@ -11,6 +11,9 @@ counts the variables numba typed and the calls it resolved (by wrapping numba's 
 pass for that run), and lists the kernels that take longest to compile (`numba:compile` events,
 outermost dispatchers only, nested compilations counted inside their caller). Run it on a quiet
 machine.
+
+With `--flag-pairs N` it then times N more pairs of cold runs, alternated: as shipped, and with
+numba's own comparison of compile flags (dynamics/_speed/flag_values.py not installed).
 """
 
 from __future__ import annotations
@@ -24,10 +27,16 @@ import time
 from pathlib import Path
 
 
-def timed_run(scene: str, cache: Path, out: Path) -> float:
+CLI = "from bearingsim.pipeline.cli import main; main()"
+# the same command with numba's flag comparison left as numba has it: `install` is disabled before
+# the kernels' import (compile_policy) would call it
+CLI_NUMBA_FLAGS = "from bearingsim.dynamics._speed import flag_values; flag_values.install = lambda: False; " + CLI
+
+
+def timed_run(scene: str, cache: Path, out: Path, program: str = CLI) -> float:
     env = dict(os.environ, NUMBA_CACHE_DIR=str(cache))
     t0 = time.perf_counter()
-    subprocess.run([sys.executable, "-c", "from bearingsim.pipeline.cli import main; main()", "simulate", scene, "--out", str(out),
+    subprocess.run([sys.executable, "-c", program, "simulate", scene, "--out", str(out),
                     "--force", "--set", "solver.duration=1e-3"], env=env, check=True, capture_output=True)
     return time.perf_counter() - t0
 
@@ -82,6 +91,8 @@ def compile_profile(scene: str, cache: Path, top: int = 12) -> tuple[float, floa
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("scene", nargs="?", default="helicopter-b-given-hinge")
+    ap.add_argument("--flag-pairs", type=int, default=0,
+                    help="pairs of cold runs with and without the faster flag comparison, alternated")
     args = ap.parse_args(argv)
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
@@ -96,6 +107,18 @@ def main(argv=None) -> None:
     print("longest compilations (outermost kernels):")
     for name, seconds in rows:
         print(f"  {seconds:6.1f} s  {name}")
+    if args.flag_pairs:
+        flag_pairs(args.scene, args.flag_pairs)
+
+
+def flag_pairs(scene: str, pairs: int) -> None:
+    for i in range(pairs):
+        with tempfile.TemporaryDirectory() as tmp:
+            tmp = Path(tmp)
+            fast = timed_run(scene, tmp / "fast", tmp / "fast_out")
+            numba_own = timed_run(scene, tmp / "numba", tmp / "numba_out", CLI_NUMBA_FLAGS)
+        print(f"pair {i + 1}, cold 1 ms simulate: {fast:.1f} s as shipped, {numba_own:.1f} s with numba's own flag "
+              f"comparison, ratio {fast / numba_own:.2f} (load average {os.getloadavg()[0]:.2f})")
 
 
 if __name__ == "__main__":

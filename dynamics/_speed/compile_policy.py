@@ -13,7 +13,14 @@ a function that returns an array, so these kernels can only borrow the caller's 
 dynamics/bearing/bundles.py) are plain structs of borrowed arrays: these kernels take them,
 and build them from views, without any reference counting. tests/test_bearing_model.py
 checks that the arrays passed through the model keep their reference counts.
+
+Importing this module, as every kernel module does, also installs the faster comparison of
+numba's compile flags (`flag_values`) before anything compiles.
 """
+
+from . import flag_values
+
+flag_values.install()
 
 # Every kernel: cached, and without the C-callable wrapper numba otherwise compiles for each
 # function so that it can be passed around as a first-class function value (a compile cost on a

@@ -1,6 +1,6 @@
 """First-run cost of the numba kernels (docs/performance.md).
 
-    python -m benchmarks.cold_start [SCENE] [--flag-pairs N]
+    python -m benchmarks.cold_start [SCENE] [--pairs N --without flag_values|deferred_emission]
 
 Runs a 1 ms `simulate` of the scene twice in this process's children: once with an empty numba
 cache (a fresh machine, or the first run after the dynamics code changed) and once with the cache
@@ -12,8 +12,10 @@ pass for that run), and lists the kernels that take longest to compile (`numba:c
 outermost dispatchers only, nested compilations counted inside their caller). Run it on a quiet
 machine.
 
-With `--flag-pairs N` it then times N more pairs of cold runs, alternated: as shipped, and with
-numba's own comparison of compile flags (dynamics/_speed/flag_values.py not installed).
+With `--pairs N --without MODULE` it then times N more pairs of cold runs, alternated: as shipped,
+and with one of numba's own ways put back: its comparison of compile flags (`flag_values`) or its
+emission of machine code for every library at once (`deferred_emission`), the module in
+dynamics/_speed/ not installed.
 """
 
 from __future__ import annotations
@@ -28,9 +30,15 @@ from pathlib import Path
 
 
 CLI = "from bearingsim.pipeline.cli import main; main()"
-# the same command with numba's flag comparison left as numba has it: `install` is disabled before
-# the kernels' import (compile_policy) would call it
-CLI_NUMBA_FLAGS = "from bearingsim.dynamics._speed import flag_values; flag_values.install = lambda: False; " + CLI
+# the modules of dynamics/_speed/ that change how numba compiles, installed when the kernels are
+# imported (compile_policy)
+NUMBA_CHANGES = ("flag_values", "deferred_emission")
+
+
+def cli_without(module: str) -> str:
+    """The command with one of numba's own ways kept: the module's `install` is disabled before
+    the kernels' import would call it."""
+    return f"from bearingsim.dynamics._speed import {module}; {module}.install = lambda: False; " + CLI
 
 
 def timed_run(scene: str, cache: Path, out: Path, program: str = CLI) -> float:
@@ -91,8 +99,9 @@ def compile_profile(scene: str, cache: Path, top: int = 12) -> tuple[float, floa
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("scene", nargs="?", default="helicopter-b-given-hinge")
-    ap.add_argument("--flag-pairs", type=int, default=0,
-                    help="pairs of cold runs with and without the faster flag comparison, alternated")
+    ap.add_argument("--pairs", type=int, default=0,
+                    help="pairs of cold runs as shipped and with --without's module not installed, alternated")
+    ap.add_argument("--without", choices=NUMBA_CHANGES, default="deferred_emission")
     args = ap.parse_args(argv)
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
@@ -107,18 +116,18 @@ def main(argv=None) -> None:
     print("longest compilations (outermost kernels):")
     for name, seconds in rows:
         print(f"  {seconds:6.1f} s  {name}")
-    if args.flag_pairs:
-        flag_pairs(args.scene, args.flag_pairs)
+    if args.pairs:
+        pairs(args.scene, args.pairs, args.without)
 
 
-def flag_pairs(scene: str, pairs: int) -> None:
-    for i in range(pairs):
+def pairs(scene: str, count: int, module: str) -> None:
+    for i in range(count):
         with tempfile.TemporaryDirectory() as tmp:
             tmp = Path(tmp)
-            fast = timed_run(scene, tmp / "fast", tmp / "fast_out")
-            numba_own = timed_run(scene, tmp / "numba", tmp / "numba_out", CLI_NUMBA_FLAGS)
-        print(f"pair {i + 1}, cold 1 ms simulate: {fast:.1f} s as shipped, {numba_own:.1f} s with numba's own flag "
-              f"comparison, ratio {fast / numba_own:.2f} (load average {os.getloadavg()[0]:.2f})")
+            shipped = timed_run(scene, tmp / "shipped", tmp / "shipped_out")
+            without = timed_run(scene, tmp / "without", tmp / "without_out", cli_without(module))
+        print(f"pair {i + 1}, cold 1 ms simulate: {shipped:.1f} s as shipped, {without:.1f} s without {module}, "
+              f"ratio {shipped / without:.2f} (load average {os.getloadavg()[0]:.2f})")
 
 
 if __name__ == "__main__":

@@ -1,6 +1,7 @@
 """Performance helpers of the numba kernels, in one private place: compile policy
 (`compile_policy`), numba's compile flags compared without a Python call per option
-(`flag_values`, installed by `compile_policy`), cache-line-aligned scratch (`aligned`),
+(`flag_values`), machine code emitted only for what needs an address (`deferred_emission`;
+both installed by `compile_policy`), cache-line-aligned scratch (`aligned`),
 vectorisable exp and log over arrays (`simd_math`) and the float32 table lookup
 (`table_lookup`).
 

@@ -12,7 +12,7 @@ import sys
 import pytest
 
 _KERNELS = r"""
-import json, sys
+import json
 import numba
 import numpy as np
 from bearingsim.dynamics._speed import compile_policy, deferred_emission  # compile_policy installs it
@@ -56,6 +56,14 @@ for name, dispatcher in (("caller", caller), ("callee", callee)):
 """
 
 
+def _python(tmp_path, script: str) -> subprocess.CompletedProcess:
+    """Run `script` from tmp_path with numba's cache in tmp_path/numba."""
+    path = tmp_path / "run.py"
+    path.write_text(script)
+    return subprocess.run([sys.executable, str(path)], env=dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "numba")),
+                          cwd=tmp_path, capture_output=True, text=True)
+
+
 def _run(tmp_path, body: str) -> dict:
     """Run `body` after importing the kernels above from a module of their own, which stays the
     same file from run to run (numba caches only functions from files, and keys the cache by the
@@ -63,10 +71,7 @@ def _run(tmp_path, body: str) -> dict:
     kernels = tmp_path / "kernels.py"
     if not kernels.exists():
         kernels.write_text(_KERNELS)
-    script = tmp_path / "run.py"
-    script.write_text("from kernels import *\n" + body + "\nprint(json.dumps(out))\n")
-    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "numba"))
-    done = subprocess.run([sys.executable, str(script)], env=env, cwd=tmp_path, capture_output=True, text=True)
+    done = _python(tmp_path, "from kernels import *\n" + body + "\nprint(json.dumps(out))\n")
     assert done.returncode == 0, done.stderr[-3000:]
     lines = done.stdout.splitlines()
     return {"printed": lines[:-1], **json.loads(lines[-1])}
@@ -109,12 +114,9 @@ out["squared"] = apply(square, 3.0)
 def test_the_environment_a_callee_reads_is_set_in_its_callers_code(tmp_path):
     """Without the environments set after emission, the callee's print inside the caller fails
     ("missing Environment"): this is what the first test's print checks."""
-    script = tmp_path / "kernels.py"
-    script.write_text(_KERNELS.replace("assert deferred_emission.installed()",
-                                       "deferred_emission._set_environments = lambda library: None")
-                      + "\ncaller(x)\n")
-    done = subprocess.run([sys.executable, str(script)], env=dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "numba")),
-                          cwd=tmp_path, capture_output=True, text=True)
+    done = _python(tmp_path, _KERNELS.replace("assert deferred_emission.installed()",
+                                              "deferred_emission._set_environments = lambda library: None")
+                   + "\ncaller(x)\n")
     assert done.returncode != 0
     assert "missing Environment" in done.stderr
 
@@ -158,7 +160,7 @@ def test_another_numba_layout_is_left_alone(monkeypatch):
 
 
 @pytest.mark.parametrize("name", ["_finalize_final_module", "get_pointer_to_function", "get_executable",
-                                  "add_overload", "serialize_using_object_code", "_unserialize"])
+                                  "add_overload", "serialize_using_object_code", "_unserialize", "set_env"])
 def test_numbas_methods_are_kept(name):
     from bearingsim.dynamics._speed import deferred_emission
 

@@ -47,15 +47,16 @@ def _original(owner, name):
     return getattr(function, "numba_original", function)
 
 
-_ORIGINAL = {
-    (_LIBRARY, "_finalize_final_module"): _original(_LIBRARY, "_finalize_final_module"),
-    (_LIBRARY, "serialize_using_object_code"): _original(_LIBRARY, "serialize_using_object_code"),
-    (_LIBRARY, "_unserialize"): _original(_LIBRARY, "_unserialize"),
-    (_JIT_LIBRARY, "get_pointer_to_function"): _original(_JIT_LIBRARY, "get_pointer_to_function"),
-    (cpu.CPUContext, "get_executable"): _original(cpu.CPUContext, "get_executable"),
-    (dispatcher._DispatcherBase, "add_overload"): _original(dispatcher._DispatcherBase, "add_overload"),
-    (_JIT_CODEGEN, "set_env"): _original(_JIT_CODEGEN, "set_env"),
-}
+# numba's methods that `install()` replaces, by (class, name)
+_ORIGINAL = {(owner, name): _original(owner, name) for owner, name in (
+    (_LIBRARY, "_finalize_final_module"),
+    (_LIBRARY, "serialize_using_object_code"),
+    (_LIBRARY, "_unserialize"),
+    (_JIT_LIBRARY, "get_pointer_to_function"),
+    (cpu.CPUContext, "get_executable"),
+    (dispatcher._DispatcherBase, "add_overload"),
+    (_JIT_CODEGEN, "set_env"),
+)}
 _FINALIZE = _ORIGINAL[_LIBRARY, "_finalize_final_module"]
 _GET_POINTER = _ORIGINAL[_JIT_LIBRARY, "get_pointer_to_function"]
 _GET_EXECUTABLE = _ORIGINAL[cpu.CPUContext, "get_executable"]

@@ -1,6 +1,6 @@
 """First-run cost of the numba kernels (docs/performance.md).
 
-    python -m benchmarks.cold_start [SCENE] [--pairs N --without flag_values|deferred_emission]
+    python -m benchmarks.cold_start [SCENE] [--pairs N --without flag_values|resolved_calls|deferred_emission]
 
 Runs a 1 ms `simulate` of the scene twice in this process's children: once with an empty numba
 cache (a fresh machine, or the first run after the dynamics code changed) and once with the cache
@@ -13,9 +13,9 @@ outermost dispatchers only, nested compilations counted inside their caller). Ru
 machine.
 
 With `--pairs N --without MODULE` it then times N more pairs of cold runs, alternated: as shipped,
-and with one of numba's own ways put back: its comparison of compile flags (`flag_values`) or its
-emission of machine code for every library at once (`deferred_emission`), the module in
-dynamics/_speed/ not installed.
+and with one of numba's own ways put back: its comparison of compile flags (`flag_values`), its
+resolution of every call anew (`resolved_calls`) or its emission of machine code for every library
+at once (`deferred_emission`), the module in dynamics/_speed/ not installed.
 """
 
 from __future__ import annotations
@@ -32,7 +32,7 @@ from pathlib import Path
 CLI = "from bearingsim.pipeline.cli import main; main()"
 # the modules of dynamics/_speed/ that change how numba compiles, installed when the kernels are
 # imported (compile_policy)
-NUMBA_CHANGES = ("flag_values", "deferred_emission")
+NUMBA_CHANGES = ("flag_values", "resolved_calls", "deferred_emission")
 
 
 def cli_without(module: str) -> str:

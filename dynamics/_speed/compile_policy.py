@@ -15,13 +15,14 @@ and build them from views, without any reference counting. tests/test_bearing_mo
 checks that the arrays passed through the model keep their reference counts.
 
 Importing this module, as every kernel module does, also installs the faster comparison of
-numba's compile flags (`flag_values`) and machine code on demand (`deferred_emission`) before
-anything compiles.
+numba's compile flags (`flag_values`), its resolved calls remembered (`resolved_calls`) and
+machine code on demand (`deferred_emission`) before anything compiles.
 """
 
-from . import deferred_emission, flag_values
+from . import deferred_emission, flag_values, resolved_calls
 
 flag_values.install()
+resolved_calls.install()
 deferred_emission.install()
 
 # Every kernel: cached, and without the C-callable wrapper numba otherwise compiles for each

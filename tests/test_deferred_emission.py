@@ -5,11 +5,10 @@ loading the cache. Each case runs in a fresh process with an empty numba cache, 
 defined in a module of the test's own that is added to the deferred ones."""
 
 import json
-import os
-import subprocess
-import sys
 
 import pytest
+
+from .fresh_process import run_script
 
 _KERNELS = r"""
 import json
@@ -56,14 +55,6 @@ for name, dispatcher in (("caller", caller), ("callee", callee)):
 """
 
 
-def _python(tmp_path, script: str) -> subprocess.CompletedProcess:
-    """Run `script` from tmp_path with numba's cache in tmp_path/numba."""
-    path = tmp_path / "run.py"
-    path.write_text(script)
-    return subprocess.run([sys.executable, str(path)], env=dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "numba")),
-                          cwd=tmp_path, capture_output=True, text=True)
-
-
 def _run(tmp_path, body: str) -> dict:
     """Run `body` after importing the kernels above from a module of their own, which stays the
     same file from run to run (numba caches only functions from files, and keys the cache by the
@@ -71,7 +62,7 @@ def _run(tmp_path, body: str) -> dict:
     kernels = tmp_path / "kernels.py"
     if not kernels.exists():
         kernels.write_text(_KERNELS)
-    done = _python(tmp_path, "from kernels import *\n" + body + "\nprint(json.dumps(out))\n")
+    done = run_script(tmp_path, "from kernels import *\n" + body + "\nprint(json.dumps(out))\n")
     assert done.returncode == 0, done.stderr[-3000:]
     lines = done.stdout.splitlines()
     return {"printed": lines[:-1], **json.loads(lines[-1])}
@@ -114,7 +105,7 @@ out["squared"] = apply(square, 3.0)
 def test_the_environment_a_callee_reads_is_set_in_its_callers_code(tmp_path):
     """Without the environments set after emission, the callee's print inside the caller fails
     ("missing Environment"): this is what the first test's print checks."""
-    done = _python(tmp_path, _KERNELS.replace("assert deferred_emission.installed()",
+    done = run_script(tmp_path, _KERNELS.replace("assert deferred_emission.installed()",
                                               "deferred_emission._set_environments = lambda library: None")
                    + "\ncaller(x)\n")
     assert done.returncode != 0

@@ -4,9 +4,6 @@ module keeps, or from a process in which the module is not installed."""
 
 import math
 import operator
-import os
-import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -14,6 +11,8 @@ from numba.core import errors, types
 from numba.core.registry import cpu_target
 
 from bearingsim.dynamics._speed import resolved_calls
+
+from .fresh_process import run_script
 
 
 def test_importing_the_kernels_installs_it():
@@ -108,10 +107,7 @@ print("installed", resolved_calls.installed())
 
 
 def _two_flags(tmp_path, which: str) -> list[str]:
-    script = tmp_path / "two_flags.py"
-    script.write_text(_TWO_FLAGS)
-    done = subprocess.run([sys.executable, str(script), which], capture_output=True, text=True, cwd=tmp_path,
-                          env=dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "numba")))
+    done = run_script(tmp_path, _TWO_FLAGS, which, name="two_flags.py")
     assert done.returncode == 0, done.stderr[-3000:]
     return done.stdout.splitlines()
 

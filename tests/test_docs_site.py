@@ -25,3 +25,26 @@ def test_site_builds_strictly(tmp_path):
         assert (tmp_path / "site" / page).is_file(), page
     reference = (tmp_path / "site" / "reference" / "index.html").read_text(encoding="utf-8")
     assert "load_scene" in reference and "export_stiffness" in reference
+
+
+
+def test_broken_links_fail_the_build(tmp_path):
+    """mkdocs reports a link to a missing heading or file only at INFO level unless told
+    otherwise: with mkdocs.yml's `validation` table, a one-page site with such a link fails the
+    strict build, and the same page with the link fixed builds."""
+    yaml = pytest.importorskip("yaml", reason="the docs extra is not installed")
+    pytest.importorskip("mkdocs", reason="the docs extra is not installed")
+    validation = yaml.safe_load((ROOT / "mkdocs.yml").read_text(encoding="utf-8"))["validation"]
+    (tmp_path / "docs").mkdir()
+    (tmp_path / "mkdocs.yml").write_text(
+        yaml.safe_dump({"site_name": "probe", "strict": True, "validation": validation}), encoding="utf-8")
+
+    def build(page: str) -> subprocess.CompletedProcess:
+        (tmp_path / "docs" / "index.md").write_text(page, encoding="utf-8")
+        return subprocess.run([sys.executable, "-m", "mkdocs", "build", "--site-dir", str(tmp_path / "site")],
+                              cwd=tmp_path, capture_output=True, text=True, env=dict(os.environ, NO_MKDOCS_2_WARNING="1"))
+
+    for broken in ("[there](#no-such-heading)", "[there](missing.json)"):
+        result = build(f"# Probe\n\n## Here\n\n{broken}\n")
+        assert result.returncode != 0, broken
+    assert build("# Probe\n\n## Here\n\n[there](#here)\n").returncode == 0

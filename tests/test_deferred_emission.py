@@ -106,8 +106,8 @@ def test_the_environment_a_callee_reads_is_set_in_its_callers_code(tmp_path):
     """Without the environments set after emission, the callee's print inside the caller fails
     ("missing Environment"): this is what the first test's print checks."""
     done = run_script(tmp_path, _KERNELS.replace("assert deferred_emission.installed()",
-                                              "deferred_emission._set_environments = lambda library: None")
-                   + "\ncaller(x)\n")
+                                                 "deferred_emission._set_environments = lambda library: None")
+                      + "\ncaller(x)\n")
     assert done.returncode != 0
     assert "missing Environment" in done.stderr
 

@@ -14,18 +14,21 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 
 
+def _build_strictly(project: Path, site: Path) -> subprocess.CompletedProcess:
+    """`mkdocs build --strict` of the site whose mkdocs.yml is in `project`, into `site`."""
+    return subprocess.run([sys.executable, "-m", "mkdocs", "build", "--strict", "--site-dir", str(site)],
+                          cwd=project, capture_output=True, text=True, env=dict(os.environ, NO_MKDOCS_2_WARNING="1"))
+
+
 def test_site_builds_strictly(tmp_path):
     pytest.importorskip("mkdocs", reason="the docs extra is not installed")
     pytest.importorskip("mkdocstrings", reason="the docs extra is not installed")
-    result = subprocess.run([sys.executable, "-m", "mkdocs", "build", "--strict", "--site-dir", str(tmp_path / "site")],
-                            cwd=ROOT, capture_output=True, text=True,
-                            env=dict(os.environ, NO_MKDOCS_2_WARNING="1"))
+    result = _build_strictly(ROOT, tmp_path / "site")
     assert result.returncode == 0, result.stdout[-3000:] + result.stderr[-3000:]
     for page in ("index.html", "reference/index.html", "scenes/index.html", "performance/index.html"):
         assert (tmp_path / "site" / page).is_file(), page
     reference = (tmp_path / "site" / "reference" / "index.html").read_text(encoding="utf-8")
     assert "load_scene" in reference and "export_stiffness" in reference
-
 
 
 def test_broken_links_fail_the_build(tmp_path):
@@ -41,8 +44,7 @@ def test_broken_links_fail_the_build(tmp_path):
 
     def build(page: str) -> subprocess.CompletedProcess:
         (tmp_path / "docs" / "index.md").write_text(page, encoding="utf-8")
-        return subprocess.run([sys.executable, "-m", "mkdocs", "build", "--site-dir", str(tmp_path / "site")],
-                              cwd=tmp_path, capture_output=True, text=True, env=dict(os.environ, NO_MKDOCS_2_WARNING="1"))
+        return _build_strictly(tmp_path, tmp_path / "site")
 
     for broken in ("[there](#no-such-heading)", "[there](missing.json)"):
         result = build(f"# Probe\n\n## Here\n\n{broken}\n")

@@ -51,3 +51,18 @@ def test_dynamics_and_fe_model_never_import_each_other_or_pipeline():
         pat = re.compile(r"^\s*(from|import)\s+bearingsim\.(" + "|".join(banned) + r")\b", re.M)
         offenders = [str(p.relative_to(ROOT)) for p in (ROOT / folder).rglob("*.py") if pat.search(p.read_text(encoding="utf-8"))]
         assert not offenders, f"{folder} must not import {banned}: {offenders}"
+
+
+def test_python_dash_m_runs_the_command_line():
+    """`python -m bearingsim` is the console script, for a venv whose bin/ is not on PATH."""
+    import subprocess
+    import sys
+
+    listed = subprocess.run([sys.executable, "-m", "bearingsim", "scenes"], capture_output=True, text=True)
+    assert listed.returncode == 0, listed.stderr
+    assert "helicopter-b" in listed.stdout
+    refused = subprocess.run([sys.executable, "-m", "bearingsim", "check", "no-such-scene"],
+                             capture_output=True, text=True)
+    assert refused.returncode == 2 and "no-such-scene" in refused.stderr
+    usage = subprocess.run([sys.executable, "-m", "bearingsim", "--help"], capture_output=True, text=True)
+    assert "Usage: bearingsim " in usage.stdout

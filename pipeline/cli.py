@@ -638,6 +638,8 @@ def _run_sweep_points(plan, o: SweepOptions) -> list:
         _fail(EXIT_FAILED, str(exc))
 
 
-def main() -> None:  # pragma: no cover - console entry point
+def main() -> None:
+    """The console script and `python -m bearingsim`: SIGTERM becomes a logged interruption
+    (exit 143, the running stage's temporary folder removed) before the commands run."""
     stop_on_sigterm()
-    app()
+    app(prog_name="bearingsim")

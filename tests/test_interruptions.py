@@ -22,7 +22,8 @@ runner = CliRunner()
 
 def test_sigterm_during_simulate_is_logged_and_leaves_no_temporary(tmp_path):
     out = tmp_path / "run"
-    proc = subprocess.Popen([sys.executable, "-c", "from bearingsim.pipeline.cli import main; main()",
+    # as users start it: `python -m bearingsim` runs what the console script runs (test_packaging)
+    proc = subprocess.Popen([sys.executable, "-m", "bearingsim",
                              "simulate", "helicopter-b-given-hinge", "--out", str(out),
                              "--set", "solver.duration=0.8", "--set", "output.figures=false"],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
@@ -73,7 +74,7 @@ def test_ctrl_c_during_a_sweep_says_how_to_continue(tmp_path, monkeypatch):
 def test_ctrl_c_of_a_real_sweep_is_one_message(tmp_path):
     """Ctrl-C reaches the whole process group, the workers included: one message, no traceback."""
     out = tmp_path / "s"
-    proc = subprocess.Popen([sys.executable, "-c", "from bearingsim.pipeline.cli import main; main()",
+    proc = subprocess.Popen([sys.executable, "-m", "bearingsim",
                              "sweep", "helicopter-b-given-hinge", "--set", "solver.duration=0.3",
                              "--set", "output.figures=false", "--vary", "load.moment=100,200,300,400",
                              "--out", str(out)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,

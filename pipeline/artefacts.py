@@ -229,20 +229,40 @@ def staged_directory(final_dir: Path) -> Iterator[Path]:
         shutil.rmtree(old, ignore_errors=True)
 
 
+def foreign_files(stage_dir: Path) -> list[str]:
+    """Files in a stage folder that its manifest does not list, as relative paths: put
+    there by someone else, so never replaced or deleted with the folder. A manifest
+    without a file list (written by hand or by an older version) vouches for every file."""
+    stage_dir = Path(stage_dir)
+    listed = (read_manifest(stage_dir) or {}).get("files")
+    if not isinstance(listed, dict):
+        return []
+    found = (p.relative_to(stage_dir).as_posix() for p in stage_dir.rglob("*") if p.is_file() or p.is_symlink())
+    return sorted(name for name in found if name != MANIFEST and name not in listed)
+
+
 def refuse_foreign_stage_dir(path: Path) -> None:
     """Raise OutputRefused when `path` exists and is not a stage folder bearingsim wrote
-    (a stage folder always holds its manifest, even when a result file in it is damaged)."""
+    (a stage folder always holds its manifest, even when a result file in it is damaged),
+    or when it holds files its manifest does not list (the stage replaces the folder whole)."""
     if path.is_symlink() or (path.exists() and not (path.is_dir() and (path / MANIFEST).is_file())):
         raise OutputRefused(
             f"{path} is in the way of the {path.name} stage and was not written by bearingsim "
             f"(no {MANIFEST}); bearingsim never replaces a file or folder of yours: move it away, "
             f"or give the run its own directory with --out")
+    extra = foreign_files(path) if path.is_dir() else []
+    if extra:
+        more = f" and {len(extra) - 1} more" if len(extra) > 1 else ""
+        raise OutputRefused(
+            f"{path / extra[0]}{more}: not written by the {path.name} stage, which replaces {path} "
+            f"whole; bearingsim never deletes a file of yours: move it out of {path} and run again")
 
 
 def remove_stage_dir(path: Path) -> bool:
-    """Delete a stage folder bearingsim wrote (True), never anything else (False)."""
+    """Delete a stage folder bearingsim wrote (True), never anything else (False): not a
+    folder holding files its manifest does not list (`foreign_files`)."""
     path = Path(path)
-    if path.is_dir() and not path.is_symlink() and (path / MANIFEST).is_file():
+    if path.is_dir() and not path.is_symlink() and (path / MANIFEST).is_file() and not foreign_files(path):
         shutil.rmtree(path)
         return True
     return False

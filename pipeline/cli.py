@@ -392,7 +392,7 @@ def stiffness(scene: SceneArg,
         err_console.print("warning: the quasi-static solve did not converge at some speeds (column converged)",
                           highlight=False)
     err_console.print(f"written: {run_dir / STIFFNESS_DIR / CSV_FILE}, {run_dir / STIFFNESS_DIR / JSON_FILE}",
-                      highlight=False)
+                      highlight=False, markup=False)
 
 
 @app.command()
@@ -485,7 +485,7 @@ def render(run_dir: Annotated[Path, typer.Argument(help="A run directory written
         log.removeHandler(handler)
         handler.close()
     err_console.print(f"  report       computed in {outcome.wall_time:.2f} s", highlight=False)
-    err_console.print(f"report: {run_dir / 'report' / outcome.info['report']}", highlight=False)
+    err_console.print(f"report: {run_dir / 'report' / outcome.info['report']}", highlight=False, markup=False)
 
 
 @app.command()
@@ -510,8 +510,8 @@ def bench(scene: SceneArg,
                                  progress=lambda text: err_console.print(text, highlight=False))
     except (RuntimeError, ValueError) as exc:
         _fail(EXIT_FAILED, f"{type(exc).__name__}: {exc}")
-    out_console.print(table, highlight=False, soft_wrap=True)
-    err_console.print("written: " + ", ".join(str(p) for p in paths), highlight=False)
+    out_console.print(table, highlight=False, markup=False, soft_wrap=True)
+    err_console.print("written: " + ", ".join(str(p) for p in paths), highlight=False, markup=False)
 
 
 @app.command()
@@ -532,8 +532,8 @@ def stability(cases: Annotated[Optional[list[str]], typer.Argument(help=_literal
     results = run_suite(cases or None, window, wall_budget,
                         progress=lambda text: err_console.print(text, highlight=False))
     paths = write_suite(results, out)
-    out_console.print(markdown_table(results), highlight=False, soft_wrap=True)
-    err_console.print("written: " + ", ".join(str(p) for p in paths), highlight=False)
+    out_console.print(markdown_table(results), highlight=False, markup=False, soft_wrap=True)
+    err_console.print("written: " + ", ".join(str(p) for p in paths), highlight=False, markup=False)
     if any(r.status == "garbage" for r in results):
         _fail(EXIT_FAILED, "a case finished with an unphysical state (see the table): a defect to report")
 
@@ -596,7 +596,7 @@ def sweep(scene: SceneArg, options: SweepOptions) -> None:
     paths = gather(plan, records, warn=False)  # the table below prints the short-run warning
     rows = read_table(paths["table"])
     print_results(rows, plan.varied, out_console)
-    err_console.print(f"classes: {class_counts(rows)}\nresults: {paths['table']}\nmap: {paths['map']}", highlight=False)
+    err_console.print(f"classes: {class_counts(rows)}\nresults: {paths['table']}\nmap: {paths['map']}", highlight=False, markup=False)
     failed = [r for r in records if r is not None and r.get("status") == "failed" and not r.get("lost")]
     if failed:  # failed points are results (their error is in the table): exit 0, said plainly
         err_console.print(f"[bold yellow]warning:[/] {len(failed)} of {len(records)} points failed (column "

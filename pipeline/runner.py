@@ -24,8 +24,8 @@ from pathlib import Path
 from typing import Callable
 
 from . import result_checks, validity
-from .artefacts import (atomic_write_json, cache_state, input_key, read_manifest, remove_stage_dir,
-                        stage_files, staged_directory)
+from .artefacts import (atomic_write_json, cache_state, foreign_files, input_key, read_manifest,
+                        remove_stage_dir, stage_files, staged_directory)
 from .provenance import code_version
 from .scene import Scene
 
@@ -157,9 +157,15 @@ def drop_stale_dependents(run_dir: Path, stages: list[Stage], keys: dict[str, st
         upstream = manifest.get("upstream") or {}
         stale = [d for d, k in upstream.items()
                  if (d in keys and keys[d] != k) or d in not_needed or d in removed]
-        if stale and remove_stage_dir(Path(run_dir) / stage.name):
+        if not stale:
+            continue
+        if remove_stage_dir(Path(run_dir) / stage.name):
             log.info("stage %s: removed, it was computed from an older %s", stage.name, " and ".join(stale))
             removed.append(stage.name)
+        else:
+            log.warning("stage %s: kept although computed from an older %s: it holds files bearingsim "
+                        "did not write (%s); move them out and run the stage again", stage.name,
+                        " and ".join(stale), ", ".join(foreign_files(Path(run_dir) / stage.name)[:3]))
     return removed
 
 

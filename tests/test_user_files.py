@@ -69,6 +69,19 @@ def test_a_users_folder_named_like_a_stage_is_not_deleted(tmp_path):
     assert (run / "quasistatic" / "mine.txt").read_text() == "keep me"
 
 
+def test_a_users_file_inside_a_stage_folder_is_not_deleted_by_a_recompute(tmp_path):
+    """A stage replaces its folder whole, so a file the manifest does not list stops it."""
+    run = tmp_path / "run"
+    assert quasistatic("deep-groove-209", "--out", str(run)).exit_code == 0
+    (run / "quasistatic" / "notes.txt").write_text("keep me")  # e.g. beside the figure
+    before = (run / "quasistatic" / "quasistatic.json").read_bytes()
+    result = quasistatic("deep-groove-209", "--out", str(run), "--force")
+    assert result.exit_code == 2 and "notes.txt" in result.stderr and "move it out" in result.stderr
+    assert (run / "quasistatic" / "notes.txt").read_text() == "keep me"
+    assert (run / "quasistatic" / "quasistatic.json").read_bytes() == before
+    assert not list(run.glob(".quasistatic.*"))  # nothing half-written beside it
+
+
 def test_a_new_or_empty_directory_is_accepted_and_marked(tmp_path):
     empty = tmp_path / "empty"
     empty.mkdir()
@@ -179,6 +192,18 @@ def test_an_old_report_is_removed_when_the_results_it_shows_change(tmp_path):
     loaded = dataclasses.replace(changed, load=dataclasses.replace(changed.load, moment=100.0))
     run_stages(loaded, tmp_path, stages, ["quasistatic"])
     assert not (tmp_path / "simulate").exists() and not (tmp_path / "report").exists()
+
+
+def test_a_stale_report_holding_a_users_file_is_kept(tmp_path, caplog):
+    scene = load_scene("helicopter-b-given-hinge")
+    stages = stand_in_stages([])
+    run_stages(scene, tmp_path, stages, ["report"])
+    (tmp_path / "report" / "annotated.png").write_bytes(b"mine")
+    changed = dataclasses.replace(scene, solver=dataclasses.replace(scene.solver, duration=0.05))
+    with caplog.at_level("WARNING"):
+        run_stages(changed, tmp_path, stages, ["simulate"])
+    assert (tmp_path / "report" / "annotated.png").read_bytes() == b"mine"
+    assert "stage report: kept" in caplog.text and "annotated.png" in caplog.text
 
 
 def test_cache_keys_compare_numbers_by_value():

@@ -100,6 +100,18 @@ def test_cli_rejects_an_unknown_case():
     assert result.exit_code == 2 and "high-moment" in result.output
 
 
+def test_cli_prints_the_table_with_its_units(tmp_path):
+    """The printed table is the file's: units in brackets are text, not console markup."""
+    from typer.testing import CliRunner
+
+    from bearingsim.pipeline.cli import app
+
+    result = CliRunner().invoke(app, ["stability", "load-step", "--window", "4e-5", "--out", str(tmp_path)])
+    assert result.exit_code == 0, result.output[-2000:]
+    header = (tmp_path / "stability.md").read_text().splitlines()[0]
+    assert "wall [s]" in header and header in result.stdout
+
+
 # Cases known to pass at the scene's own settings (10 ms window, measured;
 # docs/performance.md, *Stability suite*); dry contact is a documented refusal by the wall-clock budget.
 EXPECTED_PASS = tuple(c for c in CASES if c != "dry-contact")

@@ -501,17 +501,30 @@ def bench(scene: SceneArg,
         resolved = _load(scene, set_)
     except SceneError as exc:
         _fail(EXIT_SCENE, f"scene: {exc}")
+    out = out or _run_dir(resolved, None) / "bench"
+    _claim_study(out)
     identify_dir = None
     if resolved.hinge.source == "fe":
         _, run_dir, _ = _pipeline(scene, set_, None, ["identify"], set())
         identify_dir = run_dir / "identify"
     try:
-        paths, table = run_bench(resolved, identify_dir, quick, out or _run_dir(resolved, None) / "bench", fe,
+        paths, table = run_bench(resolved, identify_dir, quick, out, fe,
                                  progress=lambda text: err_console.print(text, highlight=False))
     except (RuntimeError, ValueError) as exc:
         _fail(EXIT_FAILED, f"{type(exc).__name__}: {exc}")
     out_console.print(table, highlight=False, markup=False, soft_wrap=True)
     err_console.print("written: " + ", ".join(str(p) for p in paths), highlight=False, markup=False)
+
+
+def _claim_study(out: Path) -> None:
+    """Refuse (exit 2) an --out that is not new, empty or a study folder bearingsim wrote,
+    before the study runs."""
+    from .studies import claim_study_directory
+
+    try:
+        claim_study_directory(out)
+    except OutputRefused as exc:
+        _fail(EXIT_SCENE, str(exc))
 
 
 @app.command()
@@ -529,6 +542,7 @@ def stability(cases: Annotated[Optional[list[str]], typer.Argument(help=_literal
     unknown = [c for c in cases or [] if c not in case_names()]
     if unknown:
         _fail(EXIT_SCENE, f"unknown stability case {unknown[0]!r}; cases: {', '.join(case_names())}")
+    _claim_study(out)
     results = run_suite(cases or None, window, wall_budget,
                         progress=lambda text: err_console.print(text, highlight=False))
     paths = write_suite(results, out)

@@ -56,8 +56,14 @@ def _a_sweep_json_of_the_users(folder: Path) -> None:
     (folder / "stability_map.png").write_bytes(b"not a png")
 
 
+def _study_tables_of_the_users(folder: Path) -> None:
+    (folder / "stability.md").write_text("my notes\n")
+    (folder / "work_precision.md").write_text("my notes\n")
+
+
 LOOKALIKES = {"copied stage folder": _copied_stage_folder, "scene.toml and versions.json": _users_scene_beside_versions,
-              "results.csv": _a_results_table, "sweep.json and a map": _a_sweep_json_of_the_users}
+              "results.csv": _a_results_table, "sweep.json and a map": _a_sweep_json_of_the_users,
+              "study tables": _study_tables_of_the_users}
 
 
 # command, what the refusal says, the safe folder it proposes inside the user's
@@ -65,6 +71,8 @@ REFUSING = {
     "quasistatic": (["quasistatic", "deep-groove-209"], "not a bearingsim run", "run"),
     "sweep": (["sweep", "helicopter-b-given-hinge", "--set", "solver.duration=0.002", "--vary", "load.moment=1,2"],
               "not a bearingsim sweep", "sweep"),
+    "stability": (["stability", "preload", "--window", "4e-5"], "not bearingsim's studies", "study"),
+    "bench": (["bench", "helicopter-b-given-hinge", "--quick", "--no-fe"], "not bearingsim's studies", "study"),
 }
 
 
@@ -80,6 +88,16 @@ def test_a_users_lookalike_folder_is_refused(content, command, tmp_path):
     assert result.exit_code == 2, result.output
     assert says in result.stderr and f"--out {folder / safe}" in result.stderr
     assert snapshot(folder) == before  # not even the marker or the lock
+
+
+def test_a_study_folder_is_claimed_once_and_reused(tmp_path):
+    from bearingsim.pipeline.studies import STUDY_MARKER
+
+    out = tmp_path / "stab"
+    for _ in range(2):  # new, then its own
+        result = runner.invoke(app, ["stability", "preload", "--window", "4e-5", "--out", str(out)])
+        assert result.exit_code == 0, result.output[-2000:]
+    assert sorted(p.name for p in out.iterdir()) == [STUDY_MARKER, "stability.json", "stability.md", "stability.png"]
 
 
 def test_a_file_as_sweep_directory_is_refused(tmp_path):

@@ -221,6 +221,18 @@ def test_drift_check_compares_directions_on_the_circle():
     assert row[4] == "4 %"
 
 
+def test_the_reports_heat_arc_across_zero_reads_in_0_to_360(tmp_path):
+    """docs/outputs.md, Arcs: data keeps end = start + width, text prints both ends in 0–360."""
+    from bearingsim.pipeline.render.report import burn_section
+
+    burn = {"sector_deg": [291.0, 397.0], "peak_sector_deg": 330.5, "peak_sector_energy_J": 1.0,
+            "peak_areal_density_J_m2": 2.0, "window_s": [0.1, 0.8], "settled": True, "sectors": 360,
+            "energy_total_J": 3.0, "land_overlap_mm": 7.6, "track_outside_fraction": 0.0,
+            "map": "m.png", "render": "r.png"}
+    text = burn_section(burn, tmp_path)
+    assert "80 % of the heat in 291.0–37.0° (106° wide)" in text and "397" not in text
+
+
 def test_fe_renders_drawn_beside_are_the_ones_drawn_here(run_dir, tmp_path, monkeypatch):
     """On two cores the report draws the FE load cases in a second process while it draws the
     burn zone: the same records and byte for byte the same files as drawn in this process."""

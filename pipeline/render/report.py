@@ -268,8 +268,9 @@ def burn_section(burn: dict | None, out_dir: Path) -> str:
     peak = (f"peak sector centred at {burn['peak_sector_deg']:.1f}° "
             f"({burn['peak_sector_energy_J']:.3g} J, {burn['peak_areal_density_J_m2']:.3g} J/m²)"
             if burn.get("peak_sector_deg") is not None else "no heat on the guide land")
-    arc = (f"80 % of the heat in [{burn['sector_deg'][0]:.1f}°, {burn['sector_deg'][1]:.1f}°]"
-           if burn.get("sector_deg") else "")
+    # the arc as the verdict prints it: 0–360 at both ends, "347–12°" across zero
+    arc = (f"80 % of the heat in {burn['sector_deg'][0] % 360.0:.1f}–{burn['sector_deg'][1] % 360.0:.1f}°"
+           f" ({burn['sector_deg'][1] - burn['sector_deg'][0]:.0f}° wide)" if burn.get("sector_deg") else "")
     window = burn.get("window_s") or [float("nan"), float("nan")]
     scope = (f"over the settled window t = {window[0]:.4g}–{window[1]:.4g} s" if burn.get("settled")
              else f"over the whole run t = {window[0]:.4g}–{window[1]:.4g} s (no settled window found)")

@@ -314,6 +314,32 @@ def _plausibility(scene) -> list[Finding]:
         out.append(warning("lubricant.temperature_degC",
                            f"{_g(lub.temperature_degC)} degC is hotter than any bearing oil survives; the unit is "
                            f"degC, not K [degC]"))
+    out += _lubricant_plausibility(scene)
+    return out
+
+
+def _lubricant_plausibility(scene) -> list[Finding]:
+    """Film and lubricant values a unit slip puts decades away (m for µm, Pa for MPa, kg/m^3
+    for g/cm^3, Pa s for mPa s): the verdict moves with them and nothing else would say so."""
+    out = []
+    floor = scene.physics.min_film
+    if not 1e-10 <= floor <= 1e-6:  # EHD films of bearings run 0.05-1 µm; the floor stands below them
+        out.append(warning("physics.min_film",
+                           f"{_g(floor)} m is a film floor of {floor * 1e6:.3g} µm, outside 1e-10 .. 1e-6 m: "
+                           f"traction uses no thinner film than this, and bearing films are 0.05-1 µm; the "
+                           f"unit is m, not µm [m]"))
+    lub = scene.lubricant
+    if lub is None:
+        return out
+    checks = (("eyring_stress", 1e5, 1e8, "Pa", "esters: 2e6 .. 1e7 Pa", "Pa, not MPa"),
+              ("density", 500.0, 2000.0, "kg/m^3", "oils: 800 .. 1100 kg/m^3", "kg/m^3, not g/cm^3"),
+              ("ambient_viscosity", 1e-4, 10.0, "Pa s", "oils at 40 degC: 0.005 .. 0.5 Pa s", "Pa s, not mPa s or cP"),
+              ("pressure_viscosity_coefficient", 1e-10, 1e-7, "1/Pa", "oils: 1e-8 .. 3e-8 1/Pa", "1/Pa, not 1/GPa"))
+    for name, low, high, unit, typical, slip in checks:
+        value = getattr(lub, name, None)
+        if value is not None and not low <= value <= high:
+            out.append(warning(f"lubricant.{name}", f"{_g(value)} {unit} is outside {_g(low)} .. {_g(high)} {unit} "
+                                                    f"({typical}); the unit is {slip} [{unit}]"))
     return out
 
 

@@ -154,6 +154,9 @@ def test_a_scene_in_millimetres_is_flagged_by_check(tmp_path):
     ("speed.inner_rpm=3e6", "speed.inner_rpm"),
     ("load.moment=430000", "load.moment"),
     ("lubricant.temperature_degC=373", "lubricant.temperature_degC"),
+    ("physics.min_film=0.05", "physics.min_film"),  # 0.05 µm typed as m
+    ("lubricant.density=1.003", "lubricant.density"),  # g/cm^3
+    ("lubricant.eyring_stress=5", "lubricant.eyring_stress"),  # MPa
 ])
 def test_values_in_the_wrong_unit_are_warned(setting, key):
     s = load_scene("helicopter-b-given-hinge", [setting])
@@ -267,3 +270,10 @@ def test_crush_screen_is_flagged_when_balls_sit_in_the_unloaded_zone():
     assert "3 of 9 balls in the unloaded zone" in warned[0].message and "'pressed'" in warned[0].message
     del zone["cage_screen"]  # no cage, no screen: nothing to flag
     assert result_checks.quasistatic_findings(s, zone) == []
+
+
+def test_the_built_in_lubricant_and_film_floor_are_not_warned():
+    """The plausibility ranges hold the reference oil (NATO O-156) and the default film floor."""
+    s = load_scene("helicopter-b-given-hinge")
+    assert not {k for k in keys(validity.scene_findings(s), "warning")
+                if k.startswith(("lubricant.", "physics."))}

@@ -155,16 +155,34 @@ def _crush_screen_findings(payload: dict, key: str, loads: str) -> list[Finding]
     hold it and is carried by the cage instead, so there the screen's excursion is an upper bound."""
     if "cage_screen" not in payload:
         return []
+    out = _screen_premise_findings(payload["cage_screen"], key, loads)
     q = [max(_number(b.get("inner_load")) or 0.0, _number(b.get("outer_load")) or 0.0) for b in payload["balls"]]
     mean = sum(q) / len(q) if q else 0.0
     light = [k for k, v in enumerate(q) if v < 0.1 * mean]
     if not light:
-        return []
-    return [warning(key, f"{loads} leaves {len(light)} of {len(q)} balls in the unloaded zone (under a tenth "
+        return out
+    return out + [warning(key, f"{loads} leaves {len(light)} of {len(q)} balls in the unloaded zone (under a tenth "
                          f"of the mean ball load of {mean:.4g} N): they do not roll at their own pure-rolling "
                          f"speed, so the crush screen's excursion and regime "
                          f"('{payload['cage_screen'].get('regime')}') overstate the push on the cage; the dynamic "
                          f"run (bearingsim simulate) decides [N]")]
+
+
+def _screen_premise_findings(screen: dict, key: str, loads: str) -> list[Finding]:
+    """The crush screen assumes a cage offset can take the balls' lead and lag (the first
+    harmonic of their excursion, docs/model.md §10.1). Its higher harmonics no offset removes:
+    where they alone span more than the pocket clearance, every cage position leaves balls
+    against both pocket walls, and the screen's regime and margin say nothing of the risk."""
+    residual = _number(screen.get("excursion_residual_peak_to_peak"))
+    pocket = (_number(screen.get("pocket_clearance")) or 0.0) - (_number(screen.get("pocket_index_range")) or 0.0)
+    if residual is None or pocket <= 0.0 or residual <= pocket:
+        return []
+    return [warning(key, f"{loads}: the part of the balls' lead and lag against the cage that no cage offset "
+                         f"takes up (the higher harmonics of the excursion) spans {residual * 1e6:.0f} µm, more than "
+                         f"the pocket clearance of {pocket * 1e6:.0f} µm: no cage position gives the balls room, as "
+                         f"the crush screen assumes, so its regime ('{screen.get('regime')}') and crush margin "
+                         f"({_number(screen.get('crush_margin')) or 0.0:.2f}) do not measure the risk; the dynamic "
+                         f"run (bearingsim simulate) decides [m]")]
 
 
 def failure_finding(stage: str, scene, exc: BaseException) -> Finding | None:

@@ -56,6 +56,28 @@ def test_first_harmonic_speed_gives_the_integrated_excursion(phase):
     assert abs(wrap(r.push_azimuth - (phase + math.pi))) < 1e-9
 
 
+def test_the_residual_is_what_no_cage_offset_takes_up():
+    """A first-harmonic speed variation leaves no residual; omega_m / omega_c - 1 =
+    A cos 2(psi - phase) integrates to s = r_p A / 2 sin 2(psi - phase): no first harmonic, so
+    all of it, r_p A peak to peak, is residual."""
+    A, rp = 0.008, 0.079
+    first = excursion_of(PSI, _speeds(A, 1.0), rp)
+    assert first.residual_peak_to_peak < 1e-6 * rp * A
+    second = excursion_of(PSI, 143.7 * (1.0 + A * np.cos(2.0 * (PSI - 1.0))), rp)
+    assert second.first_harmonic < 1e-12
+    assert second.residual_peak_to_peak == pytest.approx(rp * A, rel=1e-4)
+
+
+def test_a_residual_beyond_the_pocket_clearance_is_warned():
+    from bearingsim.pipeline.result_checks import _screen_premise_findings
+
+    screen = {"regime": "pressed", "crush_margin": 1.0, "pocket_clearance": 1.191e-3, "pocket_index_range": 0.0}
+    beyond = _screen_premise_findings({**screen, "excursion_residual_peak_to_peak": 2.5e-3}, "load.moment", "load")
+    assert len(beyond) == 1 and "no cage position gives the balls room" in beyond[0].message
+    # case b at 430 N.m: a residual of about 35 µm, the screen's premise holds
+    assert _screen_premise_findings({**screen, "excursion_residual_peak_to_peak": 35e-6}, "load.moment", "load") == []
+
+
 def test_regimes_follow_the_clearances():
     """free while s_pp <= c_p; pressed while e_req = s1 - c_p/2 <= C; crushed beyond."""
     rp, cp, C = KW["pitch_radius"], KW["pocket_clearance"], KW["guide_clearance"]

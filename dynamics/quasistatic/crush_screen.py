@@ -80,6 +80,7 @@ class CageScreen:
     film_push: float  # land film force at e_req (pressed) or at e = C (crushed) [N]
     crush_margin: float  # (C - e_req) / C: 1 free room, 0 at the crush threshold, < 0 crushed
     non_guiding_gap: float | None  # C_n - e_req - inner-ring offset [m] (< 0: the cage touches it)
+    residual_peak_to_peak: float = 0.0  # s less its first harmonic, peak to peak [m] (Excursion)
 
     @property
     def pocket_clearance(self) -> float:
@@ -96,6 +97,7 @@ class CageScreen:
             "regime": self.regime,
             "excursion_peak_to_peak": self.excursion_peak_to_peak,
             "excursion_first_harmonic": self.first_harmonic,
+            "excursion_residual_peak_to_peak": self.residual_peak_to_peak,
             "pocket_clearance": c.pocket,
             "guide_clearance": c.guide,
             "pocket_circle_eccentricity": c.pocket_circle_eccentricity,
@@ -192,18 +194,24 @@ class Excursion:
     push_azimuth: float  # [rad]
     front_wall_azimuth: float  # [rad]
     rear_wall_azimuth: float  # [rad]
+    residual_peak_to_peak: float = 0.0  # peak to peak of s less its first harmonic [m]
 
 
 def excursion_of(azimuth, orbital_speed, pitch_radius: float) -> Excursion:
-    """s_pp, s1 and the push direction of M.115–M.117 from the balls' orbital speeds."""
+    """s_pp, s1 and the push direction of M.115–M.117 from the balls' orbital speeds, and
+    the residual the cage's offset cannot take: s less its first harmonic, peak to peak.
+    Where that residual exceeds the pocket clearance no cage position gives the balls room,
+    and the screen's premise (a translation cancels the push) does not hold."""
     s_balls, grid, s = orbital_excursion(azimuth, orbital_speed, pitch_radius)
     # first harmonic s ~ a1 cos psi + b1 sin psi; a cage shift d moves pocket psi by d . e_t(psi)
     a1 = 2.0 * np.mean(s * np.cos(grid))
     b1 = 2.0 * np.mean(s * np.sin(grid))
     # -dx sin psi + dy cos psi = a1 cos psi + b1 sin psi  ->  d along (-b1, a1)
+    residual = s - (a1 * np.cos(grid) + b1 * np.sin(grid))
     return Excursion(at_balls=s_balls, peak_to_peak=float(s.max() - s.min()), first_harmonic=math.hypot(a1, b1),
                      push_azimuth=math.atan2(a1, -b1), front_wall_azimuth=float(grid[np.argmax(s)]),
-                     rear_wall_azimuth=float(grid[np.argmin(s)]))
+                     rear_wall_azimuth=float(grid[np.argmin(s)]),
+                     residual_peak_to_peak=float(residual.max() - residual.min()))
 
 
 def non_guiding_gap(clearance, offset, push_azimuth, land_shift=None):
@@ -240,4 +248,5 @@ def crush_screen(excursion: Excursion, cage_speed: float, clearances: CageCleara
                       required_eccentricity_min=float(best), push_azimuth=x.push_azimuth,
                       front_wall_azimuth=x.front_wall_azimuth, rear_wall_azimuth=x.rear_wall_azimuth,
                       film_push=film.lands * math.hypot(f_n, f_t) if regime != "free" else 0.0,
-                      crush_margin=float(margin), non_guiding_gap=gap)
+                      crush_margin=float(margin), non_guiding_gap=gap,
+                      residual_peak_to_peak=x.residual_peak_to_peak)

@@ -109,7 +109,8 @@ def print_scene(scene: Scene, console: Console) -> None:
 
 def print_quasistatic(result: dict, console: Console) -> None:
     """Per-ball table plus inner-race displacement and tilt."""
-    table = Table("ball", "azimuth [deg]", "Q_i [N]", "Q_o [N]", "alpha_i [deg]", "alpha_o [deg]",
+    # "\\[" keeps a unit in brackets as text: rich reads [deg] as a style tag and drops it
+    table = Table("ball", "azimuth \\[deg]", "Q_i \\[N]", "Q_o \\[N]", "alpha_i \\[deg]", "alpha_o \\[deg]",
                   title="quasi-static load distribution", box=None)
     for k, b in enumerate(result["balls"]):
         table.add_row(str(k), f"{math.degrees(b['azimuth']):.1f}", f"{b['inner_load']:.1f}",
@@ -121,6 +122,12 @@ def print_quasistatic(result: dict, console: Console) -> None:
     t = ", ".join(f"{v * 1e3:.4f}" for v in ir["tilt"])
     console.print(f"inner race displacement \\[µm]: ({d})   tilt \\[mrad]: ({t})   "
                   f"converged: {result.get('converged')}")
+    stiffness = result.get("stiffness")
+    if stiffness:
+        order = result.get("stiffness_order") or ["dx", "dy", "dz", "rx", "ry"]
+        diagonal = ", ".join(f"{name} {stiffness[k][k]:.4g}" for k, name in enumerate(order))
+        console.print(f"bearing stiffness, diagonal (N/m for dx dy dz, N·m/rad for rx ry): {diagonal}; "
+                      f"the 5×5 matrix is 'stiffness' in quasistatic.json (--json)")
     if result.get("cage_screen"):
         console.print(cage_screen_text(result["cage_screen"]))
 

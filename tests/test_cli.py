@@ -75,6 +75,15 @@ def test_a_second_run_into_a_busy_run_directory_is_refused(tmp_path):
     assert result.exit_code == 0, result.output
 
 
+def test_quasistatic_prints_units_and_the_stiffness(tmp_path):
+    """README command table: ball loads, contact angles, displacement and tilt, stiffness."""
+    result = CliRunner().invoke(app, ["quasistatic", "deep-groove-209", "--out", str(tmp_path)])
+    assert result.exit_code == 0, result.output
+    for header in ("azimuth [deg]", "Q_i [N]", "alpha_i [deg]", "alpha_o [deg]"):
+        assert header in result.stdout
+    assert "bearing stiffness, diagonal" in result.stdout and "dz " in result.stdout
+
+
 def test_help_shows_units_and_defaults_in_square_brackets():
     """typer renders help as rich markup, where "[s]" or "[default: ...]" would be taken for tags
     and vanish ("Simulated window per case ." instead of "[s]"): every bracketed part of every

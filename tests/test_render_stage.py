@@ -233,6 +233,18 @@ def test_the_reports_heat_arc_across_zero_reads_in_0_to_360(tmp_path):
     assert "80 % of the heat in 291.0–37.0° (106° wide)" in text and "397" not in text
 
 
+def test_the_report_states_the_loads_the_run_used():
+    """A --set override changes the loads but not the scene's description text."""
+    from bearingsim.pipeline.render.report import operating_line
+    from bearingsim.pipeline.scene import load_scene
+
+    scene = load_scene("helicopter-b-given-hinge", ["load.moment=300", "solver.duration=0.05"])
+    assert "430" in scene.description  # the file's words, unchanged by the override
+    line = operating_line(scene, simulated=True)
+    assert "moment 300 N·m" in line and "axial 34000 N" in line and "0.05 s simulated" in line
+    assert "simulated" not in operating_line(scene, simulated=False)
+
+
 def test_fe_renders_drawn_beside_are_the_ones_drawn_here(run_dir, tmp_path, monkeypatch):
     """On two cores the report draws the FE load cases in a second process while it draws the
     burn zone: the same records and byte for byte the same files as drawn in this process."""

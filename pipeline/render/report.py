@@ -262,6 +262,19 @@ def fe_section(fe_records: list[dict], out_dir: Path, identify_ran: bool) -> str
     return "".join(parts)
 
 
+def operating_line(scene, simulated: bool) -> str:
+    """The loads and speeds this run used, from its resolved scene: the description above it
+    is the scene file's text, which `--set` overrides do not change."""
+    ld, sp = scene.load, scene.speed
+    parts = [f"radial {ld.radial:g} N", f"axial {ld.axial:g} N", f"moment {ld.moment:g} N·m",
+             f"inner ring {sp.inner_rpm:g} rev/min"]
+    if sp.outer_rpm:
+        parts.append(f"outer ring {sp.outer_rpm:g} rev/min")
+    if scene.lubricant is not None and scene.lubricant.temperature_degC is not None:
+        parts.append(f"oil {scene.lubricant.temperature_degC:g} °C")
+    return "This run: " + ", ".join(parts) + (f"; {scene.solver.duration:g} s simulated." if simulated else ".")
+
+
 def burn_section(burn: dict | None, out_dir: Path) -> str:
     if burn is None:
         return _not_run("No burn-zone map (no dynamic run, or no outer-race-guided cage).")
@@ -343,6 +356,7 @@ def write_report_html(path: Path, scene, run_dir: Path, stage_dirs: dict[str, Pa
             f"<title>bearingsim — {html.escape(scene.name)}</title><style>{STYLE}</style></head><body>"
             f"<h1>bearingsim run report — {html.escape(scene.name)}</h1>"
             f"<p>{html.escape(scene.description)}</p>"
+            f"<p>{html.escape(operating_line(scene, 'simulate' in stage_dirs))}</p>"
             f"<p>Generated {time.strftime('%Y-%m-%d %H:%M:%S %z')} from the saved results in "
             f"<code>{html.escape(str(run_dir))}</code>.</p>{body}</body></html>\n")
     atomic_write_text(path, page)

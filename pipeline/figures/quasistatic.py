@@ -48,11 +48,12 @@ def _plot_excursion(ax, az, s, screen: dict) -> None:
     ax.plot(az, [x * um for x in s], "o-", color="k", label="ball lead over a centred cage")
     ax.axhspan(half, max(half, max(s) * um) + 0.05, color="#f9dcdc", lw=0)
     ax.axhspan(min(-half, min(s) * um) - 0.05, -half, color="#f9dcdc", lw=0)
-    ax.axhline(half, color="r", lw=0.8)
+    ax.axhline(half, color="r", lw=0.8, label="pocket walls, cage centred (±c_p/2)")
     ax.axhline(-half, color="r", lw=0.8)
     ax.set_ylabel("lead in pocket [mm]")
     ax.set_xlabel("ball azimuth ψ [deg] (from +x towards +y)")
     ax.grid(alpha=0.3)
     ax.set_title(f"crush screen: {screen['regime']} (push towards {round(screen['push_azimuth_deg']) % 360}°, "
                  f"required offset {screen['required_eccentricity_ratio']:.2f} C)", fontsize=9)
-    ax.legend(fontsize=8, loc="upper right")
+    # outside the axes: the curve reaches the walls, where a legend inside would hide it
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(0.0, -0.22), ncols=2, frameon=False)

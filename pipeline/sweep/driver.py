@@ -252,7 +252,8 @@ def gather(plan: SweepPlan, records: list[dict | None], warn: bool = True) -> di
     short = short_run_warning(rows)
     title = f"{plan.name}: cage motion\n(contours: metal-contact fraction)"
     if short:
-        title += "\nRUN TOO SHORT TO SETTLE: classes show a start-up transient, not a regime"
+        # two short lines: the map of a small sweep is narrower than one long line
+        title += "\nRUN TOO SHORT TO SETTLE:\nclasses show a start-up transient, not a regime"
         if warn:
             warnings.warn(f"sweep {plan.name}: {short}", stacklevel=2)
     out = plot_stability_map(rows, plan.varied, plan.sweep_dir / MAP_FILE, map_x=s.map_x, map_y=s.map_y,

@@ -31,7 +31,10 @@ def _section(table: Table, title: str, obj) -> None:
         if dataclasses.is_dataclass(value):
             _section(table, f"{title}.{f.name}", value)
         else:
-            table.add_row(f"  {f.name}", _fmt(value) if value is not None else "—", _unit(f))
+            shown = _fmt(value) if value is not None else "—"
+            if value is None and f.name == "thermal_expansion":
+                shown = "default (\\[thermal] below)"
+            table.add_row(f"  {f.name}", shown, _unit(f))
 
 
 def derived_geometry(scene: Scene) -> list[tuple[str, float, str]]:
@@ -70,6 +73,18 @@ def derived_geometry(scene: Scene) -> list[tuple[str, float, str]]:
     return rows
 
 
+def _resolved_thermal(table: Table, scene: Scene) -> None:
+    """[thermal] as resolved: every part's temperature (a part not given takes
+    thermal.parts_degC, else the oil's) and the expansion coefficient each part grows by (a
+    material's thermal_expansion, else the default of its kind)."""
+    t, e = scene.temperatures, scene.expansion
+    table.add_row("[bold]\\[thermal][/] (resolved)", "", "")
+    for name in ("reference", "inner_ring", "outer_ring", "ball", "cage"):
+        table.add_row(f"  {name}_degC", _fmt(float(getattr(t, name))), "degC")
+    for name in ("race", "ball", "cage"):
+        table.add_row(f"  expansion of the {name}", _fmt(float(getattr(e, name))), "1/K")
+
+
 def print_scene(scene: Scene, console: Console) -> None:
     console.print(f"[bold]{scene.name}[/] — {scene.description}")
     table = Table("key", "value", "unit", box=None, pad_edge=False)
@@ -82,6 +97,7 @@ def print_scene(scene: Scene, console: Console) -> None:
         _section(table, "lubricant", scene.lubricant)
     if scene.fe is not None:
         _section(table, "fe", scene.fe)
+    _resolved_thermal(table, scene)
     console.print(table)
     derived = Table("derived geometry (as drawn)", "value", "unit", box=None, pad_edge=False)
     for label, value, unit in derived_geometry(scene):

@@ -75,6 +75,19 @@ def test_a_second_run_into_a_busy_run_directory_is_refused(tmp_path):
     assert result.exit_code == 0, result.output
 
 
+def test_check_prints_the_thermal_table_resolved():
+    """A part not given takes the oil's temperature; default expansions are shown by value
+    (docs/scenes.md: steel 11.9e-6, cage bronze 18e-6 1/K)."""
+    result = runner.invoke(app, ["check", "helicopter-b", "--set", "thermal.cage_degC=120"])
+    assert result.exit_code == 0, result.output
+    lines = result.stdout.splitlines()
+    start = next(i for i, ln in enumerate(lines) if ln.startswith("[thermal] (resolved)"))
+    value = {" ".join(ln.split()[:-2]): ln.split()[-2] for ln in lines[start + 1:start + 9]}  # key, value, unit
+    assert value["cage_degC"] == "120" and value["ball_degC"] == "100"  # oil at 100 degC
+    assert float(value["expansion of the race"]) == pytest.approx(11.9e-6)
+    assert float(value["expansion of the cage"]) == pytest.approx(18e-6)
+
+
 def test_quasistatic_prints_units_and_the_stiffness(tmp_path):
     """README command table: ball loads, contact angles, displacement and tilt, stiffness."""
     result = CliRunner().invoke(app, ["quasistatic", "deep-groove-209", "--out", str(tmp_path)])

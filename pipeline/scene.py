@@ -350,6 +350,13 @@ def resolve_temperatures(table: Any, lubricant) -> th.PartTemperatures:
     thermal = build(Thermal, table, "thermal")
     oil = lubricant.temperature_degC if lubricant is not None else thermal.reference_degC
     parts = thermal.parts_degC if thermal.parts_degC is not None else oil
+    bounds = Thermal.__dataclass_fields__["parts_degC"].metadata
+    if thermal.parts_degC is None and not bounds["ge"] <= oil <= bounds["le"]:
+        # the parts take the oil's temperature: the same range as thermal.parts_degC
+        raise SceneError("lubricant.temperature_degC",
+                         f"{oil:g} is out of range for the parts, which take the oil's temperature "
+                         f"(thermal.parts_degC not given); allowed >= {bounds['ge']:g} and <= {bounds['le']:g} "
+                         f"[degC], or give thermal.parts_degC")
 
     def part(value):
         return parts if value is None else value

@@ -157,7 +157,8 @@ class Thermal:
         "doc": "temperature at which the scene's dimensions hold (ISO 1: 20 °C)"})
     parts_degC: float | None = field(default=None, metadata={
         "unit": "degC", "ge": -100.0, "le": 350.0,
-        "doc": "temperature of every part not given below; default lubricant.temperature_degC"})
+        "doc": "temperature of every part not given below; default lubricant.temperature_degC, "
+               "which must then lie in this range"})
     inner_ring_degC: float | None = field(default=None, metadata={
         "unit": "degC", "ge": -100.0, "le": 350.0, "doc": "inner-ring temperature; default parts_degC"})
     outer_ring_degC: float | None = field(default=None, metadata={

@@ -69,6 +69,11 @@ def test_bad_thermal_keys_name_key_range_and_unit():
         load_scene("helicopter-b-given-hinge", ["thermal.cage_degC=900"])
     with pytest.raises(SceneError, match=r"materials.cage.thermal_expansion.*1/K"):
         load_scene("helicopter-b-given-hinge", ["materials.cage.thermal_expansion=0.5"])
+    # the parts take the oil's temperature when thermal.parts_degC is not given: the same bound
+    with pytest.raises(SceneError, match=r"lubricant.temperature_degC: 373 .*take the oil's temperature.*<= 350"):
+        load_scene("helicopter-b-given-hinge", ["lubricant.temperature_degC=373"])
+    assert load_scene("helicopter-b-given-hinge", ["lubricant.temperature_degC=373",
+                                                   "thermal.parts_degC=100"]).temperatures.cage == 100.0
 
 
 # --- run-out ------------------------------------------------------------------------------------

@@ -65,9 +65,12 @@ class BearingGeometry:
         for name in ("inner_groove_radius", "outer_groove_radius"):
             r = getattr(self, name)
             if r <= 0.5 * D:
+                # a ball of 0.2 m or more is larger than any rolling bearing's: most likely millimetres
+                slip = (f"; ball_diameter = {D:g} m would be a ball of {D:g} metres: lengths are in metres, "
+                        "not millimetres (12.7 mm is 0.0127)" if D >= 0.2 else "")
                 raise ValueError(
                     f"{name} = {r:g} m must exceed the ball radius D/2 = {0.5 * D:g} m "
-                    "(a groove tighter than the ball cannot hold it)"
+                    f"(a groove tighter than the ball cannot hold it){slip}"
                 )
         if self.inner_groove_bottom_diameter <= 0.0:
             raise ValueError(

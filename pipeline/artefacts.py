@@ -319,6 +319,10 @@ def claim_run_directory(run_dir: Path) -> None:
     shown = str(run_dir)
     try:
         exists = run_dir.exists()
+        if not exists and run_dir.is_symlink():
+            raise OutputRefused(f"--out {shown}: is a link to {os.readlink(run_dir)}, which does not exist; "
+                                f"bearingsim does not create what a link points to: give a directory (new or "
+                                f"empty), e.g. --out runs/my-run")
         if exists and not run_dir.is_dir():
             raise OutputRefused(f"--out {shown}: exists and is not a directory; give a directory "
                                 f"(new or empty), e.g. --out runs/my-run")

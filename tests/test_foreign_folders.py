@@ -100,6 +100,14 @@ def test_a_study_folder_is_claimed_once_and_reused(tmp_path):
     assert sorted(p.name for p in out.iterdir()) == [STUDY_MARKER, "stability.json", "stability.md", "stability.png"]
 
 
+def test_a_dangling_link_as_out_is_named_and_not_followed(tmp_path):
+    link = tmp_path / "link"
+    link.symlink_to(tmp_path / "nowhere")
+    result = runner.invoke(app, ["quasistatic", "deep-groove-209", "--out", str(link)])
+    assert result.exit_code == 2 and "is a link to" in result.stderr and "does not exist" in result.stderr
+    assert not (tmp_path / "nowhere").exists()
+
+
 def test_a_file_as_sweep_directory_is_refused(tmp_path):
     path = tmp_path / "a-file"
     path.write_text("mine")

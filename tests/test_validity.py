@@ -277,3 +277,11 @@ def test_the_built_in_lubricant_and_film_floor_are_not_warned():
     s = load_scene("helicopter-b-given-hinge")
     assert not {k for k in keys(validity.scene_findings(s), "warning")
                 if k.startswith(("lubricant.", "physics."))}
+
+
+def test_a_ball_in_millimetres_is_named_in_the_groove_error():
+    """One key typed in mm trips the groove check first; the message says what is likely wrong."""
+    from bearingsim.pipeline.schema import SceneError
+
+    with pytest.raises(SceneError, match=r"ball_diameter = 19.05 m would be a ball of 19.05 metres.*not millimetres"):
+        load_scene("helicopter-b-given-hinge", ["bearing.ball_diameter=19.05"])

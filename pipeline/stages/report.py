@@ -65,7 +65,8 @@ def finished_upstream(run_dir: Path) -> dict[str, str]:
                 raise StageResultsDamaged(
                     f"{Path(run_dir) / name}: {', '.join(damaged[:5])} changed or went missing since the "
                     f"{name} stage wrote it; render draws only results as computed. Recompute it with "
-                    f"`bearingsim run {Path(run_dir) / 'scene.toml'} --out {run_dir}`, which redraws the report")
+                    f"`bearingsim run {Path(run_dir) / 'scene.toml'} --out {run_dir}`; then "
+                    f"`bearingsim render {run_dir}` redraws the report")
             keys[name] = manifest["key"]
     return keys
 

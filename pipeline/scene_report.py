@@ -24,6 +24,11 @@ def _fmt(value) -> str:
     return str(value)
 
 
+def _fixed(value: float, digits: int) -> str:
+    """`value` to `digits` decimals, without the "-0.00" of a tiny negative."""
+    return f"{round(value, digits) + 0.0:.{digits}f}"
+
+
 def _section(table: Table, title: str, obj) -> None:
     table.add_row(f"[bold]\\[{title}][/]", "", "")
     for f in dataclasses.fields(obj):
@@ -129,9 +134,9 @@ def print_quasistatic(result: dict, console: Console) -> None:
     table = Table("ball", "azimuth \\[deg]", "Q_i \\[N]", "Q_o \\[N]", "alpha_i \\[deg]", "alpha_o \\[deg]",
                   title="quasi-static load distribution", box=None)
     for k, b in enumerate(result["balls"]):
-        table.add_row(str(k), f"{math.degrees(b['azimuth']):.1f}", f"{b['inner_load']:.1f}",
-                      f"{b['outer_load']:.1f}", f"{math.degrees(b['inner_contact_angle']):.2f}",
-                      f"{math.degrees(b['outer_contact_angle']):.2f}")
+        table.add_row(str(k), _fixed(math.degrees(b['azimuth']), 1), _fixed(b['inner_load'], 1),
+                      _fixed(b['outer_load'], 1), _fixed(math.degrees(b['inner_contact_angle']), 2),
+                      _fixed(math.degrees(b['outer_contact_angle']), 2))
     console.print(table)
     ir = result["inner_race"]
     d = ", ".join(f"{v * 1e6:.3f}" for v in ir["displacement"])

@@ -41,7 +41,7 @@ def write_hinge_toml(path: pathlib.Path, H_u: np.ndarray, H_psi: np.ndarray, met
             "translational": np.asarray(H_u, dtype=float).tolist(),
             "translational_unit": "N/m",
             "bending": np.asarray(H_psi, dtype=float).tolist(),
-            "bending_unit": "N*m/rad",
+            "bending_unit": "N m/rad",  # UDUNITS, as every file (docs/outputs.md)
         }
     }
     doc.update(_plain(meta))

@@ -61,7 +61,7 @@ def term_name(i: int, j: int) -> str:
 
 def term_unit(i: int, j: int) -> str:
     return {(False, False): "N/m", (False, True): "N/rad",
-            (True, False): "N.m/m", (True, True): "N.m/rad"}[(i >= 3, j >= 3)]
+            (True, False): "N m/m", (True, True): "N m/rad"}[(i >= 3, j >= 3)]  # UDUNITS (docs/outputs.md)
 
 
 TERMS = {term_name(i, j): (i, j) for i in range(5) for j in range(5)}
@@ -128,7 +128,7 @@ class StiffnessTable:
     def csv_text(self) -> str:
         """One row per speed; units in the header; floats in round-trip precision."""
         hinge = hinge_columns(self.hinge)
-        header = ["speed [rev/min]", "speed [rad/s]", "converged [-]"]
+        header = ["speed [rev/min]", "speed [rad/s]", "converged [1]"]
         header += [f"{t} [{term_unit(*TERMS[t])}]" for t in CSV_TERMS]
         header += [f"{name} [{unit}]" for name, unit, _ in hinge]
         out = io.StringIO()
@@ -156,9 +156,9 @@ class StiffnessTable:
             "scene": self.scene,
             "operating_point": self.operating_point,
             "order": list(DOFS),
-            "units": {"stiffness": "rows Fx, Fy, Fz [N], Mx, My [N.m]; columns x, y, z [m], rx, ry [rad]: "
-                                   "N/m, N/rad, N.m/m, N.m/rad", "speed": "rev/min",
-                      "cage_speed": "rad/s", "hinge.translational": "N/m", "hinge.bending": "N.m/rad"},
+            "units": {"stiffness": "rows Fx, Fy, Fz [N], Mx, My [N m]; columns x, y, z [m], rx, ry [rad]: "
+                                   "N/m, N/rad, N m/m, N m/rad", "speed": "rev/min",
+                      "cage_speed": "rad/s", "hinge.translational": "N/m", "hinge.bending": "N m/rad"},
             "damping": None,
             "damping_note": BEARING_DAMPING_NOTE,
             "rows": [{"speed_rpm": float(rpm), "speed_rad_s": float(self.speeds_rad_s[n]),
@@ -199,7 +199,7 @@ def hinge_columns(hinge: dict | None) -> list[tuple[str, str, float]]:
         return []
     H_u, H_psi = np.asarray(hinge["translational"], float), np.asarray(hinge["bending"], float)
     cols = [(f"hinge_k{DOFS[i]}{DOFS[j]}", "N/m", H_u[i, j]) for i in range(3) for j in range(3)]
-    return cols + [("hinge_krx_rx", "N.m/rad", H_psi[0]), ("hinge_kry_ry", "N.m/rad", H_psi[1])]
+    return cols + [("hinge_krx_rx", "N m/rad", H_psi[0]), ("hinge_kry_ry", "N m/rad", H_psi[1])]
 
 
 def hinge_of(scene, identify_dir: Path | None) -> dict | None:

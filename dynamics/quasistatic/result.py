@@ -94,7 +94,7 @@ class QuasiStaticResult:
             "units": {
                 "displacement": "m", "tilt": "rad", "azimuth": "rad", "load": "N",
                 "contact_angle": "rad", "pressure": "Pa", "truncation_margin": "m",
-                "stiffness": "N/m, N/rad, N*m/m, N*m/rad", "cage_speed": "rad/s",
+                "stiffness": "N/m, N/rad, N m/m, N m/rad", "cage_speed": "rad/s",
             },
         }
 

@@ -307,6 +307,27 @@ def is_own_run_dir(run_dir: Path) -> bool:
     return first.startswith(SCENE_HEADER) and (run_dir / "versions.json").is_file()
 
 
+@contextmanager
+def refused_unless_usable(out: Path, example: str = "") -> Iterator[None]:
+    """Turn an OS error while claiming the --out directory `out` (no permission, a NUL byte in
+    the path, ...) into OutputRefused naming it; an OutputRefused passes through."""
+    try:
+        yield
+    except OutputRefused:
+        raise
+    except (OSError, ValueError) as exc:  # ValueError: a NUL byte in the path
+        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
+        raise OutputRefused(f"--out {out}: cannot use this directory ({reason}); give a writable "
+                            f"directory{', e.g. --out ' + example if example else ''}") from None
+
+
+def mark_directory(directory: Path, marker: str, note: str) -> None:
+    """Write `marker` (one line, `note`) into `directory` unless it is there: what makes a
+    folder bearingsim's to write."""
+    if not (Path(directory) / marker).is_file():
+        atomic_write_text(Path(directory) / marker, note + "\n")
+
+
 def claim_run_directory(run_dir: Path) -> None:
     """Make sure `run_dir` may be written, and mark it as bearingsim's.
 
@@ -317,7 +338,7 @@ def claim_run_directory(run_dir: Path) -> None:
     """
     run_dir = Path(run_dir)
     shown = str(run_dir)
-    try:
+    with refused_unless_usable(run_dir, "runs/my-run"):
         exists = run_dir.exists()
         if not exists and run_dir.is_symlink():
             raise OutputRefused(f"--out {shown}: is a link to {os.readlink(run_dir)}, which does not exist; "
@@ -339,16 +360,8 @@ def claim_run_directory(run_dir: Path) -> None:
         if not os.access(run_dir, os.W_OK | os.X_OK):
             raise OutputRefused(f"--out {shown}: the directory is not writable by this user; "
                                 "give a directory you may write to")
-        marker = run_dir / RUN_MARKER
-        if not marker.is_file():
-            atomic_write_text(marker, "bearingsim run directory: stage folders here are replaced "
-                                      "and removed by bearingsim\n")
-    except OutputRefused:
-        raise
-    except (OSError, ValueError) as exc:  # ValueError: a NUL byte in the path
-        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
-        raise OutputRefused(f"--out {shown}: cannot use this directory ({reason}); give a "
-                            "writable directory, e.g. --out runs/my-run") from None
+        mark_directory(run_dir, RUN_MARKER, "bearingsim run directory: stage folders here are replaced "
+                                            "and removed by bearingsim")
 
 
 class RunDirectoryBusy(RuntimeError):

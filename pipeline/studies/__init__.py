@@ -18,10 +18,10 @@ def claim_study_directory(out_dir) -> None:
     file of the user's named stability.md, say, is never replaced."""
     from pathlib import Path
 
-    from bearingsim.pipeline.artefacts import OutputRefused, atomic_write_text
+    from bearingsim.pipeline.artefacts import OutputRefused, mark_directory, refused_unless_usable
 
     out = Path(out_dir)
-    try:
+    with refused_unless_usable(out):
         if out.is_symlink() or (out.exists() and not out.is_dir()):
             raise OutputRefused(f"--out {out}: exists and is not a directory; give a new or empty "
                                 f"directory, e.g. --out {out.with_name(out.name + '-study')}")
@@ -37,15 +37,7 @@ def claim_study_directory(out_dir) -> None:
                 f"{STUDY_MARKER} marker); bearingsim never writes into a folder of yours, so that none "
                 f"of your files is replaced. Give a new or empty directory, e.g. --out {out / 'study'}."
                 + earlier)
-        if not (out / STUDY_MARKER).is_file():
-            atomic_write_text(out / STUDY_MARKER, "bearingsim study folder: its tables and plots are "
-                                                  "replaced by bearingsim\n")
-    except OutputRefused:
-        raise
-    except (OSError, ValueError) as exc:
-        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
-        raise OutputRefused(f"--out {out}: cannot use this directory ({reason}); give a writable "
-                            "directory") from None
+        mark_directory(out, STUDY_MARKER, "bearingsim study folder: its tables and plots are replaced by bearingsim")
 
 
 def write_study_files(study, out_dir, stem: str, markdown: str, plot) -> list:

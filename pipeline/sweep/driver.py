@@ -25,7 +25,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
-from ..artefacts import OutputRefused, atomic_write_json, atomic_write_text
+from ..artefacts import OutputRefused, atomic_write_json, mark_directory, refused_unless_usable
 from ..scene import NAME_MAX, apply_overrides, check_name, read_scene_table, resolve
 from ..schema import SceneError
 from . import quiet_interrupt
@@ -278,7 +278,7 @@ def claim_sweep_directory(sweep_dir: Path) -> None:
     it; anything else raises OutputRefused before a file is written: the table, the plan and
     the map would replace a user's files of the same names."""
     sweep_dir = Path(sweep_dir)
-    try:
+    with refused_unless_usable(sweep_dir):
         if sweep_dir.exists() and not sweep_dir.is_dir():
             raise OutputRefused(f"--out {sweep_dir}: exists and is not a directory; give a new or empty "
                                 f"directory, e.g. --out {sweep_dir.with_name(sweep_dir.name + '-sweep')}")
@@ -288,15 +288,8 @@ def claim_sweep_directory(sweep_dir: Path) -> None:
                 f"{SWEEP_MARKER} marker); bearingsim never writes into a folder of yours, so that none of "
                 f"your files ({PLAN_FILE}, results.csv, {MAP_FILE}) is replaced. Give a new or empty "
                 f"directory, e.g. --out {sweep_dir / 'sweep'}")
-        if not (sweep_dir / SWEEP_MARKER).is_file():
-            atomic_write_text(sweep_dir / SWEEP_MARKER, "bearingsim sweep directory: its plan, table, map and "
-                                                         "points are replaced by bearingsim\n")
-    except OutputRefused:
-        raise
-    except (OSError, ValueError) as exc:
-        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
-        raise OutputRefused(f"--out {sweep_dir}: cannot use this directory ({reason}); give a writable "
-                            "directory") from None
+        mark_directory(sweep_dir, SWEEP_MARKER, "bearingsim sweep directory: its plan, table, map and points "
+                                                "are replaced by bearingsim")
 
 
 def _write_plan(plan: SweepPlan) -> None:

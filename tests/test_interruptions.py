@@ -163,6 +163,18 @@ def test_the_quiet_handler_keeps_the_default_action():
     assert result.returncode == -signal.SIGINT and "still running" not in result.stdout
 
 
+def test_a_workers_handler_mutes_its_standard_error_first():
+    """A worker ended by KeyboardInterrupt gets a traceback from multiprocessing, which is no
+    log; the worker's handler sends its standard error to the null device before handing on."""
+    code = ("import signal, sys; from bearingsim.pipeline.sweep.quiet_interrupt import silence_then\n"
+            "def raise_(*a): raise KeyboardInterrupt\n"
+            "print('before', file=sys.stderr, flush=True)\n"
+            "try:\n    silence_then(raise_, mute_stderr=True)(signal.SIGINT, None)\n"
+            "except KeyboardInterrupt:\n    print('after', file=sys.stderr, flush=True)\n")
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert "before" in result.stderr and "after" not in result.stderr
+
+
 def test_a_worker_that_ignores_ctrl_c_keeps_ignoring_it():
     from bearingsim.pipeline.sweep.quiet_interrupt import dask_setup
 

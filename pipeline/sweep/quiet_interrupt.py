@@ -22,13 +22,20 @@ from contextlib import contextmanager
 QUIET_ON_INTERRUPT = ("distributed", "tornado", "asyncio")
 
 
-def silence_then(previous):
+def silence_then(previous, mute_stderr: bool = False):
     """A SIGINT handler that silences the loggers `QUIET_ON_INTERRUPT`, then hands the signal
     to `previous`: a Python handler (Python's own raises KeyboardInterrupt; a worker's event
-    loop cancels its main task), or the default action (the process ends by the signal)."""
+    loop cancels its main task), or the default action (the process ends by the signal).
+    With `mute_stderr` (a worker's: the sweep's own process says what happened) the process's
+    standard error goes to the null device first, so that the traceback multiprocessing
+    prints for a worker process ended by KeyboardInterrupt, which is no log, is not shown."""
     def on_interrupt(signum, frame):
         for name in QUIET_ON_INTERRUPT:
             logging.getLogger(name).setLevel(logging.CRITICAL)
+        if mute_stderr:
+            null = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(null, 2)
+            os.close(null)
         if callable(previous):
             previous(signum, frame)
         else:
@@ -37,7 +44,7 @@ def silence_then(previous):
     return on_interrupt
 
 
-def _install() -> object:
+def _install(mute_stderr: bool = False) -> object:
     """Put `silence_then` before this process's SIGINT handler; returns the handler it replaced,
     or None where it was left alone: signals can only be handled in a process's main thread, and
     a process that ignores SIGINT, or whose handler is not Python's, is left as it is."""
@@ -46,7 +53,7 @@ def _install() -> object:
     previous = signal.getsignal(signal.SIGINT)
     if previous is None or previous == signal.SIG_IGN:
         return None
-    signal.signal(signal.SIGINT, silence_then(previous))
+    signal.signal(signal.SIGINT, silence_then(previous, mute_stderr))
     return previous
 
 
@@ -67,4 +74,4 @@ def quiet_on_interrupt():
 def dask_setup(worker) -> None:
     """Called by Dask in each worker process as it starts (a nanny's worker runs its event
     loop in the process's main thread)."""
-    _install()
+    _install(mute_stderr=True)

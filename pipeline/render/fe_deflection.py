@@ -138,7 +138,7 @@ def render_case(case: FECase, png_path: Path, vtu_path: Path | None, title: str 
         feature_angle=30.0, boundary_edges=True, non_manifold_edges=False, manifold_edges=False)
     camera = _camera(prep["mesh"], prep["normal"])
     bounds = list(prep["mesh"].bounds)
-    heading = (f"{title}: " if title else "") + f"FE {case.label}, deformation x{scale:g}"
+    heading = (f"{title}\n" if title else "") + f"FE {case.label}, deformation x{scale:g}"
     fields = [("displacement magnitude [µm]", DISPLACEMENT_CMAP, prep["max_displacement"] * 1e6)]
     if "von Mises [MPa]" in half.array_names:
         fields.append(("von Mises [MPa]", STRESS_CMAP, (prep["max_von_mises"] or 0.0) / 1e6))
@@ -151,8 +151,10 @@ def render_case(case: FECase, png_path: Path, vtu_path: Path | None, title: str 
                                               "position_x": 0.2, "width": 0.6, "height": 0.08,
                                               "title_font_size": 16, "label_font_size": 14})
             plotter.add_mesh(outline, color="black", line_width=1, opacity=0.5)
-            plotter.add_text(heading if j == 0 else "undeformed outline: thin black lines",
-                             position="upper_left", font_size=10)
+            # placed in viewport coordinates, not as a corner text, which VTK shrinks to fit
+            # its width: both panels' titles keep one size
+            plotter.add_text(heading if j == 0 else "undeformed outline:\nthin black lines",
+                             position=(0.01, 0.92), viewport=True, font_size=12)
             plotter.add_axes()
             plotter.camera_position = camera
             plotter.camera.view_angle = 30.0

@@ -294,14 +294,9 @@ def _plausibility(scene) -> list[Finding]:
         m = getattr(scene.materials, name)
         if m is None:
             continue
-        if not 1e9 <= m.youngs_modulus <= 1.5e12:
-            out.append(warning(f"materials.{name}.youngs_modulus",
-                               f"{_g(m.youngs_modulus)} Pa is outside 1e9 .. 1.5e12 Pa (steel: 2.08e11 Pa); "
-                               f"the unit is Pa, not GPa or MPa [Pa]"))
-        if not 10.0 <= m.density <= 25000.0:
-            out.append(warning(f"materials.{name}.density",
-                               f"{_g(m.density)} kg/m^3 is outside 10 .. 25000 kg/m^3 (steel: 7850); the unit "
-                               f"is kg/m^3, not g/cm^3 [kg/m^3]"))
+        out += _unit_slips(f"materials.{name}", m, (
+            ("youngs_modulus", 1e9, 1.5e12, "Pa", "steel: 2.08e11 Pa", "Pa, not GPa or MPa"),
+            ("density", 10.0, 25000.0, "kg/m^3", "steel: 7850", "kg/m^3, not g/cm^3")))
     out += _load_plausibility(scene)
     ndm = max(abs(scene.speed.inner_rpm), abs(scene.speed.outer_rpm)) * b.pitch_diameter * 1e3
     if ndm > 4e6:
@@ -331,15 +326,25 @@ def _lubricant_plausibility(scene) -> list[Finding]:
     lub = scene.lubricant
     if lub is None:
         return out
-    checks = (("eyring_stress", 1e5, 1e8, "Pa", "esters: 2e6 .. 1e7 Pa", "Pa, not MPa"),
-              ("density", 500.0, 2000.0, "kg/m^3", "oils: 800 .. 1100 kg/m^3", "kg/m^3, not g/cm^3"),
-              ("ambient_viscosity", 1e-4, 10.0, "Pa s", "oils at 40 degC: 0.005 .. 0.5 Pa s", "Pa s, not mPa s or cP"),
-              ("pressure_viscosity_coefficient", 1e-10, 1e-7, "1/Pa", "oils: 1e-8 .. 3e-8 1/Pa", "1/Pa, not 1/GPa"))
+    return out + _unit_slips("lubricant", lub, (
+        ("eyring_stress", 1e5, 1e8, "Pa", "esters: 2e6 .. 1e7 Pa", "Pa, not MPa"),
+        ("density", 500.0, 2000.0, "kg/m^3", "oils: 800 .. 1100 kg/m^3", "kg/m^3, not g/cm^3"),
+        ("ambient_viscosity", 1e-4, 10.0, "Pa s", "oils at 40 degC: 0.005 .. 0.5 Pa s", "Pa s, not mPa s or cP"),
+        ("pressure_viscosity_coefficient", 1e-10, 1e-7, "1/Pa", "oils: 1e-8 .. 3e-8 1/Pa", "1/Pa, not 1/GPa")))
+
+
+def _unit_slips(section: str, values, checks) -> list[Finding]:
+    """A warning for each (name, low, high, unit, typical, slip) of `checks` whose value in
+    `values` is given and lies outside [low, high]: most likely typed in another unit."""
+    def bound(x: float) -> str:  # 1e9, 1.5e12, 25000: as a person writes them
+        return f"{x:g}".replace("e+0", "e").replace("e+", "e").replace("e-0", "e-")
+
+    out = []
     for name, low, high, unit, typical, slip in checks:
-        value = getattr(lub, name, None)
+        value = getattr(values, name, None)
         if value is not None and not low <= value <= high:
-            out.append(warning(f"lubricant.{name}", f"{_g(value)} {unit} is outside {_g(low)} .. {_g(high)} {unit} "
-                                                    f"({typical}); the unit is {slip} [{unit}]"))
+            out.append(warning(f"{section}.{name}", f"{_g(value)} {unit} is outside {bound(low)} .. {bound(high)} "
+                                                    f"{unit} ({typical}); the unit is {slip} [{unit}]"))
     return out
 
 

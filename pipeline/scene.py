@@ -30,7 +30,7 @@ from .scene_sections import (
     Speed,
     Thermal,
 )
-from .schema import SceneError, build, convert
+from .schema import SceneError, build, check_number, convert, describe_bounds, unit_suffix
 
 FORM1_KEYS = ("inner_groove_center_diameter", "outer_groove_center_diameter",
               "inner_groove_radius", "outer_groove_radius")
@@ -350,13 +350,15 @@ def resolve_temperatures(table: Any, lubricant) -> th.PartTemperatures:
     thermal = build(Thermal, table, "thermal")
     oil = lubricant.temperature_degC if lubricant is not None else thermal.reference_degC
     parts = thermal.parts_degC if thermal.parts_degC is not None else oil
-    bounds = Thermal.__dataclass_fields__["parts_degC"].metadata
-    if thermal.parts_degC is None and not bounds["ge"] <= oil <= bounds["le"]:
-        # the parts take the oil's temperature: the same range as thermal.parts_degC
-        raise SceneError("lubricant.temperature_degC",
-                         f"{oil:g} is out of range for the parts, which take the oil's temperature "
-                         f"(thermal.parts_degC not given); allowed >= {bounds['ge']:g} and <= {bounds['le']:g} "
-                         f"[degC], or give thermal.parts_degC")
+    if thermal.parts_degC is None:  # the parts take the oil's temperature: parts_degC's range holds
+        meta = Thermal.__dataclass_fields__["parts_degC"].metadata
+        try:
+            check_number("thermal.parts_degC", oil, meta)
+        except SceneError:
+            raise SceneError("lubricant.temperature_degC",
+                             f"{oil:g} is out of range for the parts, which take the oil's temperature "
+                             f"(thermal.parts_degC not given); allowed {describe_bounds(meta)}{unit_suffix(meta)}, "
+                             f"or give thermal.parts_degC") from None
 
     def part(value):
         return parts if value is None else value

@@ -145,8 +145,7 @@ def print_quasistatic(result: dict, console: Console) -> None:
                   f"converged: {result.get('converged')}")
     stiffness = result.get("stiffness")
     if stiffness:
-        order = result.get("stiffness_order") or ["dx", "dy", "dz", "rx", "ry"]
-        diagonal = ", ".join(f"{name} {stiffness[k][k]:.4g}" for k, name in enumerate(order))
+        diagonal = ", ".join(f"{name} {stiffness[k][k]:.4g}" for k, name in enumerate(result["stiffness_order"]))
         console.print(f"bearing stiffness, diagonal (N/m for dx dy dz, N·m/rad for rx ry): {diagonal}; "
                       f"the 5×5 matrix is 'stiffness' in quasistatic.json (--json)")
     if result.get("cage_screen"):

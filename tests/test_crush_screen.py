@@ -74,7 +74,7 @@ def test_a_residual_beyond_the_pocket_clearance_is_warned():
     screen = {"regime": "pressed", "crush_margin": 1.0, "pocket_clearance": 1.191e-3, "pocket_index_range": 0.0}
     beyond = _screen_premise_findings({**screen, "excursion_residual_peak_to_peak": 2.5e-3}, "load.moment", "load")
     assert len(beyond) == 1 and "no cage position gives the balls room" in beyond[0].message
-    # case b at 430 N.m: a residual of about 35 µm, the screen's premise holds
+    # a residual well inside the pocket clearance (case b at 430 N·m computes about 35 µm): no warning
     assert _screen_premise_findings({**screen, "excursion_residual_peak_to_peak": 35e-6}, "load.moment", "load") == []
 
 

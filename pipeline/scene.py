@@ -351,7 +351,7 @@ def resolve_temperatures(table: Any, lubricant) -> th.PartTemperatures:
     oil = lubricant.temperature_degC if lubricant is not None else thermal.reference_degC
     parts = thermal.parts_degC if thermal.parts_degC is not None else oil
     if thermal.parts_degC is None:  # the parts take the oil's temperature: parts_degC's range holds
-        meta = Thermal.__dataclass_fields__["parts_degC"].metadata
+        meta = dict(Thermal.__dataclass_fields__["parts_degC"].metadata)
         try:
             check_number("thermal.parts_degC", oil, meta)
         except SceneError:

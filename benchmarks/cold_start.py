@@ -8,7 +8,8 @@ that run filled, and reports the difference. Then, in-process with an empty cach
 simulate stage's compiling into the time spent inside LLVM (numba's `numba:llvm_lock` events: every
 call into the LLVM library holds that lock) and the rest, numba's typing and lowering in Python,
 counts the variables numba typed and the calls it resolved (by wrapping numba's type-inference
-pass for that run), and lists the kernels that take longest to compile (`numba:compile` events,
+pass for that run), by module and how many of them are in fast-math code (whose rounding follows
+the shape of the code, so that rewriting it changes a run's steps), and lists the kernels that take longest to compile (`numba:compile` events,
 outermost dispatchers only, nested compilations counted inside their caller). Run it on a quiet
 machine.
 
@@ -50,8 +51,9 @@ def timed_run(scene: str, cache: Path, out: Path, program: str = CLI) -> float:
 
 
 def compile_profile(scene: str, cache: Path, top: int = 12) -> tuple[float, float, dict, list[tuple[str, float]]]:
-    """(seconds compiling, of them inside LLVM, {"compilations", "variables", "calls"} typed,
-    [(kernel, seconds)] of the outermost compilations) of a 1 ms run with an empty cache."""
+    """(seconds compiling, of them inside LLVM, {"compilations", "variables", "calls", "by_module"}
+    typed, [(kernel, seconds)] of the outermost compilations) of a 1 ms run with an empty cache;
+    "by_module" maps a module to [compilations, variables, variables in fast-math code]."""
     os.environ["NUMBA_CACHE_DIR"] = str(cache)
     from numba.core import event, typed_passes
 
@@ -73,7 +75,7 @@ def compile_profile(scene: str, cache: Path, top: int = 12) -> tuple[float, floa
             if not stack:
                 totals[name] = totals.get(name, 0.0) + time.perf_counter() - t0
 
-    typed = {"compilations": 0, "variables": 0, "calls": 0}
+    typed: dict = {"compilations": 0, "variables": 0, "calls": 0, "by_module": {}}
     infer = typed_passes.BaseTypeInference.run_pass
 
     def counting_inference(self, state):
@@ -81,6 +83,10 @@ def compile_profile(scene: str, cache: Path, top: int = 12) -> tuple[float, floa
         typed["compilations"] += 1
         typed["variables"] += len(state.typemap)
         typed["calls"] += len(state.calltypes)
+        row = typed["by_module"].setdefault(state.func_id.modname, [0, 0, 0])
+        row[0] += 1
+        row[1] += len(state.typemap)
+        row[2] += len(state.typemap) if state.flags.fastmath else 0
         return changed
 
     compiling, llvm = Outermost(), Outermost()
@@ -113,6 +119,11 @@ def main(argv=None) -> None:
     print(f"in-process, simulate stage only: {compiling:.1f} s compiling, of which {llvm:.1f} s inside LLVM and "
           f"{compiling - llvm:.1f} s numba's typing and lowering in Python; {typed['compilations']} compilations "
           f"typed {typed['variables']} variables and resolved {typed['calls']} calls")
+    by_module = sorted(typed["by_module"].items(), key=lambda kv: -kv[1][1])
+    fast = sum(row[2] for _, row in by_module)
+    print(f"typed variables by module ({fast} of them, {fast / typed['variables']:.0%}, in fast-math code):")
+    for module, (count, variables, in_fast) in by_module[:12]:
+        print(f"  {variables:6d} in {count:3d} compilations, {in_fast:5d} fast-math  {module}")
     print("longest compilations (outermost kernels):")
     for name, seconds in rows:
         print(f"  {seconds:6.1f} s  {name}")

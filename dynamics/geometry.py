@@ -322,14 +322,18 @@ class CageGeometry:
         """
         if self.land_length is not None:
             return self.land_length
+        return max(0.0, self.width - self.groove_opening_at_land(bearing))
+
+    def groove_opening_at_land(self, bearing: BearingGeometry) -> float:
+        """Axial width 2 z_l [m] of the guiding race's groove where it meets the land cylinder:
+        the cage overlaps the lands only where it is wider than this."""
         land_r = 0.5 * self.guide_land_diameter(bearing)
         if self.guidance == "outer":
             rc, r = 0.5 * bearing.outer_groove_center_diameter, bearing.outer_groove_radius
         else:
             rc, r = 0.5 * bearing.inner_groove_center_diameter, bearing.inner_groove_radius
         dr = land_r - rc
-        z_land = math.sqrt(max(r * r - dr * dr, 0.0))
-        return max(0.0, 2.0 * (0.5 * self.width - z_land))
+        return 2.0 * math.sqrt(max(r * r - dr * dr, 0.0))
 
     def mass(self, cage: Material, bearing: BearingGeometry) -> float:
         """Ring mass less the Z cylindrical pockets (through the radial thickness) [kg]."""

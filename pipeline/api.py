@@ -129,14 +129,16 @@ def run(scene, run_dir: str | Path | None = None, stages: str | Iterable[str] = 
               (stage, text, fraction).
     store:    a stage store shared between run directories (as sweeps use; see pipeline.runner).
     """
+    from .no_follow import named_in_python
     from .scene import Scene
 
     if not isinstance(scene, Scene) or overrides is not None:
         scene = load_scene(scene, overrides)
     run_dir = Path(run_dir) if run_dir is not None else Path("runs") / scene.name
     targets = check_stage_names(stages, "stages")
-    outcomes = run_pipeline(scene, run_dir, targets, forced_stages(force, targets),
-                            progress=_progress_callback(progress), store=store)
+    with named_in_python("run_dir"):
+        outcomes = run_pipeline(scene, run_dir, targets, forced_stages(force, targets),
+                                progress=_progress_callback(progress), store=store)
     return Run(scene, run_dir.absolute(), tuple(outcomes))  # absolute: valid after a chdir
 
 
@@ -373,6 +375,7 @@ def export_stiffness(scene, run_dir: str | Path | None = None, speeds_rpm: Itera
     stiffness.json). Runs (or reuses, by its cache key) the identify stage first when the
     hinge is identified by FE. `scene`: a Scene or a scene name/path."""
     from .artefacts import claim_run_directory, run_directory_lock
+    from .no_follow import named_in_python
     from .scene import Scene
     from .stiffness_export import STIFFNESS_DIR, check_speeds, stiffness_table, table_inputs, write_stiffness_table
 
@@ -383,7 +386,8 @@ def export_stiffness(scene, run_dir: str | Path | None = None, speeds_rpm: Itera
     if scene.hinge.source == "fe":
         run(scene, run_dir, ["identify"], progress=progress)
     table = stiffness_table(scene, speeds_rpm, identify_dir=run_dir / "identify")
-    claim_run_directory(run_dir)  # never write into a folder that is not a run directory
-    with run_directory_lock(run_dir):
-        write_stiffness_table(table, run_dir / STIFFNESS_DIR, table_inputs(scene, table))
+    with named_in_python("run_dir"):
+        claim_run_directory(run_dir)  # never write into a folder that is not a run directory
+        with run_directory_lock(run_dir):
+            write_stiffness_table(table, run_dir / STIFFNESS_DIR, table_inputs(scene, table))
     return table

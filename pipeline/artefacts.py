@@ -26,7 +26,7 @@ from dataclasses import asdict, is_dataclass
 from pathlib import Path
 from typing import Any, Iterator
 
-from .no_follow import OutputRefused, open_no_follow  # noqa: F401 - OutputRefused is re-exported
+from .no_follow import OutputRefused, open_no_follow, out_name  # noqa: F401 - OutputRefused is re-exported
 
 MANIFEST = "stage.json"
 RUN_MARKER = ".bearingsim-run"
@@ -249,7 +249,7 @@ def refuse_foreign_stage_dir(path: Path) -> None:
         raise OutputRefused(
             f"{path} is in the way of the {path.name} stage and was not written by bearingsim "
             f"(no {MANIFEST}); bearingsim never replaces a file or folder of yours: move it away, "
-            f"or give the run its own directory with --out")
+            f"or give the run its own directory with {out_name()}")
     extra = foreign_files(path) if path.is_dir() else []
     if extra:
         more = f" and {len(extra) - 1} more" if len(extra) > 1 else ""
@@ -300,7 +300,8 @@ def is_own_run_dir(run_dir: Path) -> bool:
     if (run_dir / RUN_MARKER).is_file():
         return True
     try:
-        first = (run_dir / "scene.toml").open(encoding="utf-8").readline()
+        with (run_dir / "scene.toml").open(encoding="utf-8") as handle:
+            first = handle.readline()
     except (OSError, ValueError):
         first = ""
     # a stage folder alone says nothing: a user may keep a copy of one in a folder of theirs
@@ -317,8 +318,8 @@ def refused_unless_usable(out: Path, example: str = "") -> Iterator[None]:
         raise
     except (OSError, ValueError) as exc:  # ValueError: a NUL byte in the path
         reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
-        raise OutputRefused(f"--out {out}: cannot use this directory ({reason}); give a writable "
-                            f"directory{', e.g. --out ' + example if example else ''}") from None
+        raise OutputRefused(f"{out_name(out)}: cannot use this directory ({reason}); give a writable "
+                            f"directory{', e.g. ' + out_name(example) if example else ''}") from None
 
 
 def mark_directory(directory: Path, marker: str, note: str) -> None:
@@ -341,24 +342,24 @@ def claim_run_directory(run_dir: Path) -> None:
     with refused_unless_usable(run_dir, "runs/my-run"):
         exists = run_dir.exists()
         if not exists and run_dir.is_symlink():
-            raise OutputRefused(f"--out {shown}: is a link to {os.readlink(run_dir)}, which does not exist; "
+            raise OutputRefused(f"{out_name(shown)}: is a link to {os.readlink(run_dir)}, which does not exist; "
                                 f"bearingsim does not create what a link points to: give a directory (new or "
-                                f"empty), e.g. --out runs/my-run")
+                                f"empty), e.g. {out_name('runs/my-run')}")
         if exists and not run_dir.is_dir():
-            raise OutputRefused(f"--out {shown}: exists and is not a directory; give a directory "
-                                f"(new or empty), e.g. --out runs/my-run")
+            raise OutputRefused(f"{out_name(shown)}: exists and is not a directory; give a directory "
+                                f"(new or empty), e.g. {out_name('runs/my-run')}")
         if not exists:
             run_dir.mkdir(parents=True, exist_ok=True)  # exist_ok: a concurrent run made it
         if not is_own_run_dir(run_dir):
             if any(p.name not in (RUN_MARKER, ".lock") and not p.name.startswith(f"{RUN_MARKER}.")
                    for p in run_dir.iterdir()):  # (a concurrent run writing the marker)
                 raise OutputRefused(
-                    f"--out {shown}: the directory holds files that are not a bearingsim run "
+                    f"{out_name(shown)}: the directory holds files that are not a bearingsim run "
                     f"(no {RUN_MARKER} marker); bearingsim never writes into a folder of yours, "
                     f"so that none of your files is overwritten. Give a new or empty directory, "
-                    f"e.g. --out {run_dir / 'run'}")
+                    f"e.g. {out_name(run_dir / 'run')}")
         if not os.access(run_dir, os.W_OK | os.X_OK):
-            raise OutputRefused(f"--out {shown}: the directory is not writable by this user; "
+            raise OutputRefused(f"{out_name(shown)}: the directory is not writable by this user; "
                                 "give a directory you may write to")
         mark_directory(run_dir, RUN_MARKER, "bearingsim run directory: stage folders here are replaced "
                                             "and removed by bearingsim")
@@ -390,7 +391,7 @@ def run_directory_lock(run_dir: Path) -> Iterator[None]:
         except BlockingIOError:
             raise RunDirectoryBusy(
                 f"another bearingsim process is writing {run_dir}/; wait for it to finish or give "
-                f"this run its own directory with --out") from None
+                f"this run its own directory with {out_name()}") from None
         try:
             yield
         finally:

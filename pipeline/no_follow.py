@@ -10,12 +10,39 @@ from __future__ import annotations
 
 import os
 import stat
+from collections.abc import Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
 from pathlib import Path
 
 
 class OutputRefused(OSError):
     """bearingsim will not write here: the path is not its own, not a directory, or not
     writable. The message names the path and what to do (exit code 2: a bad option)."""
+
+
+# how the caller names the output directory: the command line's option, or the argument of
+# the Python API (set by `named_in_python` around the API's calls)
+_OUT_NAME: ContextVar[str] = ContextVar("out_name", default="--out")
+
+
+def out_name(path=None) -> str:
+    """The output directory as the user gave it: `--out DIR` on the command line,
+    `run_dir='DIR'` from Python; without `path`, the option or argument alone."""
+    name = _OUT_NAME.get()
+    if path is None:
+        return name
+    return f"{name} {path}" if name.startswith("-") else f"{name}={str(path)!r}"
+
+
+@contextmanager
+def named_in_python(argument: str = "run_dir") -> Iterator[None]:
+    """Within this block, messages about the output directory name the Python argument."""
+    token = _OUT_NAME.set(argument)
+    try:
+        yield
+    finally:
+        _OUT_NAME.reset(token)
 
 
 _FLAGS = os.O_RDWR | os.O_CREAT | os.O_APPEND | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_CLOEXEC", 0)
@@ -43,4 +70,4 @@ def open_no_follow(path: Path, text: bool = True):
 
 def _refused(path: Path, what: str) -> OutputRefused:
     return OutputRefused(f"{path} {what}; bearingsim never writes through a link or into a special "
-                         f"file: remove it, or give the run its own directory with --out")
+                         f"file: remove it, or give the run its own directory with {out_name()}")

@@ -15,6 +15,7 @@ from pathlib import Path
 import tomli_w
 
 from .artefacts import SCENE_HEADER, OutputRefused, atomic_write_json, atomic_write_text
+from .no_follow import out_name
 
 PACKAGES = ("bearingsim", "numpy", "scipy", "numba", "scikit-fem", "gmsh", "meshio",
             "pyvista", "vtk", "matplotlib", "h5py", "typer", "rich", "pypardiso")
@@ -94,14 +95,15 @@ def write_run_provenance(run_dir: Path, raw_scene: dict, origin: str) -> None:
     scene_file = run_dir / "scene.toml"
     if scene_file.exists():
         try:
-            first = scene_file.open(encoding="utf-8").readline()
+            with scene_file.open(encoding="utf-8") as handle:
+                first = handle.readline()
         except (OSError, ValueError):
             first = ""
         if not first.startswith(SCENE_HEADER):
             raise OutputRefused(
                 f"{scene_file} is a scene file of yours, not one bearingsim wrote; the run would "
-                f"replace it with the resolved scene. Give the run its own directory with --out, "
-                f"e.g. --out {run_dir / 'run'}")
+                f"replace it with the resolved scene. Give the run its own directory with {out_name()}, "
+                f"e.g. {out_name(run_dir / 'run')}")
     origin_text = " ".join(str(origin).split())  # one line, whatever the path holds
     header = f"{SCENE_HEADER} (from {origin_text}, after --set overrides), as used by this run.\n"
     atomic_write_text(scene_file, header + tomli_w.dumps(raw_scene))

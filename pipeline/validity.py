@@ -392,12 +392,33 @@ def _dynamics_findings(scene) -> list[Finding]:
         out.append(error(missing[0], f"required by the dynamic stage for the inner ring's mass and inertia{also} "
                                      f"[m]; give it in [bearing], or run only the quasi-static stage, which "
                                      f"needs none of them (bearingsim quasistatic)"))
+    out += _land_overlap(scene)
     if not scene.physics.centrifugal:
         out.append(error("physics.centrifugal",
                          "false acts only on the quasi-static solve: the dynamic model's inertia always carries "
                          "the balls' centrifugal force; remove the key (or set it true) to run the dynamics"))
     return out
 
+
+def _land_overlap(scene) -> list[Finding]:
+    """The cage-land journal needs a length: the cage must be wider than the guiding groove
+    where it meets the land, as drawn and at the operating temperatures."""
+    if scene.cage is None or scene.cage.land_length is not None or scene.physics.cage_race == "none":
+        return []
+    drawn = _as_drawn(scene)
+    key = f"bearing.{drawn.cage.guidance}_shoulder_diameter"
+    for parts, when in ((drawn, ""), (scene, " at the operating temperatures ([thermal])")):
+        c, b = parts.cage, parts.bearing
+        if getattr(b, key.split(".")[1]) is None:
+            return []  # the land itself is missing: _cage_fit says so
+        opening = c.groove_opening_at_land(b)
+        if c.width <= opening:
+            return [error("cage.width", f"{_g(drawn.cage.width)} m does not reach the {c.guidance} race's lands"
+                                        f"{when}: the groove is {_g(opening)} m wide where it meets the land "
+                                        f"({key}) and the cage {_g(c.width)} m, so the cage-land journal would "
+                                        f"have no length; allowed: wider than the groove there, or give "
+                                        f"cage.land_length [m]")]
+    return []
 
 
 __all__ = ["Finding", "ValidityError", "raise_errors", "scene_findings", "run_findings"]

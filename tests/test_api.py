@@ -132,6 +132,23 @@ def test_missing_stage_says_how_to_run_it(tmp_path):
         run.timeseries()
 
 
+def test_a_refused_directory_is_named_as_the_python_argument(tmp_path):
+    """From Python there is no --out: the message names `run_dir`, and the command line's
+    messages keep naming --out."""
+    mine = tmp_path / "mine"
+    mine.mkdir()
+    (mine / "notes.txt").write_text("mine")
+    with pytest.raises(bearingsim.OutputRefused) as refused:
+        bearingsim.run("deep-groove-209", mine, stages="quasistatic")
+    message = str(refused.value)
+    assert f"run_dir={str(mine)!r}: the directory holds files" in message
+    assert f"e.g. run_dir={str(mine / 'run')!r}" in message and "--out" not in message
+    assert sorted(p.name for p in mine.iterdir()) == ["notes.txt"]
+    from bearingsim.pipeline.artefacts import claim_run_directory
+    with pytest.raises(bearingsim.OutputRefused, match=r"^--out .*e\.g\. --out "):
+        claim_run_directory(mine)
+
+
 def test_overrides_as_mapping_or_strings_are_validated_like_the_file():
     a = bearingsim.load_scene(SCENE, {"load.moment": np.float64(250), "solver": {"duration": 0.02},
                                       "physics.cage_race": "dry"})

@@ -87,6 +87,28 @@ def test_cage_outside_the_bearing_is_refused_with_the_allowed_range():
     assert "allowed: 0.1574 m < mean_diameter < 0.1586 m" in text and text.endswith("[m]")
 
 
+def test_simulate_refuses_a_cage_narrower_than_the_groove_at_its_land():
+    """The cage of case b overlaps the outer lands only beyond the groove's opening there:
+    2 sqrt(r_o^2 - (D_land/2 - d_oc/2)^2) with r_o = 9.906 mm, D_land = 166 mm and
+    d_oc = 157.3 mm (the scene's Table 1 values) is 17.80 mm; a journal of no length
+    stopped `simulate` after `check` had passed it."""
+    opening = 2.0 * math.sqrt(0.009906**2 - (0.083 - 0.07865) ** 2)
+    assert opening == pytest.approx(0.0178, abs=5e-6)
+    narrow = scene_with("helicopter-b-given-hinge", **{"cage.width": 0.017})
+    [finding] = validity.run_findings(narrow, {"simulate"})
+    assert finding.level == "error" and finding.key == "cage.width"
+    assert finding.text.startswith("cage.width: 0.017 m does not reach the outer race's lands: the groove is "
+                                   "0.0178 m wide where it meets the land (bearing.outer_shoulder_diameter)")
+    assert finding.text.endswith("or give cage.land_length [m]")
+    assert validity.run_findings(narrow, {"quasistatic"}) == []  # only the journal needs the overlap
+    for fix in ({"cage.land_length": 0.002}, {"physics.cage_race": "'none'"}):
+        assert validity.run_findings(scene_with("helicopter-b-given-hinge", **{"cage.width": 0.017, **fix}),
+                                     {"simulate"}) == []
+    wide = scene_with("helicopter-b-given-hinge", **{"cage.width": 0.0185})
+    assert validity.run_findings(wide, {"simulate"}) == []
+    assert wide.nominal.cage.guide_land_length(wide.nominal.bearing) == pytest.approx(0.0185 - opening, rel=1e-9)
+
+
 def test_a_cage_without_its_guiding_land_is_refused():
     table = copy.deepcopy(read_scene_table("helicopter-b-given-hinge")[0])
     del table["bearing"]["outer_shoulder_diameter"]

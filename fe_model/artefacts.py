@@ -13,8 +13,8 @@ import numpy as np
 
 HEADER = """\
 # Viscoelastic hinge identified by FE (bearingsim stage 1, docs/model.md §3, fit M.2).
-# [hinge] uses the scene's [hinge] key names and can be pasted there with source = "given".
-# translational: H_u [N/m], 3x3 symmetric; bending: H_psi [N*m/rad] about x and y.
+# [hinge] holds the scene's [hinge] keys: paste it into a scene with source = "given".
+# translational: H_u [N/m], 3x3 symmetric; bending: H_psi [N m/rad] about x and y ([units]).
 """
 
 
@@ -32,17 +32,17 @@ def atomic_write_bytes(path: pathlib.Path, data: bytes) -> None:
 
 
 def write_hinge_toml(path: pathlib.Path, H_u: np.ndarray, H_psi: np.ndarray, meta: dict) -> None:
-    """hinge.toml: [hinge] values and units, then the tables of `meta` (fit, mesh, ...)."""
+    """hinge.toml: [hinge] values, [units] theirs, then the tables of `meta` (fit, mesh, ...)."""
     import tomli_w
 
     doc = {
         "hinge": {
             "source": "fe",
             "translational": np.asarray(H_u, dtype=float).tolist(),
-            "translational_unit": "N/m",
             "bending": np.asarray(H_psi, dtype=float).tolist(),
-            "bending_unit": "N m/rad",  # UDUNITS, as every file (docs/outputs.md)
-        }
+        },
+        # apart from [hinge], which then pastes into a scene as it is; UDUNITS (docs/outputs.md)
+        "units": {"translational": "N/m", "bending": "N m/rad"},
     }
     doc.update(_plain(meta))
     atomic_write_bytes(path, (HEADER + tomli_w.dumps(doc)).encode())

@@ -87,3 +87,21 @@ def test_flange_reaction_is_softer_than_the_bearing_pair(identified, tmp_path):
     flange = identify_hinge(dataclasses.replace(config, load_reaction="flange"),
                             RingSeat(), tmp_path, write_fields=False)
     assert flange.H_u[0, 0] < pair.H_u[0, 0]
+
+
+def test_the_hinge_table_pastes_into_a_scene(identified):
+    """hinge.toml's header says its [hinge] table pastes into a scene with source = "given":
+    the scene then carries the identified values."""
+    import tomllib
+
+    from bearingsim.pipeline.scene import read_scene_table, resolve
+
+    _, out, result, _ = identified
+    with open(out / "hinge.toml", "rb") as fh:
+        pasted = tomllib.load(fh)["hinge"]
+    pasted["source"] = "given"
+    table = read_scene_table("helicopter-b-given-hinge")[0]
+    table["hinge"] = pasted
+    scene = resolve(table)
+    np.testing.assert_array_equal(np.reshape(scene.hinge.translational, (3, 3)), result.H_u)  # kept row by row
+    np.testing.assert_array_equal(np.array(scene.hinge.bending), result.H_psi)

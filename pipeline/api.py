@@ -276,7 +276,7 @@ class Run:
 
     @property
     def summary(self) -> dict:
-        """`simulate/summary.json`: the run's metrics (docs/scenes.md), verdict, counters."""
+        """`simulate/summary.json`: the run's metrics (docs/outputs.md, docs/model.md §11), verdict, counters."""
         return self._json("simulate", "summary.json")
 
     @property

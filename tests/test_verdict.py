@@ -168,8 +168,12 @@ def test_crushed_cage_burns_one_sector():
     assert v["metal_contact_fraction"] == pytest.approx(1.0)
     assert s["burn_zone_energy_metal"] == pytest.approx(50.0 * (1.0 - s["settled_window"][0]), rel=1e-3)
     h_um = C * (1 + EPS0 - 1.03) * 1e6
+    # the land law counts metal contact below a film of eps0 C, which the sentence names beside
+    # the film and its Lambda (above 3 here) so that the two do not read as a contradiction
+    assert s["land_contact_film"] == pytest.approx(EPS0 * C, rel=1e-12)
     assert v["text"] == (f"Cage crushed against the outer-race land at 200–201°, thinnest land film {h_um:.2g} µm "
-                         f"(Λ {h_um:.2g}): high risk; metal contact 100 % of the settled run.")
+                         f"(Λ {h_um:.2g}): high risk; metal contact 100 % of the settled run (the land law's, "
+                         f"below a film of {EPS0 * C * 1e6:.0f} µm).")
 
 
 def test_pocket_impact_regions_and_counts_in_the_settled_window():

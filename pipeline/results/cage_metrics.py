@@ -1,4 +1,4 @@
-"""Summary metrics of a dynamic run (docs/scenes.md `summary.json`), from saved time series.
+"""Summary metrics of a dynamic run (`summary.json`, docs/outputs.md), from saved time series.
 
 Conventions:
 
@@ -28,8 +28,8 @@ Conventions:
   > 3: full film (the classic regimes of T. E. Tallian, "On competing failure modes in
   rolling contact", ASLE Trans. 10, 1967, and B. J. Hamrock, S. R. Schmid, B. O. Jacobson,
   *Fundamentals of Fluid Film Lubrication*, 2nd ed., 2004, on the film parameter). The
-  hybrid land model's "metal contact" begins at eps = 1, i.e. at a film of eps0 C (≈ 15 µm
-  for the reference cage); Lambda says how close the film comes to the surfaces' real
+  hybrid land model's "metal contact" begins at eps = 1, i.e. at a film of eps0 C (12.5 µm
+  for case b at its operating clearance; `land_contact_film`); Lambda says how close the film comes to the surfaces' real
   roughness, which the hybrid law does not see.
 - Azimuths are measured in the global frame from +x towards +y (docs/model.md §1), in rad
   in `summary.json` (degrees only in the `verdict`).
@@ -51,6 +51,8 @@ Keys written by `cage_summary` (SI units; time means are trapezoidal over the wi
 `land_film_min`                 thinnest land film [m], at `land_film_min_time` [s] and
                                 `land_film_min_azimuth` [rad]
 `land_roughness`                sigma [m] used; `land_film_ratio_min` = Lambda_min [-]
+`land_contact_film`             eps0 C [m]: the film below which the land law counts metal
+                                contact (eps > 1)
 `inner_race_axial_mean`         m
 `pocket_impacts`, `_force_p95`  count, N (settled window); `pocket_impact_regions`
                                 [[start, end, share], ...] rad, rad, - (`impact_regions`)
@@ -460,7 +462,9 @@ def cage_summary(series: CageSeries, impacts: PocketImpacts, land: GuideLand = G
     # thinnest land film of the settled window, when and where
     film = film_all[win] if film_all is not None else None
     film_keys = {"land_film_min": None, "land_film_min_time": None, "land_film_min_azimuth": None,
-                 "land_roughness": float(land_roughness), "land_film_ratio_min": None}
+                 "land_roughness": float(land_roughness), "land_film_ratio_min": None,
+                 "land_contact_film": (float(guide_clearance * land_boundary)
+                                       if land_film and guide_clearance is not None else None)}
     if film is not None and film.size:
         i = int(np.argmin(film))
         h_min = float(film[i])

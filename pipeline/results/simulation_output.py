@@ -1,6 +1,6 @@
 """Turn a dynamic run into files a user can open elsewhere: `timeseries.h5` (every variable
 with units and a description), `impacts.csv`, the figures of docs/model.md §11, and the
-numbers of `summary.json` (docs/scenes.md)."""
+numbers of `summary.json` (docs/outputs.md)."""
 
 from __future__ import annotations
 

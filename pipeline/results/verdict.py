@@ -82,6 +82,7 @@ def cage_verdict(summary: dict, limits: CageClassThresholds = CageClassThreshold
         sector, source = None, None
     film = summary.get("land_film_min")
     roughness = summary.get("land_roughness")
+    contact_film = summary.get("land_contact_film")
     regions = summary.get("pocket_impact_regions")
     window = summary.get("settled_window") or [None, None]
     verdict = {
@@ -96,6 +97,7 @@ def cage_verdict(summary: dict, limits: CageClassThresholds = CageClassThreshold
         "land_film_min_azimuth_deg": _deg(summary.get("land_film_min_azimuth")),
         "land_film_ratio_min": summary.get("land_film_ratio_min"),
         "land_roughness_um": None if roughness is None else 1e6 * roughness,
+        "land_contact_film_um": None if contact_film is None else 1e6 * contact_film,
         "metal_contact_fraction": metal,
         "eps_mean": summary.get("cage_eps_mean"),
         "whirl_ratio": summary.get("cage_whirl_ratio"),
@@ -136,6 +138,10 @@ def verdict_sentence(v: dict, warnings: list[str] = (), land: str = "outer-race 
     metal = v.get("metal_contact_fraction") or 0.0
     contact = ("no metal contact in the settled run" if metal <= 0.0
                else f"metal contact {format_percent(metal)} % of the settled run")
+    if metal > 0.0 and film and v.get("land_contact_film_um") is not None:
+        # the land law counts metal contact from a film of eps0 C, far above the roughness
+        # that Lambda measures: say so where both are printed
+        contact += f" (the land law's, below a film of {format_film_um(v['land_contact_film_um'])} µm)"
     tail = ""
     if any(w.startswith("run too short to settle") for w in warnings):
         n = v.get("settled_revolutions")
@@ -192,6 +198,8 @@ def verdict_rows(v: dict) -> list[tuple[str, str, str]]:
         (f"film-thickness ratio Λ_min = h_min/σ (σ = {num(v.get('land_roughness_um'))} µm)",
          format_ratio(v.get("land_film_ratio_min")), "-"),
         ("metal-contact fraction", format_percent(v.get("metal_contact_fraction") or 0.0), "%"),
+        ("  the land law's metal contact: a film below ε0 C =", format_film_um(v.get("land_contact_film_um")),
+         "µm"),
         ("mean eccentricity ratio ε", num(v.get("eps_mean")), "-"),
         ("whirl ratio (whirl speed / cage speed)", num(v.get("whirl_ratio"), "{:.2g}"), "-"),
         ("pocket impacts", num(v.get("pocket_impacts"), "{:d}"), "count"),

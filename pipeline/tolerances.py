@@ -252,7 +252,7 @@ def summary(result: ToleranceResult, scene) -> dict:
         "drivers": drivers(result),
         "stack_at_p5": stack5,
         "stack_at_p5_overrides": stack_overrides(scene, stack5),
-        "units": {"margin": "-", "probability": "-", "deviations": {k: QUANTITIES[k][0] for k in result.deviations}},
+        "units": {"margin": "1", "probability": "1", "deviations": {k: QUANTITIES[k][0] for k in result.deviations}},
     }
 
 
@@ -264,7 +264,7 @@ def write_samples_csv(path, result: ToleranceResult) -> None:
 
     names = list(result.deviations)
     header = [f"{n}_deviation [{QUANTITIES[n][0]}]" for n in names] + [
-        "guide_clearance [m]", "pocket_clearance [m]", "non_guiding_gap [m]", "crush_margin [-]", "regime"]
+        "guide_clearance [m]", "pocket_clearance [m]", "non_guiding_gap [m]", "crush_margin [1]", "regime"]
     cols = [result.deviations[n] for n in names] + [result.guide_clearance, result.pocket_clearance,
                                                      result.non_guiding_gap, result.margin]
     buf = io.StringIO()

@@ -108,6 +108,21 @@ def test_timeseries_of_a_run_is_compressed(example):
         assert ds.compression == "gzip" and ds.chunks[1:] == ds.shape[1:]
 
 
+def test_timeseries_units_are_udunits_strings(example):
+    """docs/outputs.md: files carry UDUNITS unit strings (`1`, `N m`), which netCDF tools and
+    pint parse; the channels are declared with `-` and `N.m`, as the scene keys are."""
+    import h5py
+
+    _, where = example
+    units = {}
+    with h5py.File(where / "runs/demo/simulate/timeseries.h5", "r") as h5:
+        h5.visititems(lambda name, obj: units.__setitem__(name, obj.attrs["units"])
+                      if isinstance(obj, h5py.Dataset) and "units" in obj.attrs else None)
+    assert units["cage_race/eccentricity_ratio"] == "1" and units["cage_race/torque"] == "N m"
+    assert units["contacts/inner_slide_roll"] == "1" and units["power/drive_moment"] == "N m"
+    assert not [name for name, unit in units.items() if unit in ("-", "") or "N.m" in unit]
+
+
 def test_open_run_reads_the_same_results(example):
     ns, where = example
     opened = bearingsim.open_run(where / "runs" / "demo")

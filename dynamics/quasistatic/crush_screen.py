@@ -113,7 +113,7 @@ class CageScreen:
             "rear_wall_azimuth_deg": deg(self.rear_wall_azimuth) % 360.0,
             "film_push": self.film_push,
             "excursion_per_ball": [float(x) for x in self.excursion],
-            "units": {"lengths": "m", "film_push": "N", "azimuths": "deg", "crush_margin": "-"},
+            "units": {"lengths": "m", "film_push": "N", "azimuths": "degree", "crush_margin": "1"},
         }
 
 

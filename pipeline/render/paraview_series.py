@@ -29,6 +29,8 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
+from ..results.named_arrays import udunits
+
 from .body_surfaces import (RevolvedSurface, axis_rotation, cage_surface, inner_race_surface,
                             outer_race_surface, spin_rotation)
 
@@ -84,7 +86,7 @@ def _polydata(points: np.ndarray, quads: np.ndarray | None = None):
 
 
 def _units(mesh, units: dict[str, str]) -> None:
-    mesh.field_data["units"] = np.array([f"{k}={v}" for k, v in units.items()])
+    mesh.field_data["units"] = np.array([f"{k}={udunits(v)}" for k, v in units.items()])
 
 
 def write_pvd(path: Path, entries: list[tuple[float, str]]) -> None:

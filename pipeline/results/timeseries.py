@@ -26,6 +26,8 @@ from typing import Iterable
 
 import numpy as np
 
+from .named_arrays import udunits
+
 COMPRESSION = "gzip"
 COMPRESSION_LEVEL = 4  # levels 6-9 gain < 1 % on these series and write 1.5-3x slower
 CHUNK_BYTES = 256 * 1024
@@ -79,7 +81,7 @@ def write_timeseries(path: Path, series: dict[str, Series], attrs: dict | None =
                 if s.store_float32:
                     data = data.astype(np.float32)
                 ds = h5.create_dataset(name, data=data, **storage_options(data))
-                ds.attrs["units"] = s.units
+                ds.attrs["units"] = udunits(s.units)  # what netCDF and pint read (docs/outputs.md)
                 ds.attrs["description"] = s.description
                 ds.attrs["dims"] = ",".join(s.dims)
                 written[name] = (ds, s.dims)

@@ -180,10 +180,11 @@ def stage_names() -> list[str]:
 def check_stage_names(stages: str | Iterable[str], what: str) -> list[str]:
     names = [stages] if isinstance(stages, str) else list(stages)
     allowed = stage_names()
+    if not names:
+        raise ValueError(f"{what}: no stage given; name at least one of {', '.join(allowed)}")
     unknown = [s for s in names if s not in allowed]
-    if unknown or not names:
-        raise ValueError(f"{what}: {unknown[0] if unknown else names!r} is not a stage; "
-                         f"choose from {', '.join(allowed)}")
+    if unknown:
+        raise ValueError(f"{what}: {unknown[0]!r} is not a stage; choose from {', '.join(allowed)}")
     return names
 
 

@@ -391,7 +391,7 @@ def _dynamics_findings(scene) -> list[Finding]:
         also = f" (as are {', '.join(missing[1:])})" if len(missing) > 1 else ""
         out.append(error(missing[0], f"required by the dynamic stage for the inner ring's mass and inertia{also} "
                                      f"[m]; give it in [bearing], or run only the quasi-static stage, which "
-                                     f"needs none of them (bearingsim quasistatic)"))
+                                     f"needs none of them (bearingsim quasistatic; stages=['quasistatic'] in Python)"))
     out += _land_overlap(scene)
     if not scene.physics.centrifugal:
         out.append(error("physics.centrifugal",

@@ -123,6 +123,18 @@ def test_timeseries_units_are_udunits_strings(example):
     assert not [name for name, unit in units.items() if unit in ("-", "") or "N.m" in unit]
 
 
+def test_one_series_to_xarray_has_the_coordinates_of_its_file(example):
+    """README: `a.to_xarray()` of a series from `run.timeseries()` has time and component
+    coordinates, as the whole file's Dataset has."""
+    pytest.importorskip("xarray")
+    ns, _ = example
+    series = ns["run"].timeseries()
+    da = series["cage/position"].to_xarray()
+    assert da.dims == ("time", "xyz") and list(da.coords["xyz"].values) == ["x", "y", "z"]
+    np.testing.assert_array_equal(da.coords["time"].values, np.asarray(series["time"]))
+    assert float(da.sel(xyz="x").isel(time=-1)) == float(np.asarray(series["cage/position"])[-1, 0])
+
+
 def test_open_run_reads_the_same_results(example):
     ns, where = example
     opened = bearingsim.open_run(where / "runs" / "demo")
@@ -184,6 +196,8 @@ def test_overrides_as_mapping_or_strings_are_validated_like_the_file():
 def test_stage_names_and_force():
     with pytest.raises(ValueError, match="simulation.*identify, quasistatic, simulate, report"):
         bearingsim.run(SCENE, "unused", stages=["simulation"])
+    with pytest.raises(ValueError, match=r"^stages: no stage given; name at least one of identify, "):
+        bearingsim.run(SCENE, "unused", stages=[])
     assert forced_stages(False, ["simulate"]) == set()
     assert forced_stages(True, ["simulate"]) == {"simulate"}
     assert forced_stages("all", ["simulate"]) == {"identify", "quasistatic", "simulate", "report"}
@@ -243,6 +257,8 @@ def test_run_repr_is_short_and_the_notebook_display_shows_the_verdict(example):
     text = repr(run)
     assert text.startswith("Run('helicopter-b-given-hinge', ") and "\n" not in text and len(text) < 300
     assert run.summary["verdict"]["class"] in text
+    # the given hinge needs no FE stage: the run holds no identify results to list
+    assert run.stages["identify"] == "not needed" and "stages: quasistatic, simulate;" in text
     page = run._repr_html_()
     assert run.summary["verdict"]["text"].split(":")[0] in page.replace("&#x27;", "'")
     assert "thinnest land film" in page and 'src="data:image/png;base64,' in page

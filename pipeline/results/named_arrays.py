@@ -5,7 +5,7 @@ installed, which bearingsim does not require."""
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -16,7 +16,8 @@ import numpy as np
 class NamedArray:
     """An array with its unit, the names of its dimensions and what it is.
 
-    `np.asarray(a)` gives the values; `a.to_xarray()` an `xarray.DataArray` (xarray needed).
+    `np.asarray(a)` gives the values; `a.to_xarray()` an `xarray.DataArray` (xarray needed)
+    with the coordinates of `coords` (set on the arrays a `TimeSeries` hands out).
     """
 
     values: np.ndarray
@@ -24,6 +25,7 @@ class NamedArray:
     dims: tuple[str, ...]
     description: str = ""
     name: str = ""
+    coords: Mapping[str, Any] | None = field(default=None, repr=False, compare=False)
 
     def __array__(self, dtype=None, copy=None):
         values = np.asarray(self.values, dtype=dtype)
@@ -44,8 +46,9 @@ class NamedArray:
         """An `xarray.DataArray` that netCDF takes as it is: its name netCDF-safe
         (`cage/position` -> `cage_position`; the original in attribute `bearingsim_name`),
         `units` a UDUNITS string ("N m", "1"), `long_name` the description; `coords` by
-        dimension name."""
+        dimension name [default: the array's own `coords`]."""
         xr = _xarray()
+        coords = self.coords if coords is None else coords
         used = {d: c for d, c in (coords or {}).items() if d in self.dims}
         attrs = {"units": udunits(self.unit), "long_name": self.description, "description": self.description}
         if self.name:
@@ -97,7 +100,7 @@ class TimeSeries(Mapping):
 
     def __getitem__(self, name: str) -> NamedArray:
         try:
-            return self._arrays[name]
+            return replace(self._arrays[name], coords=self.coords())  # a.to_xarray() has them too
         except KeyError:
             raise KeyError(f"no time series {name!r}; available: {', '.join(self._arrays)}") from None
 

@@ -24,8 +24,9 @@ def _summary(run) -> dict | None:
 
 
 def _stages_held(run) -> list[str]:
+    """The stages whose results are in the directory (not those this call did not need)."""
     try:
-        return list(run.stages)
+        return [name for name, status in run.stages.items() if status != "not needed"]
     except (OSError, ValueError):
         return []
 

@@ -153,7 +153,8 @@ def read_timeseries(path: Path, names: Iterable[str] | None = None) -> tuple[dic
                 obj = h5.get(name)
                 if not isinstance(obj, h5py.Dataset):
                     held = []
-                    h5.visititems(lambda n, o: held.append(n) if isinstance(o, h5py.Dataset) else None)
+                    h5.visititems(lambda n, o: held.append(n) if isinstance(o, h5py.Dataset)
+                                  and not _is_label_scale(o) else None)
                     raise KeyError(f"{path} holds no dataset {name!r}; it holds: {', '.join(held)}")
                 read(name, obj)
     return out, attrs

@@ -12,7 +12,7 @@ Errors are raised, not mapped to exit codes: `SceneError` for a bad scene or ove
 names the key), `StageNotAvailable`, `RunDirectoryBusy`, and the solver's own
 RuntimeError/ValueError with its hint.
 
-Results come back as plain numbers and :class:`NamedArray` (values, unit, dims,
+Results come back as plain numbers and `NamedArray` (values, unit, dims,
 description), which convert to xarray when it is installed (`.to_xarray()`); xarray is not a
 dependency. Importing this module loads no numba, matplotlib or gmsh.
 """
@@ -40,7 +40,7 @@ ProgressCallback = Callable[[str, str, float], None]  # (stage, text, fraction d
 
 # --- scenes --------------------------------------------------------------------------------
 def load_scene(scene, overrides: Mapping[str, Any] | Iterable[str] | None = None):
-    """A validated :class:`~bearingsim.pipeline.scene.Scene` from a built-in scene name, a
+    """A validated `Scene` from a built-in scene name, a
     TOML path or another Scene, with `overrides` applied.
 
     `overrides`: ``{"load.moment": 300, "solver.duration": 0.02}`` (dotted keys, Python
@@ -117,7 +117,7 @@ def run(scene, run_dir: str | Path | None = None, stages: str | Iterable[str] = 
         overrides: Mapping[str, Any] | Iterable[str] | None = None,
         force: bool | str | Iterable[str] = False, progress: ProgressCallback | bool | None = None,
         store: str | Path | None = None) -> "Run":
-    """Run `stages` of `scene` (and the stages they need) in `run_dir`; return the :class:`Run`.
+    """Run `stages` of `scene` (and the stages they need) in `run_dir`; return the `Run`.
 
     scene:    a Scene (`load_scene`), or a built-in name / TOML path (loaded with `overrides`).
     run_dir:  the run directory [default: runs/<scene name>/, relative to the working directory].
@@ -225,7 +225,7 @@ class Run:
     """A run directory and its scene; results are read from its files when asked for.
 
     `outcomes` are the StageOutcomes of the `run()` call that made it (empty from
-    :func:`open_run`); `stages` is what the directory holds now.
+    `open_run`); `stages` is what the directory holds now.
     """
 
     scene: Any
@@ -352,7 +352,7 @@ class Run:
 
     def stiffness(self, speeds_rpm: Iterable[float] | None = None, write: bool = True):
         """Bearing and hinge stiffness over inner-ring speeds (see
-        :func:`export_stiffness`)."""
+        `export_stiffness`)."""
         from .stiffness_export import stiffness_table
 
         if write:
@@ -361,7 +361,7 @@ class Run:
 
 
 def open_run(run_dir: str | Path) -> Run:
-    """A :class:`Run` of an existing run directory (its scene from `<run_dir>/scene.toml`)."""
+    """A `Run` of an existing run directory (its scene from `<run_dir>/scene.toml`)."""
     run_dir = Path(run_dir)
     scene_file = run_dir / "scene.toml"
     if not scene_file.is_file():

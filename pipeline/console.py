@@ -2,10 +2,10 @@
 
 Rich treats `[m]`, `[s]`, `[rev/min]` or `[lubricant]` as markup and `:smile:` as an emoji;
 units and scene text would vanish from messages. Every message built from user or scene
-text goes through :func:`escape`, and the consoles have emoji replacement off.
+text goes through `escape`, and the consoles have emoji replacement off.
 
 The solvers' own hints speak of their settings (`tol`, `max_newton_iter`, ...), which are
-not scene keys; :func:`explain` turns a failure into a message whose advice names only keys
+not scene keys; `explain` turns a failure into a message whose advice names only keys
 of docs/scenes.md.
 """
 

@@ -90,7 +90,7 @@ def run_stages(
 
     `store`: optional directory shared by many run directories (the points of a sweep).
     A stage whose key is in the store is linked from it instead of recomputed, and a
-    computed stage is published to it (see :func:`_via_store`). `store_stages`: the stages
+    computed stage is published to it (see `_via_store`). `store_stages`: the stages
     that go through the store (None: all of them).
     """
     by_name = {s.name: s for s in stages}

@@ -1,6 +1,6 @@
 """Scene files: load TOML, apply `--set` overrides, validate, resolve (docs/scenes.md).
 
-A :class:`Scene` is the validated, resolved description of one physical case and how to
+A `Scene` is the validated, resolved description of one physical case and how to
 compute it. Nothing downstream sees raw TOML.
 """
 
@@ -258,7 +258,7 @@ def resolve_fe(table: Any, hinge: Hinge) -> Any | None:
 
 
 def resolve(table: dict, origin: str = "<table>") -> Scene:
-    """Validate a raw scene table into a :class:`Scene`; raises SceneError."""
+    """Validate a raw scene table into a `Scene`; raises SceneError."""
     unknown = sorted(set(table) - set(TOP_LEVEL))
     if unknown:
         raise SceneError(unknown[0], f"unknown key or table in {origin}; allowed: {', '.join(TOP_LEVEL)}")

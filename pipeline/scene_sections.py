@@ -3,7 +3,7 @@
 Physical sections (`[bearing]`, `[cage]`, `[materials]`) and the settings the dynamics take
 (`[physics]`, the integrator's part of `[solver]`) reuse the dynamics' own types; the ones
 below are the scene-only sections. Field metadata gives unit and range; the generic builder
-in :mod:`pipeline.schema` enforces them.
+in `pipeline.schema` enforces them.
 """
 
 from __future__ import annotations

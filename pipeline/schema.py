@@ -1,7 +1,7 @@
 """Build frozen dataclasses from TOML tables, validating as we go.
 
 Each dataclass field may carry metadata: ``unit`` (str), bounds ``gt``/``ge``/``lt``/``le``,
-``choices`` (allowed values) and ``doc``. A bad value raises :class:`SceneError` naming the
+``choices`` (allowed values) and ``doc``. A bad value raises `SceneError` naming the
 dotted key, the value, what is allowed and the unit — before anything is computed.
 """
 

@@ -1,14 +1,14 @@
 """Physical validity: say plainly when a scene or a result is outside what the model covers.
 
-Three moments, one kind of answer (:class:`Finding`, an error or a warning naming the scene
+Three moments, one kind of answer (`Finding`, an error or a warning naming the scene
 key, the value, what is allowed and the unit):
 
-- **before anything runs** — :func:`scene_findings` (geometry that cannot be built as the
+- **before anything runs** — `scene_findings` (geometry that cannot be built as the
   model assumes: clearance beyond the curvature-centre limit, a land outside its groove, a
   cage that does not fit between the rings; the resources a dynamic run would need;
-  values that look like the wrong unit) and :func:`run_findings` (what the stages about to
+  values that look like the wrong unit) and `run_findings` (what the stages about to
   run cannot do, e.g. an inner-guided cage in the dynamics);
-- **after a stage** — :func:`stage_findings` (in pipeline.result_checks) reads the stage's
+- **after a stage** — `stage_findings` (in pipeline.result_checks) reads the stage's
   own result file (`quasistatic.json`, `summary.json`) and checks it against the limits of
   the model (contact angle past the groove, ellipse truncation, contact pressure beyond the
   steel's limit, a displacement as large as the ball).

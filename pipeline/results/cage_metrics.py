@@ -6,7 +6,7 @@ Conventions:
   eccentricity, metal-contact fraction, contact and offset spread, whirl ratio, land force,
   inner-race axial mean), the thinnest land film, pocket-impact counts and the burn zone —
   is taken over the *settled window*: from the end of the start-up transient, found from
-  the series by the block rule of :mod:`pipeline.results.settled_window`, to the end of the
+  the series by the block rule of `pipeline.results.settled_window`, to the end of the
   run. The start-up is reported on its own (`startup`: its end, peak metal force, metal and
   film energy, peak land force, impacts), so a start-up crash is neither lost nor mistaken
   for the regime.

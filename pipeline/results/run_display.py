@@ -1,4 +1,4 @@
-"""How a :class:`bearingsim.pipeline.api.Run` shows itself: a one-line `repr` and a notebook
+"""How a `bearingsim.pipeline.api.Run` shows itself: a one-line `repr` and a notebook
 display (`_repr_html_`) of the verdict, its key numbers and the cage-orbit figure.
 
 Both read the run directory's files only (summary.json, the figures); a missing file gives a

@@ -129,7 +129,7 @@ def attach_dimension_scales(h5, written: dict) -> None:
 
 
 def read_timeseries(path: Path, names: Iterable[str] | None = None) -> tuple[dict[str, Series], dict]:
-    """Read back what :func:`write_timeseries` wrote: (name -> Series, file attributes).
+    """Read back what `write_timeseries` wrote: (name -> Series, file attributes).
 
     `names`: only these datasets (a KeyError names a missing one and lists what the file
     holds); None reads them all.

@@ -1,8 +1,8 @@
 """The verdict of a dynamic run: what an engineer reads first (`summary.json` `verdict`).
 
 One dict built from the summary metrics of the settled window
-(:mod:`pipeline.results.cage_metrics`): the cage-motion class and risk level
-(:mod:`pipeline.sweep.classify`, default thresholds), the loaded sector of the land, the
+(`pipeline.results.cage_metrics`): the cage-motion class and risk level
+(`pipeline.sweep.classify`, default thresholds), the loaded sector of the land, the
 thinnest land film (when, where, and its ratio to the roughness), metal contact, whirl, the
 pocket impacts and a one-sentence `text`. Angles are in degrees, azimuth from +x towards
 +y in the scene's (global) frame; films in µm; forces in N. The raw SI keys stay in

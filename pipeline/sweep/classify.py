@@ -3,11 +3,11 @@
 
 The classes describe how the cage moves once the start-up transient has died out (all
 metrics are taken over the *settled window* of the run, see
-:mod:`pipeline.results.settled_window`; summaries written before it existed used the last
+`pipeline.results.settled_window`; summaries written before it existed used the last
 half of the run):
 
 =========== ===================================================================================
-class        rule (checked in this order; thresholds are fields of :class:`CageClassThresholds`)
+class        rule (checked in this order; thresholds are fields of `CageClassThresholds`)
 =========== ===================================================================================
 crushed      ``cage_metal_contact_fraction >= crushed_contact`` (0.5) and
              ``cage_contact_angle_spread <= crushed_spread`` (0.5 rad): the cage is pressed
@@ -56,7 +56,7 @@ Schwarz, Grillenberger & Tremmel, "Establishing a metric for identifying rolling
 cage dynamics", 2020), plus the crushed and pressed states this software exists to
 predict (docs/model.md §0).
 
-Risk level (:func:`risk_level`), from the class, the metal contact and the film-thickness
+Risk level (`risk_level`), from the class, the metal contact and the film-thickness
 ratio Lambda_min = h_min / sigma of the land (`land_film_ratio_min`; sigma the composite
 RMS roughness of cage rim and land):
 

@@ -120,7 +120,7 @@ def run_sweep(plan: SweepPlan, client, *, progress: Callable[[SweepStatus], None
     """Run the plan's unfinished points on `client` (a distributed.Client); return one record
     per point, in plan order. Per-point failures are records, never exceptions. `client` is
     not used (may be None) when every point has finished before. OutputRefused when the sweep
-    directory is not bearingsim's (:func:`claim_sweep_directory`)."""
+    directory is not bearingsim's (`claim_sweep_directory`)."""
     claim_sweep_directory(plan.sweep_dir)
     _write_plan(plan)
     records, todo = unfinished(plan, retry_failed)

@@ -1,7 +1,7 @@
 """The sweep's results table: one row per point, from the points' records on disk.
 
 Columns: `point_id`, `status` (done | failed | pending), one column per varied scene key,
-`cage_class` and `risk` (:mod:`pipeline.sweep.classify`), `too_short_to_settle` (the
+`cage_class` and `risk` (`pipeline.sweep.classify`), `too_short_to_settle` (the
 point's run ended before its cage settled: its class is a transient's), the summary metrics of
 docs/scenes.md (with `burn_zone_sector` split into `burn_zone_start` / `burn_zone_end`), run
 counters, `warnings` (the run's own, joined by "; "), `error` (the message of a failed point) and

@@ -62,12 +62,12 @@ class BearingGeometry:
     def __post_init__(self) -> None:
         """Reject geometry that cannot be built; messages name the scene keys."""
         D = self.ball_diameter
+        # a ball of 0.2 m or more is larger than any rolling bearing's: most likely millimetres
+        slip = (f"; ball_diameter = {D:g} m would be a ball of {D:g} metres: lengths are in metres, "
+                "not millimetres (12.7 mm is 0.0127)" if D >= 0.2 else "")
         for name in ("inner_groove_radius", "outer_groove_radius"):
             r = getattr(self, name)
             if r <= 0.5 * D:
-                # a ball of 0.2 m or more is larger than any rolling bearing's: most likely millimetres
-                slip = (f"; ball_diameter = {D:g} m would be a ball of {D:g} metres: lengths are in metres, "
-                        "not millimetres (12.7 mm is 0.0127)" if D >= 0.2 else "")
                 raise ValueError(
                     f"{name} = {r:g} m must exceed the ball radius D/2 = {0.5 * D:g} m "
                     f"(a groove tighter than the ball cannot hold it){slip}"
@@ -75,7 +75,8 @@ class BearingGeometry:
         if self.inner_groove_bottom_diameter <= 0.0:
             raise ValueError(
                 f"inner groove bottom diameter d_i - 2 r_i = {self.inner_groove_bottom_diameter:g} m "
-                "must be positive: check inner_groove_center_diameter and inner_groove_radius"
+                "must be positive: check inner_groove_center_diameter and inner_groove_radius (form 1), "
+                f"or ball_diameter against pitch_diameter (form 2){slip}"
             )
         play = self.diametral_clearance
         if play < -0.1 * D:

@@ -228,11 +228,20 @@ class _StageProgress:
 
 
 @app.command()
-def scenes() -> None:
-    """List the built-in scenes with one-line descriptions."""
+def scenes(name: Annotated[Optional[str], typer.Argument(
+        help="Print this built-in scene's TOML, to start a scene of your own from it "
+             "(bearingsim scenes helicopter-b > my-bearing.toml).")] = None) -> None:
+    """List the built-in scenes with one-line descriptions, or print one of them."""
     from rich.table import Table
 
-    from .scene import builtin_scene_names, read_scene_table
+    from .scene import builtin_scene_names, builtin_scene_text, read_scene_table
+
+    if name is not None:
+        try:
+            sys.stdout.write(builtin_scene_text(name))
+        except SceneError as exc:
+            _fail(EXIT_SCENE, f"scene: {explain(exc)}")
+        return
 
     table = Table("scene", "description", box=None)
     for name in builtin_scene_names():

@@ -81,6 +81,16 @@ def builtin_scene_names() -> list[str]:
     return sorted(p.name[:-5] for p in files.iterdir() if p.name.endswith(".toml"))
 
 
+def builtin_scene_text(name: str) -> str:
+    """The TOML text of a built-in scene (SceneError naming the built-in scenes otherwise)."""
+    names = builtin_scene_names()
+    if name not in names:
+        shown = name if len(name) <= 80 else name[:77] + "..."
+        raise SceneError("", f"{shown!r} is neither a scene file nor a built-in scene; "
+                             f"built-in scenes: {', '.join(names)}")
+    return (resources.files("bearingsim.pipeline") / "scenes" / f"{name}.toml").read_text(encoding="utf-8")
+
+
 def read_scene_table(scene: str | Path) -> tuple[dict, str]:
     """Read a scene path or built-in name into a TOML table; returns (table, origin).
     Every way a file can be unreadable is a SceneError naming the file and what to do."""
@@ -116,11 +126,7 @@ def read_scene_table(scene: str | Path) -> tuple[dict, str]:
             raise SceneError("", f"{origin} is not UTF-8 text (byte 0x{data[exc.start]:02x} on line {line}); "
                                  "save the scene as UTF-8 (TOML files are UTF-8)") from None
     else:
-        names = builtin_scene_names()
-        if text_arg not in names:
-            raise SceneError("", f"{shown!r} is neither a scene file nor a built-in scene; "
-                                 f"built-in scenes: {', '.join(names)}")
-        text = (resources.files("bearingsim.pipeline") / "scenes" / f"{scene}.toml").read_text(encoding="utf-8")
+        text = builtin_scene_text(text_arg)
         origin = f"built-in:{scene}"
     try:
         return tomllib.loads(text), origin

@@ -158,7 +158,7 @@ class Thermal:
     parts_degC: float | None = field(default=None, metadata={
         "unit": "degC", "ge": -100.0, "le": 350.0,
         "doc": "temperature of every part not given below; default lubricant.temperature_degC, "
-               "which must then lie in this range"})
+               "which must then lie in this range (reference_degC without a [lubricant])"})
     inner_ring_degC: float | None = field(default=None, metadata={
         "unit": "degC", "ge": -100.0, "le": 350.0, "doc": "inner-ring temperature; default parts_degC"})
     outer_ring_degC: float | None = field(default=None, metadata={

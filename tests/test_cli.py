@@ -38,6 +38,19 @@ def test_scenes_lists_builtins():
         assert name in result.output
 
 
+def test_scenes_prints_a_builtin_scene_to_start_from(tmp_path):
+    """`bearingsim scenes NAME > mine.toml` gives a file that loads as the same scene."""
+    from bearingsim.pipeline.scene import load_scene
+
+    result = runner.invoke(app, ["scenes", "helicopter-b-given-hinge"])
+    assert result.exit_code == 0 and result.stderr == ""
+    mine = tmp_path / "mine.toml"
+    mine.write_text(result.stdout)
+    assert load_scene(str(mine)).raw == load_scene("helicopter-b-given-hinge").raw
+    missing = runner.invoke(app, ["scenes", "helicopter-c"])
+    assert missing.exit_code == 2 and "built-in scenes: deep-groove-209, helicopter-a" in missing.stderr
+
+
 def test_bad_scene_exits_2_naming_the_key():
     result = runner.invoke(app, ["check", "helicopter-b", "--set", "bearing.ball_count=0"])
     assert result.exit_code == 2

@@ -307,3 +307,8 @@ def test_a_ball_in_millimetres_is_named_in_the_groove_error():
 
     with pytest.raises(SceneError, match=r"ball_diameter = 19.05 m would be a ball of 19.05 metres.*not millimetres"):
         load_scene("helicopter-b-given-hinge", ["bearing.ball_diameter=19.05"])
+    # a catalogue-form scene (pitch diameter and conformities): no groove radius to trip, the
+    # groove bottom goes negative; the message names the keys of that form, and the likely slip
+    with pytest.raises(SceneError, match=r"or ball_diameter against pitch_diameter \(form 2\); ball_diameter = "
+                                         r"12\.7 m would be a ball of 12\.7 metres"):
+        load_scene("deep-groove-209", ["bearing.ball_diameter=12.7"])

@@ -205,10 +205,14 @@ def stack_overrides(scene, stack: dict[str, float]) -> list[str]:
     in °C), so a dynamic run can confirm its regime."""
     b, c, t = scene.nominal.bearing, scene.nominal.cage, scene.temperatures
     out = []
+
+    def value(x: float) -> str:  # 9 digits: 0.1 nm on a diameter, readable on the command line
+        return f"{x:.9g}"
+
     od = c.outside_diameter + stack.get("cage_outside_diameter", 0.0)
     bore = c.bore_diameter + stack.get("cage_bore_diameter", 0.0)
     if "cage_outside_diameter" in stack or "cage_bore_diameter" in stack:
-        out += [f"cage.mean_diameter={0.5 * (od + bore)!r}", f"cage.radial_thickness={0.5 * (od - bore)!r}"]
+        out += [f"cage.mean_diameter={value(0.5 * (od + bore))}", f"cage.radial_thickness={value(0.5 * (od - bore))}"]
     simple = {"pocket_diameter": ("cage.pocket_diameter", c.pocket_diameter),
               "outer_land_diameter": ("bearing.outer_shoulder_diameter", b.outer_shoulder_diameter),
               "inner_land_diameter": ("bearing.inner_shoulder_diameter", b.inner_shoulder_diameter),
@@ -219,13 +223,13 @@ def stack_overrides(scene, stack: dict[str, float]) -> list[str]:
         simple["diametral_clearance"] = ("bearing.diametral_clearance", b.diametral_clearance)
     for name, (key, nominal) in simple.items():
         if name in stack:
-            out.append(f"{key}={nominal + stack[name]!r}")
+            out.append(f"{key}={value(nominal + stack[name])}")
     if "pocket_circle_eccentricity" in stack:
-        out.append(f"cage.pocket_circle_eccentricity={max(0.0, c.pocket_circle_eccentricity + stack['pocket_circle_eccentricity'])!r}")
+        out.append(f"cage.pocket_circle_eccentricity={value(max(0.0, c.pocket_circle_eccentricity + stack['pocket_circle_eccentricity']))}")
     for part in ("inner_ring", "outer_ring", "ball", "cage"):
         name = f"{part}_temperature"
         if name in stack:
-            out.append(f"thermal.{part}_degC={getattr(t, part) + stack[name]!r}")
+            out.append(f"thermal.{part}_degC={value(getattr(t, part) + stack[name])}")
     return out
 
 

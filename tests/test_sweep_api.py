@@ -5,6 +5,7 @@ progress line."""
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import pytest
 
@@ -25,7 +26,9 @@ def test_vary_accepts_values_ranges_and_strings():
 
 def test_sweep_returns_the_table_and_the_map(tmp_path):
     scene = bearingsim.load_scene(SCENE, {"solver.duration": 0.002, "output.figures": False})
-    result = bearingsim.sweep(scene, vary={"load.moment": [200, 430]}, workers=0, out=tmp_path / "sw")
+    with pytest.warns(UserWarning, match="too short to settle") as caught:
+        result = bearingsim.sweep(scene, vary={"load.moment": [200, 430]}, workers=0, out=tmp_path / "sw")
+    assert {Path(w.filename).name for w in caught} == {Path(__file__).name}  # at the call, not in the library
     assert result.varied == ["load.moment"] and len(result.rows) == 2
     for row, moment in zip(result.rows, (200.0, 430.0)):
         assert row["status"] == "done" and row["load.moment"] == moment

@@ -206,7 +206,7 @@ def verdict_rows(v: dict) -> list[tuple[str, str, str]]:
         ("pocket impact force, 95th percentile", num(v.get("pocket_impact_force_p95_N")), "N"),
         ("impacts concentrate at (orbital position)", region_text, "deg"),
         ("settled window from", num(v.get("settled_from_s"), "{:.4g}"), "s"),
-        ("  cage revolutions in it", num(v.get("settled_revolutions"), "{:.1f}"), "count"),
+        ("  cage revolutions in it", num(v.get("settled_revolutions"), "{:.1f}"), "rev"),
         ("least gap to the non-guiding land in the run (< 0: touching)", num(v.get("non_guiding_gap_min_um"), "{:.0f}"),
          "µm"),
     ]

@@ -132,7 +132,7 @@ def sweep(scene, vary: Mapping[str, Any] | Iterable[str] | str, *,
             if progress and getattr(made, "dashboard_link", None):
                 print(f"Dask dashboard: {made.dashboard_link}", file=sys.stderr, flush=True)
             records = run_sweep(plan, made, progress=report, retry_failed=retry_failed)
-    paths = gather(plan, records)
+    paths = gather(plan, records, stacklevel=2)  # the warning points at the user's call of sweep()
     return SweepResult(read_table(paths["table"]), plan.varied, paths["table"], paths.get("map"), plan.sweep_dir)
 
 

@@ -240,10 +240,11 @@ def _rows(plan: SweepPlan, records: dict) -> list[dict]:
             for p, req in zip(plan.points, plan.requests)]
 
 
-def gather(plan: SweepPlan, records: list[dict | None], warn: bool = True) -> dict[str, Path]:
+def gather(plan: SweepPlan, records: list[dict | None], warn: bool = True,
+           stacklevel: int = 2) -> dict[str, Path]:
     """Write the results table and the stability map; returns {"table": ..., "map": ...}.
     When points ran too short to settle, the map's title says so and (with `warn`) a Python
-    warning is issued."""
+    warning is issued, `stacklevel` as `warnings.warn` takes it (from gather's caller)."""
     from .stability_map import plot_stability_map
 
     rows = _rows(plan, {req.point_id: rec for req, rec in zip(plan.requests, records)})
@@ -255,7 +256,7 @@ def gather(plan: SweepPlan, records: list[dict | None], warn: bool = True) -> di
         # two short lines: the map of a small sweep is narrower than one long line
         title += "\nRUN TOO SHORT TO SETTLE:\nclasses show a start-up transient, not a regime"
         if warn:
-            warnings.warn(f"sweep {plan.name}: {short}", stacklevel=2)
+            warnings.warn(f"sweep {plan.name}: {short}", stacklevel=stacklevel + 1)
     out = plot_stability_map(rows, plan.varied, plan.sweep_dir / MAP_FILE, map_x=s.map_x, map_y=s.map_y,
                              title=title)
     return {"table": paths[0], **({"parquet": paths[1]} if len(paths) > 1 else {}), "map": out}

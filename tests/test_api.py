@@ -135,6 +135,22 @@ def test_one_series_to_xarray_has_the_coordinates_of_its_file(example):
     assert float(da.sel(xyz="x").isel(time=-1)) == float(np.asarray(series["cage/position"])[-1, 0])
 
 
+def test_summary_closes_the_energy_balance(example):
+    """Work in = dissipation + change of stored energy, up to a residual that summary.json
+    reports; like tests/test_bearing_dynamics.py, within 1 % of the drive's work."""
+    ns, _ = example
+    run = ns["run"]
+    energy = run.summary["energy"]
+    series = run.timeseries(["energy/kinetic", "energy/hertz", "energy/hinge"])
+    stored = sum(float(np.asarray(series[n])[-1] - np.asarray(series[n])[0])
+                 for n in ("energy/kinetic", "energy/hertz", "energy/hinge"))
+    assert energy["stored_change"] == pytest.approx(stored, rel=1e-12, abs=1e-12)
+    assert energy["balance_residual"] == pytest.approx(
+        energy["drive"] + energy["external"] - energy["dissipated"] - stored, rel=1e-9, abs=1e-12)
+    assert abs(energy["balance_residual"]) < 0.01 * abs(energy["drive"])
+    assert run.summary["units"]["energy.balance_residual"] == "J"
+
+
 def test_open_run_reads_the_same_results(example):
     ns, where = example
     opened = bearingsim.open_run(where / "runs" / "demo")

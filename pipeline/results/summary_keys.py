@@ -154,6 +154,8 @@ METRICS: dict[str, Metric] = {
     "energy.drive": Metric("energy put in by the drive", "J", fmt="{:.4g}"),
     "energy.external": Metric("work of the external loads", "J", fmt="{:.3g}"),
     "energy.dissipated": Metric("energy dissipated", "J", fmt="{:.4g}"),
+    "energy.stored_change": Metric("change of kinetic and elastic energy", "J", fmt="{:.3g}"),
+    "energy.balance_residual": Metric("energy balance residual (integrator damping)", "J", fmt="{:.3g}"),
     "non_guiding_gap_min": Metric("least gap to the non-guiding land (< 0: touching)", "µm", 1e6, "{:.0f}"),
     "non_guiding_contact_fraction": Metric("time touching the non-guiding land", "%", 100.0, "{:.2g}"),
     "startup.end_time": Metric("start-up: ends at", "s", fmt="{:.4g}"),

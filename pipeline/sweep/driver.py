@@ -23,7 +23,7 @@ import warnings
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable
+from typing import Any, Callable
 
 from ..artefacts import OutputRefused, atomic_write_json, mark_directory, refused_unless_usable
 from ..scene import NAME_MAX, apply_overrides, check_name, read_scene_table, resolve
@@ -235,9 +235,23 @@ def run_in_process(plan: SweepPlan, *, progress: Callable[[SweepStatus], None] |
 
 
 def _rows(plan: SweepPlan, records: dict) -> list[dict]:
+    """The table's rows; a varied key that a point leaves out (list mode) has the value of the
+    point's scene."""
     limits = plan.section.thresholds
-    return [result_row(p, records.get(p.id), Path(req.run_dir), limits)
+    varied = plan.varied
+    return [result_row(p, records.get(p.id), Path(req.run_dir), limits,
+                       {**{k: _table_value(req.table, k) for k in varied}, **dict(p.overrides)})
             for p, req in zip(plan.points, plan.requests)]
+
+
+def _table_value(table: dict, key: str) -> Any:
+    """The value of dotted `key` in a scene table (None where the table leaves it to its default)."""
+    value: Any = table
+    for part in key.split("."):
+        if not isinstance(value, dict) or part not in value:
+            return None
+        value = value[part]
+    return value
 
 
 def gather(plan: SweepPlan, records: list[dict | None], warn: bool = True,

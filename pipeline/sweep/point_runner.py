@@ -114,7 +114,10 @@ def _run_pipeline(request: PointRequest, run_dir: Path, stages) -> dict:
     store = Path(request.store) if request.store else None
     outcomes = run_stages(scene, run_dir, stages, [request.target], store=store)
     summary = json.loads((run_dir / request.target / "summary.json").read_text(encoding="utf-8"))
-    return {"summary": summary, "stages": {o.name: o.status for o in outcomes}}
+    # the stages' validity warnings (quasistatic.json, summary.json), for the results table
+    validity = [f"{o.name}: {w['key']}: {w['message']}" if w.get("key") else f"{o.name}: {w['message']}"
+                for o in outcomes for w in o.warnings]
+    return {"summary": summary, "stages": {o.name: o.status for o in outcomes}, "validity": validity}
 
 
 def point_run_table(request: PointRequest) -> dict:

@@ -5,7 +5,8 @@ Columns: `point_id`, `status` (done | failed | pending), one column per varied s
 point's run ended before its cage settled: its class is a transient's), the summary metrics of
 docs/scenes.md (with `burn_zone_sector` split into `burn_zone_start` / `burn_zone_end`), run
 counters, `warnings` (the run's own, joined by "; "), `error` (the message of a failed point) and
-`run_dir`. Angles are in degrees, azimuths 0–360 from +x towards +y (`summary.json` keeps
+`run_dir`. `warnings` also holds the stages' validity warnings (a contact pressure beyond the
+rating, truncated ellipses, a crush screen whose premise fails). Angles are in degrees, azimuths 0–360 from +x towards +y (`summary.json` keeps
 rad). The CSV header carries each column's unit, `name [unit]` (`read_table` strips it);
 written as CSV, and as parquet too when pyarrow is installed.
 """
@@ -86,12 +87,14 @@ def short_run_warning(rows: list[dict[str, Any]]) -> str | None:
             f"solver.duration")
 
 
-def result_row(point, record: dict | None, run_dir: Path, limits: CageClassThresholds) -> dict[str, Any]:
-    """One table row of `point` (a SweepPoint) from its record (None: not run yet)."""
+def result_row(point, record: dict | None, run_dir: Path, limits: CageClassThresholds,
+               values: dict[str, Any] | None = None) -> dict[str, Any]:
+    """One table row of `point` (a SweepPoint) from its record (None: not run yet); `values`:
+    the point's value of every varied key [default: its own overrides]."""
     status = record.get("status", "failed") if record else "pending"
     summary = (record or {}).get("summary") if status == "done" else None
     row: dict[str, Any] = {"point_id": point.id, "status": status}
-    row.update({k: v for k, v in point.overrides})
+    row.update(values if values is not None else dict(point.overrides))
     row["cage_class"] = classify_cage(summary, limits) if status != "pending" else "pending"
     row["risk"] = (risk_level(summary, limits, row["cage_class"])[0]
                    if summary is not None and row["cage_class"] in ("centred", "whirling", "pressed", "crushed", "chaotic")
@@ -108,7 +111,9 @@ def result_row(point, record: dict | None, run_dir: Path, limits: CageClassThres
     if flat.get("burn_zone_end") is not None and flat["burn_zone_end"] < flat["burn_zone_start"]:
         flat["burn_zone_end"] += 360.0  # an arc across 0°: end = start + width
     row.update({k: flat.get(k) for k in SUMMARY_COLUMNS})
-    row["warnings"] = "; ".join(str(w) for w in flat.get("warnings") or []) or None
+    # the run's own warnings, then what the stages flagged as outside the model's validity
+    warned = [str(w) for w in flat.get("warnings") or []] + [str(w) for w in (record or {}).get("validity") or []]
+    row["warnings"] = "; ".join(warned) or None
     row["error"] = (record or {}).get("error")
     row["run_dir"] = str(run_dir)
     return row
@@ -118,7 +123,7 @@ def write_table(rows: list[dict[str, Any]], sweep_dir: Path) -> list[Path]:
     """Write the rows as `results.csv` (and `results.parquet` with pyarrow), atomically."""
     if not rows:
         return []
-    columns = list(rows[0])
+    columns = list(dict.fromkeys(c for row in rows for c in row))  # every row's, in order
     text = io.StringIO()
     writer = csv.DictWriter(text, fieldnames=columns, lineterminator="\n")
     units = {c: column_unit(c) for c in columns}
@@ -140,9 +145,12 @@ def write_table(rows: list[dict[str, Any]], sweep_dir: Path) -> list[Path]:
 
 
 def read_table(path: Path) -> list[dict[str, Any]]:
-    """Rows of a `results.csv`, numbers as floats, empty cells as None."""
+    """Rows of a `results.csv`: numbers as floats in the columns that hold numbers (a unit in
+    the header, or a scene key), text as text (a point id such as `489815446e53` is not
+    4.9e61), empty cells as None."""
     with open(path, newline="", encoding="utf-8") as fh:
-        return [{_column_name(k): _cell(v) for k, v in row.items()} for row in csv.DictReader(fh)]
+        return [{_column_name(k): _cell(v, numeric=k.endswith("]") or "." in k) for k, v in row.items()}
+                for row in csv.DictReader(fh)]
 
 
 def _column_name(header: str) -> str:
@@ -151,9 +159,11 @@ def _column_name(header: str) -> str:
     return name if bracket and header.endswith("]") else header
 
 
-def _cell(text: str) -> Any:
+def _cell(text: str, numeric: bool) -> Any:
     if text == "":
         return None
+    if not numeric:
+        return text
     try:
         return float(text)
     except ValueError:

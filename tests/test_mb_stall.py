@@ -21,6 +21,19 @@ def test_five_windows_of_failures_every_other_step_stop_the_run():
         _feed(NewtonStallWatch(0.0), [0.5] * 5)
 
 
+def test_the_hint_names_what_is_short():
+    """Below the damping that takes case b through its start-up, damping; above it, the Newton
+    iterations a step may take before it is rejected come first."""
+    with pytest.raises(IntegrationError) as undamped:
+        _feed(NewtonStallWatch(0.0, 8), [0.5] * 5)
+    assert ("more numerical damping: solver.alpha between 0.05 and 0.333333 (it is 0); 0.05 and the default "
+            "0.1 take case b through the start-up, where alpha = 0 cycles") in str(undamped.value)
+    with pytest.raises(IntegrationError) as damped:
+        _feed(NewtonStallWatch(0.1, 1), [0.5] * 5)
+    assert ("more Newton iterations before a step is rejected: a larger solver.max_newton_iter (it is 1); or "
+            "more numerical damping: solver.alpha between 0.05 and 0.333333 (it is 0.1)") in str(damped.value)
+
+
 def test_bursts_a_converging_run_has_do_not():
     # 0.1 failures per accepted step is the worst 1000-step burst measured in runs that finish;
     # a cycle broken by one good window starts counting again

@@ -526,7 +526,7 @@ def integrate_compiled(problem, t0: float, t1: float, q0, v0, settings: HHTSetti
     logged = trace.log
     w, out, co, ls = _loop_arguments(problem, cp, settings, (t0, t1), (q0, v0, a0, g0, scales), sampler,
                                      record_dt, log_every, chunk_steps)
-    stall = NewtonStallWatch(settings.alpha)
+    stall = NewtonStallWatch(settings.alpha, settings.max_newton_iter)
     while True:
         t_chunk = w.state[S_T]
         with kernel_errors() as raised:

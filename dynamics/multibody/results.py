@@ -78,9 +78,19 @@ class NewtonStallWatch:
 
     WINDOW, RATIO, WINDOWS = 1000, 0.4, 5
 
-    def __init__(self, alpha: float) -> None:
-        self.alpha = alpha
+    def __init__(self, alpha: float, max_newton_iter: int | None = None) -> None:
+        self.alpha, self.max_newton_iter = alpha, max_newton_iter
         self.steps = self.failures = self.in_a_row = 0
+
+    def hint(self) -> str:
+        """What to try: damping where there is too little (below the 0.05 that takes case b
+        through its start-up), else more Newton iterations before a step is rejected, then damping."""
+        if self.alpha < 0.05:
+            return (f"more numerical damping: {_more_damping(self.alpha)}); 0.05 and the default 0.1 take "
+                    f"case b through the start-up, where alpha = 0 cycles")
+        iterations = f" (it is {self.max_newton_iter})" if self.max_newton_iter is not None else ""
+        return (f"more Newton iterations before a step is rejected: a larger solver.max_newton_iter{iterations}; "
+                f"or more numerical damping: {_more_damping(self.alpha)})")
 
     def check(self, t: float, h: float, steps: int, failures: int) -> None:
         if steps - self.steps < self.WINDOW:
@@ -93,8 +103,7 @@ class NewtonStallWatch:
                 t, h, f"Newton failed on {ratio:.0%} of the last {self.WINDOW} accepted steps, and on at least "
                       f"{self.RATIO:.0%} for {self.WINDOWS * self.WINDOW} steps: the step control is cycling between "
                       f"a failing step and a quarter of it",
-                f"more numerical damping: {_more_damping(self.alpha)}; 0.05 and the default 0.1 take case b through "
-                f"the start-up where 0 cycles)")
+                self.hint())
 
 
 @dataclass

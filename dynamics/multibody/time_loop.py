@@ -59,7 +59,7 @@ def integrate(problem, t0: float, t1: float, q0, v0, settings: HHTSettings | Non
     stats = SolverStats()
     wall0 = time.perf_counter()
     stepper = HHTStepper(problem, settings, solver, stats)
-    stall = NewtonStallWatch(settings.alpha)
+    stall = NewtonStallWatch(settings.alpha, settings.max_newton_iter)
     if hasattr(problem, "error_scales"):
         stepper.set_error_scales(checked_error_scales(problem, t0, q0, v0))
     y = HHTState(n)

@@ -17,7 +17,7 @@ from bearingsim.pipeline.results.cage_metrics import (
     land_heat,
     time_weights,
 )
-from bearingsim.pipeline.results.verdict import cage_verdict, format_arc, verdict_lines
+from bearingsim.pipeline.results.verdict import cage_verdict, format_arc, verdict_lines, verdict_rows
 from bearingsim.pipeline.sweep.classify import CageClassThresholds, classify_cage, risk_level
 
 from .test_settled_window import C, EPS0, OMEGA, summary_of, synthetic_run
@@ -191,6 +191,13 @@ def test_pocket_impact_regions_and_counts_in_the_settled_window():
     assert s["pocket_impact_force_p95"] == pytest.approx(np.percentile(peaks[late], 95))
     regions = s["verdict"]["pocket_impact_regions_deg"]
     assert regions[0] == pytest.approx([120.0, 140.0])
+    # the text gives each region's share of the settled impacts, counted here by hand
+    in_region = late & (orbit >= np.radians(120)) & (orbit < np.radians(140))
+    share = in_region.sum() / late.sum()
+    assert s["verdict"]["pocket_impact_region_shares"][0] == pytest.approx(share)
+    row = dict((q, value) for q, value, _ in verdict_rows(s["verdict"]))
+    assert row["impacts concentrate at (orbital position)"].startswith(
+        f"120–140° ({100 * share:.0f} % of the impacts)")
     # evenly spread impacts make no region; too few make no statement
     assert impact_regions(np.linspace(0, 2 * math.pi, 360, endpoint=False)) == []
     assert impact_regions(np.zeros(5)) is None

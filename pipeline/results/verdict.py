@@ -104,6 +104,7 @@ def cage_verdict(summary: dict, limits: CageClassThresholds = CageClassThreshold
         "pocket_impacts": summary.get("pocket_impacts"),
         "pocket_impact_force_p95_N": summary.get("pocket_impact_force_p95"),
         "pocket_impact_regions_deg": None if regions is None else [_arc_deg(r[:2]) for r in regions],
+        "pocket_impact_region_shares": None if regions is None else [r[2] for r in regions],
         "settled_from_s": window[0],
         "settled_revolutions": summary.get("settled_revolutions"),
         "screen": summary.get("crush_screen"),
@@ -177,6 +178,16 @@ def screen_sentence(screen: dict | None) -> str | None:
     return text
 
 
+def impact_regions_text(regions: list, shares: list | None) -> str:
+    """"240–270° (77 % of the impacts), 60–120° (17 %)": a region's arc with the share of the
+    settled impacts in it, so that a region holding half of them does not read as all."""
+    if not shares or len(shares) != len(regions):
+        return ", ".join(format_arc(r) for r in regions)
+    parts = [f"{format_arc(r)} ({format_percent(s)} %{' of the impacts' if i == 0 else ''})"
+             for i, (r, s) in enumerate(zip(regions, shares))]
+    return ", ".join(parts)
+
+
 def verdict_rows(v: dict) -> list[tuple[str, str, str]]:
     """(quantity, value, unit) rows of a verdict for people: the report's table and the
     command line."""
@@ -185,7 +196,7 @@ def verdict_rows(v: dict) -> list[tuple[str, str, str]]:
 
     regions = v.get("pocket_impact_regions_deg")
     region_text = ("too few impacts" if regions is None else "all round the orbit" if not regions
-                   else ", ".join(format_arc(r) for r in regions))
+                   else impact_regions_text(regions, v.get("pocket_impact_region_shares")))
     rows = [
         ("cage motion (class)", v["class"], ""),
         ("risk", v["risk"] + (f" — {'; '.join(v['risk_reasons'])}" if v.get("risk_reasons") else ""), ""),
@@ -250,7 +261,8 @@ def verdict_lines(summary: dict | None) -> list[str]:
     if v.get("pocket_impact_force_p95_N") is not None and v.get("pocket_impacts"):
         impacts += f" (p95 {v['pocket_impact_force_p95_N']:.3g} N"
         regions = v.get("pocket_impact_regions_deg")
-        impacts += (", at " + ", ".join(format_arc(r) for r in regions) + ")") if regions else ")"
+        impacts += (", at " + impact_regions_text(regions, v.get("pocket_impact_region_shares")) + ")"
+                    if regions else ")")
     film = ""
     if v.get("land_film_min_um") is not None:
         film = (f"thinnest land film {format_film_um(v['land_film_min_um'])} µm at t = "

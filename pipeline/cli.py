@@ -651,8 +651,9 @@ def _run_sweep_points(plan, o: SweepOptions) -> list:
 
             for request in plan.requests:
                 remove_stale_temporaries(Path(request.run_dir))
-        _fail(code, f"interrupted ({how}): finished points are kept in {plan.sweep_dir / 'points'}/, the "
-                    "interrupted ones left nothing; run the same command again to run only the others")
+        _fail(code, f"interrupted ({how}): finished points are kept in {plan.sweep_dir / 'points'}/ (an "
+                    "interrupted point keeps only its finished stages and is run again); run the same command "
+                    "again to run only the others")
     except OutputRefused as exc:
         _fail(EXIT_SCENE, str(exc))
     except OSError as exc:

@@ -23,7 +23,7 @@ def plot_crush_probability(data: dict, path: Path, title: str = "") -> None:
         part = [m for m, r in zip(margin, regime) if r == code]
         if part:
             p = summary["regime_probability"][name]["probability"]
-            ax.hist(part, bins=bins, color=REGIME_COLOURS[name], label=f"{name}: P = {100 * p:.3g} %")
+            ax.hist(part, bins=bins, color=REGIME_COLOURS[name], label=f"{name}: P = {100 * p:.4g} %")  # 99.95, not a rounded 100
     ax.axvline(0.0, color="k", lw=1.0, label="crush threshold (margin 0)")
     p5 = summary["margin_percentiles"]["p5"]
     ax.axvline(p5, color="k", ls="--", lw=0.8, label=f"5th percentile {p5:.2f}")

@@ -70,3 +70,23 @@ def test_map_draws_grids_scattered_points_and_panels(tmp_path, varied, values):
         rows.append(result_row(point, record(vals[0] / 700.0), tmp_path, limits))
     out = plot_stability_map(rows, varied, tmp_path / "map.png")
     assert out.stat().st_size > 5_000
+
+
+def test_grid_cells_paint_nothing_beyond_the_swept_range():
+    """Sweeping 0 and 600 N·m painted -300..900 N·m: the cells now end at the outermost
+    values, and the axes keep a margin round them."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import numpy as np
+    from matplotlib.figure import Figure
+
+    from bearingsim.pipeline.sweep.stability_map import _grid_cells
+
+    ax = Figure().add_subplot()
+    xs, ys = [0.0, 600.0, 0.0, 600.0], [2000.0, 2000.0, 6000.0, 6000.0]
+    assert _grid_cells(ax, xs, ys, ["C0", "C1", "C2", "C3"])
+    corners = np.asarray(ax.collections[0].get_coordinates())
+    assert corners[..., 0].min() == 0.0 and corners[..., 0].max() == 600.0
+    assert corners[..., 1].min() == 2000.0 and corners[..., 1].max() == 6000.0
+    assert ax.get_xlim() == (-30.0, 630.0) and ax.get_ylim() == (1800.0, 6200.0)

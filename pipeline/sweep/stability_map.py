@@ -98,9 +98,15 @@ def _panel(ax, rows: list[dict], x_key: str, y_key: str | None) -> None:
         ax.scatter(xs, ys, c=colours, s=260, marker="s", edgecolors="k", linewidths=0.5, zorder=2)
     metal = [r.get("cage_metal_contact_fraction") for r in rows]
     if len(rows) <= 100:
+        # each point's own value: a dot and a boxed label inside the range (the contour labels
+        # have no box), so that the two are not confused and no label leaves the axes
+        ax.plot(xs, ys, "k.", ms=3, zorder=3)
         for x, y, f in zip(xs, ys, metal):
+            right, top = x >= max(xs) and x > min(xs), y >= max(ys) and y > min(ys)
             ax.annotate("—" if f is None else f"{f:.2f}", (x, y), textcoords="offset points",
-                        xytext=(0, -17), ha="center", fontsize=7)
+                        xytext=(-4 if right else 4, -4 if top else 4), ha="right" if right else "left",
+                        va="top" if top else "bottom", fontsize=7, zorder=4,
+                        bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none", "alpha": 0.8})
     _contours(ax, xs, ys, metal)
     ax.set_xlabel(axis_label(x_key))
     ax.set_ylabel(axis_label(y_key) if y_key else "")
@@ -112,8 +118,9 @@ def _panel(ax, rows: list[dict], x_key: str, y_key: str | None) -> None:
 
 
 def _grid_cells(ax, xs: list[float], ys: list[float], colours: list[str]) -> bool:
-    """A full factorial grid as filled cells meeting half-way between values; False when
-    the points are not a complete grid (then they are drawn as markers)."""
+    """A full factorial grid as filled cells meeting half-way between values and ending at the
+    outermost values (nothing is painted beyond the swept range; the axes leave a margin
+    there); False when the points are not a complete grid (then they are drawn as markers)."""
     import numpy as np
     from matplotlib.colors import to_rgb
 
@@ -126,10 +133,12 @@ def _grid_cells(ax, xs: list[float], ys: list[float], colours: list[str]) -> boo
 
     def edges(u):
         u = np.asarray(u, float)
-        mid = 0.5 * (u[1:] + u[:-1])
-        return np.concatenate([[u[0] - (mid[0] - u[0])], mid, [u[-1] + (u[-1] - mid[-1])]])
+        return np.concatenate([[u[0]], 0.5 * (u[1:] + u[:-1]), [u[-1]]])
 
     ax.pcolormesh(edges(ux), edges(uy), image, edgecolors="w", linewidth=0.5, zorder=1)
+    for u, set_lim in ((ux, ax.set_xlim), (uy, ax.set_ylim)):
+        pad = 0.05 * (u[-1] - u[0])
+        set_lim(u[0] - pad, u[-1] + pad)
     return True
 
 

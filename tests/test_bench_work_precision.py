@@ -116,6 +116,13 @@ def test_method_grid_and_table_report_failures():
              "load_average": 1.0}
     table = markdown_table(study)
     assert "failed: stopped at t = 1 s" in table and "2.00 (2 expected)" in table
+    assert "cage centre moves" not in table  # a study saved without the excursion
+    # the quick window ends about when the cage starts to move: the table says what that means
+    study["reference"]["cage_excursion_max"], study["quick"] = 2e-6, True
+    quick_table = markdown_table(study)
+    assert "cage centre moves at most 2 µm from its start in the window: the quick window ends" in quick_table
+    study["quick"] = False
+    assert markdown_table(study).endswith("cage centre moves at most 2 µm from its start in the window.")
 
 
 def test_the_scipy_baseline_sparsity_pattern_covers_the_jacobian():

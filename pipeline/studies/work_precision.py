@@ -229,8 +229,12 @@ def run_study(params, start, base_settings, quick: bool, progress=print,
     # the inner race moves from t = 0 (the cage only after the first impacts): its error is
     # the cleanest measure of the order
     order = wm.observed_order([float(r["setting"].split()[2]) for r in fixed], [r["inner_race"] for r in fixed])
-    return {"config": dataclasses.asdict(cfg), "reference": {"wall": ref_run.wall, "impacts": int(ref["impacts"].shape[0]),
-            "steps": ref_run.stats.get("steps"), "alpha": base_settings.alpha},
+    centre = ref["series"].get("cage_centre")
+    excursion = float(np.max(np.hypot(*(centre - centre[0]).T))) if centre is not None and len(centre) else None
+    return {"config": dataclasses.asdict(cfg), "quick": quick,
+            "reference": {"wall": ref_run.wall, "impacts": int(ref["impacts"].shape[0]),
+                          "steps": ref_run.stats.get("steps"), "alpha": base_settings.alpha,
+                          "cage_excursion_max": excursion},
             "rows": rows, "observed_order_fixed_h": order, "load_average": os.getloadavg()[0]}
 
 
@@ -298,7 +302,7 @@ def scipy_at_default_error(rows: list[dict], quantity: str = "cage_centre", curv
 
 def markdown_table(study: dict) -> str:
     """The study as a markdown table (what `bearingsim bench` prints)."""
-    head = ("| method | setting | wall [s] | steps | Newton it. / nfev | LU | cage centre [um] | "
+    head = ("| method | setting | wall [s] | steps | Newton it. / nfev | LU | cage centre [µm] | "
             "cage speed [rad/s] | inner race [nm] | impact peaks [%] |")
     lines = [head, "|" + "---|" * 10]
     for r in study["rows"]:
@@ -314,6 +318,13 @@ def markdown_table(study: dict) -> str:
                  f"HHT alpha {ref['alpha']} at fixed h = {c['reference_step']:g} s ({ref['wall']:.1f} s wall, "
                  f"{ref['impacts']} pocket impacts). Observed order of HHT fixed-h (inner-race error): "
                  f"{study['observed_order_fixed_h']:.2f} (2 expected). Load average {study['load_average']:.1f}.")
+    excursion = ref.get("cage_excursion_max")
+    if excursion is not None:
+        lines.append("")
+        lines.append(f"The reference's cage centre moves at most {excursion * 1e6:.3g} µm from its start in the window"
+                     + (": the quick window ends about when the cage starts to move (its first pocket impacts), so "
+                        "the cage-centre errors and the solve_ivp comparisons built on them say little; the study "
+                        "without --quick covers the cage's way to its land." if study.get("quick") else "."))
     speedups = speedup_at_equal_error(study["rows"])
     if speedups:
         lines.append("")

@@ -17,7 +17,7 @@ import numpy as np
 
 QUANTITIES = ("cage_centre", "cage_speed", "inner_race", "impact_force")
 UNITS = {"cage_centre": "m", "cage_speed": "rad/s", "inner_race": "m", "impact_force": "-"}
-LABELS = {"cage_centre": "cage centre RMS error [um]", "cage_speed": "cage speed RMS error [rad/s]",
+LABELS = {"cage_centre": "cage centre RMS error [µm]", "cage_speed": "cage speed RMS error [rad/s]",
           "inner_race": "inner-race centre RMS error [nm]", "impact_force": "impact peak RMS error [%]"}
 DISPLAY_SCALE = {"cage_centre": 1e6, "cage_speed": 1.0, "inner_race": 1e9, "impact_force": 100.0}
 

@@ -595,8 +595,8 @@ class SweepOptions:
 def sweep(scene: SceneArg, options: SweepOptions) -> None:
     """Parameter sweep on Dask: one pipeline run per point, a results table and a cage-stability map."""
     from .sweep.console import class_counts, print_results
-    from .sweep.driver import claim_sweep_directory, gather, plan_sweep
-    from .sweep.table import read_table, result_row
+    from .sweep.driver import claim_sweep_directory, finished_record, gather, plan_sweep, replaced_sweep, table_rows
+    from .sweep.table import read_table
 
     o = options
     try:
@@ -604,15 +604,25 @@ def sweep(scene: SceneArg, options: SweepOptions) -> None:
                           max_points=o.max_points, figures=o.figures)
     except SceneError as exc:
         _fail(EXIT_SCENE, f"scene: {explain(exc)}")
+    replaced = replaced_sweep(plan)
     if o.dry_run:
-        rows = [result_row(p, None, Path(r.run_dir), plan.section.thresholds) for p, r in zip(plan.points, plan.requests)]
+        # what a run would do: points finished in an earlier run are shown with their results
+        earlier = {r.point_id: rec for r in plan.requests
+                   if (rec := finished_record(Path(r.run_dir), r.scene_hash, r.target)) is not None}
+        rows = table_rows(plan, earlier)
         print_results(rows, plan.varied, out_console)
-        err_console.print(f"{len(rows)} points; sweep directory {plan.sweep_dir}/", highlight=False)
+        reused = sum(1 for rec in earlier.values() if rec["status"] == "done" or not o.retry_failed)
+        err_console.print(f"{len(rows)} points, {reused} finished in an earlier run (kept), {len(rows) - reused} "
+                          f"to run; sweep directory {plan.sweep_dir}/", highlight=False, markup=False, soft_wrap=True)
+        if replaced:
+            err_console.print(f"warning: {replaced}", highlight=False, markup=False, soft_wrap=True)
         return
     try:
         claim_sweep_directory(plan.sweep_dir)
     except OutputRefused as exc:
         _fail(EXIT_SCENE, str(exc))
+    if replaced:
+        err_console.print(f"[bold yellow]warning:[/] {escape(replaced)}", highlight=False, soft_wrap=True)
     err_console.print(f"sweep {plan.name}: {len(plan.points)} points on "
                       f"{o.scheduler or f'a local cluster of {o.workers} workers'}", highlight=False)
     records = _run_sweep_points(plan, o)

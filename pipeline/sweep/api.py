@@ -16,6 +16,7 @@ from __future__ import annotations
 import base64
 import html
 import sys
+import warnings
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -117,11 +118,14 @@ def sweep(scene, vary: Mapping[str, Any] | Iterable[str] | str, *,
     Finished points of an earlier call are reused (`retry_failed` reruns failed ones).
     """
     from ..api import override_strings
-    from .driver import dask_client, gather, plan_sweep, run_in_process, run_sweep, unfinished
+    from .driver import dask_client, gather, plan_sweep, replaced_sweep, run_in_process, run_sweep, unfinished
     from .table import read_table
 
     plan = plan_sweep(scene, override_strings(overrides), vary_strings(vary), mode=mode, name=name,
                       out=Path(out) if out is not None else None, figures=figures)
+    replaced = replaced_sweep(plan)
+    if replaced:
+        warnings.warn(replaced, stacklevel=2)
     report = _StatusPrinter() if progress else None
     if (workers == 0 and client is None and scheduler is None) or not unfinished(plan, retry_failed)[1]:
         records = run_in_process(plan, progress=report, retry_failed=retry_failed)

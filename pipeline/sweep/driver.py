@@ -144,7 +144,7 @@ def run_sweep(plan: SweepPlan, client, *, progress: Callable[[SweepStatus], None
             if not futures:
                 break
             if time.perf_counter() - last_table > 15.0:  # partial table for long sweeps
-                write_table(_rows(plan, records), plan.sweep_dir)
+                write_table(table_rows(plan, records), plan.sweep_dir)
                 last_table = time.perf_counter()
             time.sleep(poll_s)
     finally:
@@ -234,7 +234,7 @@ def run_in_process(plan: SweepPlan, *, progress: Callable[[SweepStatus], None] |
     return [records.get(req.point_id) for req in plan.requests]
 
 
-def _rows(plan: SweepPlan, records: dict) -> list[dict]:
+def table_rows(plan: SweepPlan, records: dict) -> list[dict]:
     """The table's rows; a varied key that a point leaves out (list mode) has the value of the
     point's scene."""
     limits = plan.section.thresholds
@@ -261,7 +261,7 @@ def gather(plan: SweepPlan, records: list[dict | None], warn: bool = True,
     warning is issued, `stacklevel` as `warnings.warn` takes it (from gather's caller)."""
     from .stability_map import plot_stability_map
 
-    rows = _rows(plan, {req.point_id: rec for req, rec in zip(plan.requests, records)})
+    rows = table_rows(plan, {req.point_id: rec for req, rec in zip(plan.requests, records)})
     paths = write_table(rows, plan.sweep_dir)
     s = plan.section
     short = short_run_warning(rows)
@@ -305,6 +305,22 @@ def claim_sweep_directory(sweep_dir: Path) -> None:
                 f"directory, e.g. --out {sweep_dir / 'sweep'}")
         mark_directory(sweep_dir, SWEEP_MARKER, "bearingsim sweep directory: its plan, table, map and points "
                                                 "are replaced by bearingsim")
+
+
+def replaced_sweep(plan: SweepPlan) -> str | None:
+    """What running `plan` replaces: the table and map of another plan in the same sweep
+    directory (its point folders stay, and rerunning its command restores them); None when the
+    directory holds no plan or the same points."""
+    try:
+        earlier = json.loads((plan.sweep_dir / PLAN_FILE).read_text(encoding="utf-8"))
+        ids = {p["id"] for p in earlier.get("points", [])}
+    except (OSError, ValueError, TypeError, KeyError):
+        return None
+    if not ids or ids == {p.id for p in plan.points}:
+        return None
+    return (f"{plan.sweep_dir}/ holds another sweep ({len(ids)} points); this one replaces its results table "
+            f"and map (its point folders stay in points/, and running its command again restores them). "
+            f"Give this sweep its own folder with --out (out= in Python) or --name to keep both")
 
 
 def _write_plan(plan: SweepPlan) -> None:

@@ -1,4 +1,4 @@
-"""The sweep's results table (pipeline/sweep/table.py, driver._rows): text stays text when
+"""The sweep's results table (pipeline/sweep/table.py, driver.table_rows): text stays text when
 read back, every varied key has a column with each point's value, and a point's validity
 warnings reach its row."""
 
@@ -7,7 +7,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from bearingsim.pipeline.sweep.classify import CageClassThresholds
-from bearingsim.pipeline.sweep.driver import _rows, plan_sweep
+from bearingsim.pipeline.sweep.driver import plan_sweep, table_rows
 from bearingsim.pipeline.sweep.points import SweepPoint
 from bearingsim.pipeline.sweep.table import read_table, result_row, write_table
 
@@ -35,7 +35,7 @@ def test_list_mode_rows_have_every_varied_key_with_the_points_scene_value(tmp_pa
     scene.write_text(SCENE_TEXT + '\n[sweep]\nmode = "list"\npoints = [{ "load.moment" = 100 }, '
                                   '{ "load.moment" = 350, "speed.inner_rpm" = 6000 }]\n')
     plan = plan_sweep(str(scene), [], [], out=tmp_path / "sw")
-    rows = _rows(plan, {})
+    rows = table_rows(plan, {})
     assert [(r["load.moment"], r["speed.inner_rpm"]) for r in rows] == [(100, 3060.0), (350, 6000)]
     [csv_path, *_] = write_table(rows, tmp_path)
     header = csv_path.read_text().splitlines()[0]

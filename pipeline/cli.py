@@ -581,7 +581,7 @@ class SweepOptions:
         "--scheduler", metavar="ADDRESS", help="Use a running Dask scheduler (e.g. tcp://host:8786); "
                                                "its workers must see the sweep directory.")] = None
     retry_failed: Annotated[bool, typer.Option("--retry-failed", help="Rerun points that failed before.")] = False
-    dry_run: Annotated[bool, typer.Option("--dry-run", help="Validate and list the points; run nothing.")] = False
+    dry_run: Annotated[bool, typer.Option("--dry-run", help="Validate and list the points, with those an earlier run finished; run nothing.")] = False
     max_points: Annotated[int, typer.Option(
         "--max-points", min=1, help="Refuse sweeps of more points than this (a guard against a typo "
                                     "in a range).")] = 10_000

@@ -196,8 +196,8 @@ def test_pocket_impact_regions_and_counts_in_the_settled_window():
     share = in_region.sum() / late.sum()
     assert s["verdict"]["pocket_impact_region_shares"][0] == pytest.approx(share)
     row = dict((q, value) for q, value, _ in verdict_rows(s["verdict"]))
-    assert row["impacts concentrate at (orbital position)"].startswith(
-        f"120–140° ({100 * share:.0f} % of the impacts)")
+    assert row["where the impacts concentrate (share, orbital position)"].startswith(
+        f"{100 * share:.0f} % at 120–140°")
     # evenly spread impacts make no region; too few make no statement
     assert impact_regions(np.linspace(0, 2 * math.pi, 360, endpoint=False)) == []
     assert impact_regions(np.zeros(5)) is None

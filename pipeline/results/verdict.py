@@ -179,13 +179,11 @@ def screen_sentence(screen: dict | None) -> str | None:
 
 
 def impact_regions_text(regions: list, shares: list | None) -> str:
-    """"240–270° (77 % of the impacts), 60–120° (17 %)": a region's arc with the share of the
-    settled impacts in it, so that a region holding half of them does not read as all."""
+    """"77 % at 240–270°, 17 % at 60–120°": each region's share of the settled impacts with its
+    arc, so that a region holding half of them does not read as all."""
     if not shares or len(shares) != len(regions):
         return ", ".join(format_arc(r) for r in regions)
-    parts = [f"{format_arc(r)} ({format_percent(s)} %{' of the impacts' if i == 0 else ''})"
-             for i, (r, s) in enumerate(zip(regions, shares))]
-    return ", ".join(parts)
+    return ", ".join(f"{format_percent(s)} % at {format_arc(r)}" for r, s in zip(regions, shares))
 
 
 def verdict_rows(v: dict) -> list[tuple[str, str, str]]:
@@ -214,7 +212,7 @@ def verdict_rows(v: dict) -> list[tuple[str, str, str]]:
         ("whirl ratio (whirl speed / cage speed)", num(v.get("whirl_ratio"), "{:.2g}"), "-"),
         ("pocket impacts", num(v.get("pocket_impacts"), "{:d}"), "count"),
         ("pocket impact force, 95th percentile", num(v.get("pocket_impact_force_p95_N")), "N"),
-        ("impacts concentrate at (orbital position)", region_text, "deg"),
+        ("where the impacts concentrate (share, orbital position)", region_text, "deg"),
         ("settled window from", num(v.get("settled_from_s"), "{:.4g}"), "s"),
         ("  cage revolutions in it", num(v.get("settled_revolutions"), "{:.1f}"), "rev"),
         ("least gap to the non-guiding land in the run (< 0: touching)", num(v.get("non_guiding_gap_min_um"), "{:.0f}"),
@@ -261,7 +259,7 @@ def verdict_lines(summary: dict | None) -> list[str]:
     if v.get("pocket_impact_force_p95_N") is not None and v.get("pocket_impacts"):
         impacts += f" (p95 {v['pocket_impact_force_p95_N']:.3g} N"
         regions = v.get("pocket_impact_regions_deg")
-        impacts += (", at " + impact_regions_text(regions, v.get("pocket_impact_region_shares")) + ")"
+        impacts += ("; " + impact_regions_text(regions, v.get("pocket_impact_region_shares")) + ")"
                     if regions else ")")
     film = ""
     if v.get("land_film_min_um") is not None:

@@ -299,13 +299,18 @@ def is_own_run_dir(run_dir: Path) -> bool:
     run_dir = Path(run_dir)
     if (run_dir / RUN_MARKER).is_file():
         return True
-    try:
-        with (run_dir / "scene.toml").open(encoding="utf-8") as handle:
-            first = handle.readline()
-    except (OSError, ValueError):
-        first = ""
     # a stage folder alone says nothing: a user may keep a copy of one in a folder of theirs
-    return first.startswith(SCENE_HEADER) and (run_dir / "versions.json").is_file()
+    return is_own_scene_file(run_dir / "scene.toml") and (run_dir / "versions.json").is_file()
+
+
+def is_own_scene_file(path: Path) -> bool:
+    """A resolved scene.toml that a run wrote (its first line is SCENE_HEADER's), not a
+    user's scene file."""
+    try:
+        with Path(path).open(encoding="utf-8") as handle:
+            return handle.readline().startswith(SCENE_HEADER)
+    except (OSError, ValueError):
+        return False
 
 
 @contextmanager

@@ -595,7 +595,7 @@ class SweepOptions:
 def sweep(scene: SceneArg, options: SweepOptions) -> None:
     """Parameter sweep on Dask: one pipeline run per point, a results table and a cage-stability map."""
     from .sweep.console import class_counts, print_results
-    from .sweep.driver import claim_sweep_directory, finished_record, gather, plan_sweep, replaced_sweep, table_rows
+    from .sweep.driver import claim_sweep_directory, gather, plan_sweep, replaced_sweep, table_rows, unfinished
     from .sweep.table import read_table
 
     o = options
@@ -606,13 +606,10 @@ def sweep(scene: SceneArg, options: SweepOptions) -> None:
         _fail(EXIT_SCENE, f"scene: {explain(exc)}")
     replaced = replaced_sweep(plan)
     if o.dry_run:
-        # what a run would do: points finished in an earlier run are shown with their results
-        earlier = {r.point_id: rec for r in plan.requests
-                   if (rec := finished_record(Path(r.run_dir), r.scene_hash, r.target)) is not None}
-        rows = table_rows(plan, earlier)
-        print_results(rows, plan.varied, out_console)
-        reused = sum(1 for rec in earlier.values() if rec["status"] == "done" or not o.retry_failed)
-        err_console.print(f"{len(rows)} points, {reused} finished in an earlier run (kept), {len(rows) - reused} "
+        # what a run would do: the points an earlier run finished are kept, with their results
+        kept, todo = unfinished(plan, o.retry_failed)
+        print_results(table_rows(plan, kept), plan.varied, out_console)
+        err_console.print(f"{len(plan.points)} points, {len(kept)} finished in an earlier run (kept), {len(todo)} "
                           f"to run; sweep directory {plan.sweep_dir}/", highlight=False, markup=False, soft_wrap=True)
         if replaced:
             err_console.print(f"warning: {replaced}", highlight=False, markup=False, soft_wrap=True)

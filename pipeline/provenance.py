@@ -14,7 +14,7 @@ from pathlib import Path
 
 import tomli_w
 
-from .artefacts import SCENE_HEADER, OutputRefused, atomic_write_json, atomic_write_text
+from .artefacts import SCENE_HEADER, OutputRefused, atomic_write_json, atomic_write_text, is_own_scene_file
 from .no_follow import out_name
 
 PACKAGES = ("bearingsim", "numpy", "scipy", "numba", "scikit-fem", "gmsh", "meshio",
@@ -93,17 +93,11 @@ def write_run_provenance(run_dir: Path, raw_scene: dict, origin: str) -> None:
     `--out .` in the folder that holds it) is never overwritten."""
     run_dir.mkdir(parents=True, exist_ok=True)
     scene_file = run_dir / "scene.toml"
-    if scene_file.exists():
-        try:
-            with scene_file.open(encoding="utf-8") as handle:
-                first = handle.readline()
-        except (OSError, ValueError):
-            first = ""
-        if not first.startswith(SCENE_HEADER):
-            raise OutputRefused(
-                f"{scene_file} is a scene file of yours, not one bearingsim wrote; the run would "
-                f"replace it with the resolved scene. Give the run its own directory with {out_name()}, "
-                f"e.g. {out_name(run_dir / 'run')}")
+    if scene_file.exists() and not is_own_scene_file(scene_file):
+        raise OutputRefused(
+            f"{scene_file} is a scene file of yours, not one bearingsim wrote; the run would "
+            f"replace it with the resolved scene. Give the run its own directory with {out_name()}, "
+            f"e.g. {out_name(run_dir / 'run')}")
     origin_text = " ".join(str(origin).split())  # one line, whatever the path holds
     header = f"{SCENE_HEADER} (from {origin_text}, after --set overrides), as used by this run.\n"
     atomic_write_text(scene_file, header + tomli_w.dumps(raw_scene))

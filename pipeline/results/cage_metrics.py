@@ -29,8 +29,8 @@ Conventions:
   rolling contact", ASLE Trans. 10, 1967, and B. J. Hamrock, S. R. Schmid, B. O. Jacobson,
   *Fundamentals of Fluid Film Lubrication*, 2nd ed., 2004, on the film parameter). The
   hybrid land model's "metal contact" begins at eps = 1, i.e. at a film of eps0 C (12.5 µm
-  for case b at its operating clearance; `land_contact_film`); Lambda says how close the film comes to the surfaces' real
-  roughness, which the hybrid law does not see.
+  for case b at its operating clearance; `land_contact_film`); Lambda says how close the
+  film comes to the surfaces' real roughness, which the hybrid law does not see.
 - Azimuths are measured in the global frame from +x towards +y (docs/model.md §1), in rad
   in `summary.json` (degrees only in the `verdict`).
 

@@ -6,8 +6,8 @@ point's run ended before its cage settled: its class is a transient's), the summ
 docs/scenes.md (with `burn_zone_sector` split into `burn_zone_start` / `burn_zone_end`), run
 counters, `warnings` (the run's own, joined by "; "), `error` (the message of a failed point) and
 `run_dir`. `warnings` also holds the stages' validity warnings (a contact pressure beyond the
-rating, truncated ellipses, a crush screen whose premise fails). Angles are in degrees, azimuths 0–360 from +x towards +y (`summary.json` keeps
-rad). The CSV header carries each column's unit, `name [unit]` (`read_table` strips it);
+rating, truncated ellipses, a crush screen whose premise fails). Angles are in degrees,
+azimuths 0–360 from +x towards +y (`summary.json` keeps rad). The CSV header carries each column's unit, `name [unit]` (`read_table` strips it);
 written as CSV, and as parquet too when pyarrow is installed.
 """
 

@@ -19,12 +19,13 @@ def claim_study_directory(out_dir) -> None:
     from pathlib import Path
 
     from bearingsim.pipeline.artefacts import OutputRefused, mark_directory, refused_unless_usable
+    from bearingsim.pipeline.no_follow import out_name
 
     out = Path(out_dir)
     with refused_unless_usable(out):
         if out.is_symlink() or (out.exists() and not out.is_dir()):
-            raise OutputRefused(f"--out {out}: exists and is not a directory; give a new or empty "
-                                f"directory, e.g. --out {out.with_name(out.name + '-study')}")
+            raise OutputRefused(f"{out_name(out)}: exists and is not a directory; give a new or empty "
+                                f"directory, e.g. {out_name(out.with_name(out.name + '-study'))}")
         out.mkdir(parents=True, exist_ok=True)
         # a folder without the marker is the user's, even when its names are a study's: an
         # earlier version wrote no marker, but a stability.md of the user's looks the same
@@ -33,9 +34,9 @@ def claim_study_directory(out_dir) -> None:
             earlier = (" If they are the tables of an earlier bearingsim version, delete them first."
                        if set(entries) <= _study_file_names() else "")
             raise OutputRefused(
-                f"--out {out}: the directory holds files that are not bearingsim's studies (no "
+                f"{out_name(out)}: the directory holds files that are not bearingsim's studies (no "
                 f"{STUDY_MARKER} marker); bearingsim never writes into a folder of yours, so that none "
-                f"of your files is replaced. Give a new or empty directory, e.g. --out {out / 'study'}."
+                f"of your files is replaced. Give a new or empty directory, e.g. {out_name(out / 'study')}."
                 + earlier)
         mark_directory(out, STUDY_MARKER, "bearingsim study folder: its tables and plots are replaced by bearingsim")
 

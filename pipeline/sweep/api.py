@@ -118,24 +118,26 @@ def sweep(scene, vary: Mapping[str, Any] | Iterable[str] | str, *,
     Finished points of an earlier call are reused (`retry_failed` reruns failed ones).
     """
     from ..api import override_strings
+    from ..no_follow import named_in_python
     from .driver import dask_client, gather, plan_sweep, replaced_sweep, run_in_process, run_sweep, unfinished
     from .table import read_table
 
     plan = plan_sweep(scene, override_strings(overrides), vary_strings(vary), mode=mode, name=name,
                       out=Path(out) if out is not None else None, figures=figures)
-    replaced = replaced_sweep(plan)
-    if replaced:
-        warnings.warn(replaced, stacklevel=2)
-    report = _StatusPrinter() if progress else None
-    if (workers == 0 and client is None and scheduler is None) or not unfinished(plan, retry_failed)[1]:
-        records = run_in_process(plan, progress=report, retry_failed=retry_failed)
-    elif client is not None:
-        records = run_sweep(plan, client, progress=report, retry_failed=retry_failed)
-    else:
-        with dask_client(scheduler, workers) as made:
-            if progress and getattr(made, "dashboard_link", None):
-                print(f"Dask dashboard: {made.dashboard_link}", file=sys.stderr, flush=True)
-            records = run_sweep(plan, made, progress=report, retry_failed=retry_failed)
+    with named_in_python("out"):  # messages about the sweep folder name this function's argument
+        replaced = replaced_sweep(plan)
+        if replaced:
+            warnings.warn(replaced, stacklevel=2)
+        report = _StatusPrinter() if progress else None
+        if (workers == 0 and client is None and scheduler is None) or not unfinished(plan, retry_failed)[1]:
+            records = run_in_process(plan, progress=report, retry_failed=retry_failed)
+        elif client is not None:
+            records = run_sweep(plan, client, progress=report, retry_failed=retry_failed)
+        else:
+            with dask_client(scheduler, workers) as made:
+                if progress and getattr(made, "dashboard_link", None):
+                    print(f"Dask dashboard: {made.dashboard_link}", file=sys.stderr, flush=True)
+                records = run_sweep(plan, made, progress=report, retry_failed=retry_failed)
     paths = gather(plan, records, stacklevel=2)  # the warning points at the user's call of sweep()
     return SweepResult(read_table(paths["table"]), plan.varied, paths["table"], paths.get("map"), plan.sweep_dir)
 

@@ -26,6 +26,7 @@ from pathlib import Path
 from typing import Any, Callable
 
 from ..artefacts import OutputRefused, atomic_write_json, mark_directory, refused_unless_usable
+from ..no_follow import out_name
 from ..scene import NAME_MAX, apply_overrides, check_name, read_scene_table, resolve
 from ..schema import SceneError
 from . import quiet_interrupt
@@ -295,14 +296,14 @@ def claim_sweep_directory(sweep_dir: Path) -> None:
     sweep_dir = Path(sweep_dir)
     with refused_unless_usable(sweep_dir):
         if sweep_dir.exists() and not sweep_dir.is_dir():
-            raise OutputRefused(f"--out {sweep_dir}: exists and is not a directory; give a new or empty "
-                                f"directory, e.g. --out {sweep_dir.with_name(sweep_dir.name + '-sweep')}")
+            raise OutputRefused(f"{out_name(sweep_dir)}: exists and is not a directory; give a new or empty "
+                                f"directory, e.g. {out_name(sweep_dir.with_name(sweep_dir.name + '-sweep'))}")
         if sweep_dir.is_dir() and not is_own_sweep_dir(sweep_dir) and any(sweep_dir.iterdir()):
             raise OutputRefused(
-                f"--out {sweep_dir}: the directory holds files that are not a bearingsim sweep (no "
+                f"{out_name(sweep_dir)}: the directory holds files that are not a bearingsim sweep (no "
                 f"{SWEEP_MARKER} marker); bearingsim never writes into a folder of yours, so that none of "
                 f"your files ({PLAN_FILE}, results.csv, {MAP_FILE}) is replaced. Give a new or empty "
-                f"directory, e.g. --out {sweep_dir / 'sweep'}")
+                f"directory, e.g. {out_name(sweep_dir / 'sweep')}")
         mark_directory(sweep_dir, SWEEP_MARKER, "bearingsim sweep directory: its plan, table, map and points "
                                                 "are replaced by bearingsim")
 
@@ -320,7 +321,7 @@ def replaced_sweep(plan: SweepPlan) -> str | None:
         return None
     return (f"{plan.sweep_dir}/ holds another sweep ({len(ids)} points); this one replaces its results table "
             f"and map (its point folders stay in points/, and running its command again restores them). "
-            f"Give this sweep its own folder with --out (out= in Python) or --name to keep both")
+            f"Give this sweep its own folder with {out_name()}, or another name, to keep both")
 
 
 def _write_plan(plan: SweepPlan) -> None:

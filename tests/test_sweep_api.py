@@ -77,3 +77,15 @@ def test_lost_workers_and_retried_points_reach_the_progress_line():
     status = SweepStatus(4, 1, 0, 2, 0, 30.0, 60.0, lost_workers=watch.lost, retried=watch.retried)
     assert "1 worker lost (1 point retried)" in status_line(status)
     assert "lost" not in status_line(SweepStatus(4, 1, 0, 2, 0, 30.0, 60.0))
+
+
+def test_a_refused_sweep_folder_is_named_as_the_python_argument(tmp_path):
+    """From Python there is no --out: the sweep folder is named as sweep()'s `out`."""
+    mine = tmp_path / "mine"
+    mine.mkdir()
+    (mine / "notes.txt").write_text("mine")
+    with pytest.raises(bearingsim.OutputRefused) as refused:
+        bearingsim.sweep(SCENE, vary={"load.moment": [200, 430]}, workers=0, out=mine)
+    message = str(refused.value)
+    assert message.startswith(f"out={str(mine)!r}: the directory holds files that are not a bearingsim sweep")
+    assert "--out" not in message and sorted(p.name for p in mine.iterdir()) == ["notes.txt"]

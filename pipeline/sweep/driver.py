@@ -220,7 +220,9 @@ def run_in_process(plan: SweepPlan, *, progress: Callable[[SweepStatus], None] |
                    retry_failed: bool = False,
                    point_function: Callable[[PointRequest], dict] = run_point) -> list[dict | None]:
     """`run_sweep` without Dask: the unfinished points one after the other in this process
-    (a notebook's or a test's small sweep; the same records, table and resuming)."""
+    (a notebook's or a test's small sweep; the same records, table, resuming and refusal of a
+    folder that is not bearingsim's)."""
+    claim_sweep_directory(plan.sweep_dir)
     _write_plan(plan)
     records, todo = unfinished(plan, retry_failed)
     resumed = sum(1 for r in records.values() if r["status"] == "done")

@@ -9,9 +9,9 @@ simulate stage's compiling into the time spent inside LLVM (numba's `numba:llvm_
 call into the LLVM library holds that lock) and the rest, numba's typing and lowering in Python,
 counts the variables numba typed and the calls it resolved (by wrapping numba's type-inference
 pass for that run), by module and how many of them are in fast-math code (whose rounding follows
-the shape of the code, so that rewriting it changes a run's steps), and lists the kernels that take longest to compile (`numba:compile` events,
-outermost dispatchers only, nested compilations counted inside their caller). Run it on a quiet
-machine.
+the shape of the code, so that rewriting it changes a run's steps), and lists the kernels that
+take longest to compile (`numba:compile` events, outermost dispatchers only, nested
+compilations counted inside their caller). Run it on a quiet machine.
 
 With `--pairs N --without MODULE` it then times N more pairs of cold runs, alternated: as shipped,
 and with one of numba's own ways put back: its comparison of compile flags (`flag_values`), its

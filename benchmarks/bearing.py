@@ -17,7 +17,7 @@ import numpy as np
 
 
 def _model(scene_name: str, overrides: list[str]):
-    from bearingsim.pipeline.scene import load_scene
+    from bearingsim.pipeline.scene.load import load_scene
     from bearingsim.pipeline.stages.simulate import build_model
 
     scene = load_scene(scene_name, overrides)

@@ -30,7 +30,7 @@ import time
 from pathlib import Path
 
 
-CLI = "from bearingsim.pipeline.cli import main; main()"
+CLI = "from bearingsim.pipeline.cli.commands import main; main()"
 # the modules of dynamics/_speed/ that change how numba compiles, installed when the kernels are
 # imported (compile_policy)
 NUMBA_CHANGES = ("flag_values", "resolved_calls", "deferred_emission")
@@ -60,7 +60,7 @@ def compile_profile(scene: str, cache: Path, top: int = 12) -> tuple[float, floa
     from benchmarks.numba_events import Outermost
 
     from bearingsim.dynamics.bearing.run import simulate_bearing
-    from bearingsim.pipeline.scene import load_scene
+    from bearingsim.pipeline.scene.load import load_scene
     from bearingsim.pipeline.stages.simulate import build_model
 
     stack: list[list] = []

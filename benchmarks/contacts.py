@@ -65,7 +65,7 @@ MID_RUN = 0.02  # s of simulated time before the mid-run state
 def main(scene_name: str = "helicopter-b-given-hinge") -> None:
     from bearingsim.dynamics.bearing import BearingModel, simulate_bearing
     from bearingsim.dynamics.bearing.run import initial_coordinates
-    from bearingsim.pipeline.scene import load_scene
+    from bearingsim.pipeline.scene.load import load_scene
     from bearingsim.pipeline.stages.simulate import build_model
 
     scene = load_scene(scene_name)

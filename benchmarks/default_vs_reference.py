@@ -36,7 +36,7 @@ SECTORS = ("cage_offset_sector", "burn_zone_sector")
 
 def runs(scene_name: str) -> dict[str, list[str]]:
     """label -> overrides: each tolerance group with each moment change."""
-    from bearingsim.pipeline.scene import load_scene
+    from bearingsim.pipeline.scene.load import load_scene
 
     moment = load_scene(scene_name).load.moment
     return {f"{group}, moment {dm:+.0e}": overrides + [f"load.moment={moment * (1.0 + dm)!r}"]

@@ -57,14 +57,14 @@ def loop_ready(scene_name: str, overrides=()):
     """(scene, model parameters, q0, v0) of a scene's quasi-static start, its kernels compiled
     or loaded by a 20 us run of the compiled loop, with the float32 traction passes that
     `simulate_bearing` uses: what a timed window of the loop starts from."""
-    from bearingsim.pipeline.numba_cache import configure_numba_cache
+    from bearingsim.pipeline.machine.numba_cache import configure_numba_cache
 
     configure_numba_cache()
 
     from bearingsim.dynamics.bearing import BearingModel
     from bearingsim.dynamics.bearing.run import initial_coordinates
     from bearingsim.dynamics.multibody.compiled import integrate_compiled
-    from bearingsim.pipeline.scene import load_scene
+    from bearingsim.pipeline.scene.load import load_scene
     from bearingsim.pipeline.stages.simulate import build_model
 
     scene = load_scene(scene_name, list(overrides))

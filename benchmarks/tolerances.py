@@ -2,7 +2,7 @@
 
     python -m benchmarks.tolerances [--samples 10000] [--repeat 3]
 
-Prints the wall time of `pipeline.tolerances.analyse` for the validation study's tolerance set
+Prints the wall time of `pipeline.quasistatic.tolerances.analyse` for the validation study's tolerance set
 (docs/validation/tolerances_b.toml: dimensions, run-out and temperatures, so the excursion is
 interpolated over the internal clearance) and for the same set with the moment varied too (a
 two-variable grid), after one warm-up call that loads the quasi-static kernels.
@@ -24,11 +24,11 @@ SETS = {
 
 
 def main(argv=None) -> None:
-    from bearingsim.pipeline.numba_cache import configure_numba_cache
+    from bearingsim.pipeline.machine.numba_cache import configure_numba_cache
 
     configure_numba_cache()
-    from bearingsim.pipeline import tolerances as tol
-    from bearingsim.pipeline.scene import load_scene
+    from bearingsim.pipeline.quasistatic import tolerances as tol
+    from bearingsim.pipeline.scene.load import load_scene
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--samples", type=int, default=10_000)

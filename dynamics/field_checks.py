@@ -1,7 +1,7 @@
 """Validation of a settings dataclass from its field metadata (docs/contributing.md, "Three
 kinds of input"): `unit`, bounds `gt`/`ge`/`lt`/`le`, `choices`.
 
-The scene loader (pipeline/schema.py) enforces the same metadata on the scene's tables, with
+The scene loader (pipeline/scene/schema.py) enforces the same metadata on the scene's tables, with
 its own messages, before anything is built; this check holds a settings object built
 directly in code to the same rules.
 """

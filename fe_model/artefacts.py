@@ -132,10 +132,10 @@ class RevolvedView:
            sectors: int = VIEW_SECTORS) -> "RevolvedView":
         """The view of `solution` on the housing `geometry` (its section mesh cached in
         `cache_dir`); `material_ids` maps a part name to the cell data `material`."""
-        from bearingsim.fe_model.axisymmetric import SectionProbe
-        from bearingsim.meshes.cache import cached_section_mesh
-        from bearingsim.meshes.housing import thinnest_wall
-        from bearingsim.meshes.section import revolved_points, revolved_wedges
+        from .axisymmetric import SectionProbe
+        from ..meshes.cache import cached_section_mesh
+        from ..meshes.housing import thinnest_wall
+        from ..meshes.section import revolved_points, revolved_wedges
 
         section, _, _ = cached_section_mesh(geometry, VIEW_WALL_FRACTION * thinnest_wall(geometry), cache_dir)
         part = np.zeros(section.n_elements, dtype=np.int32)

@@ -27,9 +27,9 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from bearingsim.fe_model.elasticity import VectorFieldModel, full_from_upper, lame_fields, scalar_element
-from bearingsim.fe_model.kernels import csr_from_triplets, harmonic_stiffness_upper, upper_triplet_indices
-from bearingsim.fe_model.loads import EPS
+from .elasticity import VectorFieldModel, full_from_upper, lame_fields, scalar_element
+from .kernels import csr_from_triplets, harmonic_stiffness_upper, upper_triplet_indices
+from .loads import EPS
 
 # int_0^2pi cos^2(n theta) and sin^2(n theta) for the modes used
 MODE_WEIGHTS = {0: (2.0 * math.pi, 0.0), 1: (math.pi, math.pi)}

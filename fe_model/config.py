@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field, fields
 
-from bearingsim.meshes.housing import HousingGeometry, RingSeat
+from ..meshes.housing import HousingGeometry, RingSeat
 
 
 def _f(default, unit: str, doc: str, **limits):

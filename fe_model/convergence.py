@@ -12,11 +12,11 @@ import time
 import numpy as np
 from scipy.optimize import brentq
 
-from bearingsim.fe_model.artefacts import atomic_write_bytes
-from bearingsim.fe_model.config import FEConfig
-from bearingsim.fe_model.hinge_fit import fit_hinge
-from bearingsim.fe_model.identify import solve_perturbations
-from bearingsim.meshes import RingSeat
+from .artefacts import atomic_write_bytes
+from .config import FEConfig
+from .hinge_fit import fit_hinge
+from .identify import solve_perturbations
+from ..meshes import RingSeat
 
 QUANTITIES = ("H_u_xx", "H_u_yy", "H_u_zz", "H_psi_x", "H_psi_y")
 

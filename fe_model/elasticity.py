@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from bearingsim.fe_model.kernels import csr_from_triplets, element_stiffness_upper, upper_triplet_indices
+from .kernels import csr_from_triplets, element_stiffness_upper, upper_triplet_indices
 
 
 def lame_fields(mesh, materials: dict[str, tuple[float, float]], what: str) -> tuple[np.ndarray, np.ndarray]:

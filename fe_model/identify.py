@@ -31,11 +31,11 @@ from typing import Callable
 
 import numpy as np
 
-from bearingsim.fe_model.config import FEConfig
-from bearingsim.fe_model.hinge_fit import HingeFit, fit_hinge
-from bearingsim.fe_model.loads import RegionMoments, distributed_load_matrix, rigid_fit_operator
-from bearingsim.fe_model.solvers import SPDFactorization
-from bearingsim.meshes import RingSeat, cached_housing_mesh
+from .config import FEConfig
+from .hinge_fit import HingeFit, fit_hinge
+from .loads import RegionMoments, distributed_load_matrix, rigid_fit_operator
+from .solvers import SPDFactorization
+from ..meshes import RingSeat, cached_housing_mesh
 
 Progress = Callable[[str, float], None]
 MATERIAL_IDS = {"shaft": 1, "inner_ring": 2, "support_a": 3, "support_b": 3, "housing": 4}
@@ -114,9 +114,9 @@ def solve_perturbations(config: FEConfig, ring: RingSeat, cache_dir: pathlib.Pat
 def _solve_axisymmetric(config: FEConfig, ring: RingSeat, cache_dir: pathlib.Path, progress: Progress) -> _Solved:
     from skfem import Basis, FacetBasis
 
-    from bearingsim.fe_model.axisymmetric import (AxisymmetricRegion, HarmonicModel, HarmonicSolution,
+    from .axisymmetric import (AxisymmetricRegion, HarmonicModel, HarmonicSolution,
                                                   mode0_load, mode1_load, rigid_fit_rows, unit_responses)
-    from bearingsim.meshes.cache import cached_section_mesh
+    from ..meshes.cache import cached_section_mesh
 
     timings = {}
     t0 = time.perf_counter()
@@ -178,7 +178,7 @@ def _solve_axisymmetric(config: FEConfig, ring: RingSeat, cache_dir: pathlib.Pat
     view = {}
 
     def write_case(path: pathlib.Path, k: int) -> None:
-        from bearingsim.fe_model.artefacts import RevolvedView, write_revolved_case_vtu
+        from .artefacts import RevolvedView, write_revolved_case_vtu
 
         if "view" not in view:
             view["view"] = RevolvedView.of(solution, geometry, cache_dir, MATERIAL_IDS)
@@ -190,7 +190,7 @@ def _solve_axisymmetric(config: FEConfig, ring: RingSeat, cache_dir: pathlib.Pat
 def _solve_3d(config: FEConfig, ring: RingSeat, cache_dir: pathlib.Path, progress: Progress) -> _Solved:
     from skfem import Basis, FacetBasis
 
-    from bearingsim.fe_model.elasticity import ElasticModel
+    from .elasticity import ElasticModel
 
     timings = {}
     t0 = time.perf_counter()
@@ -236,7 +236,7 @@ def _solve_3d(config: FEConfig, ring: RingSeat, cache_dir: pathlib.Path, progres
         material[mesh.subdomains[name]] = ident
 
     def write_case(path: pathlib.Path, k: int) -> None:
-        from bearingsim.fe_model.artefacts import write_case_vtu
+        from .artefacts import write_case_vtu
 
         write_case_vtu(path, model, U[:, k], material)
 
@@ -254,7 +254,7 @@ def identify_hinge(
     """Identify H_u (3x3) and H_psi (2) from the FE model and write the artefacts:
     `hinge.toml`, `case_<axis>.vtu` (largest magnitude of each load axis) and the mesh
     cache (`section-<key>.npz`, or `mesh-<key>.npz` for model "3d"), all in `out_dir`."""
-    from bearingsim.fe_model.artefacts import write_hinge_toml
+    from .artefacts import write_hinge_toml
 
     progress = progress or (lambda stage, fraction: None)
     out_dir = pathlib.Path(out_dir)

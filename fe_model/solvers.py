@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-from bearingsim.fe_model.elasticity import full_from_upper
+from .elasticity import full_from_upper
 
 
 def pardiso_available() -> bool:

@@ -23,9 +23,9 @@ import numpy as np
 
 import math
 
-from bearingsim.fe_model.elasticity import ElasticModel
-from bearingsim.fe_model.loads import RegionMoments, distributed_load_matrix, rigid_fit_operator
-from bearingsim.fe_model.solvers import SPDFactorization
+from .elasticity import ElasticModel
+from .loads import RegionMoments, distributed_load_matrix, rigid_fit_operator
+from .solvers import SPDFactorization
 
 
 def timoshenko_tip(P: float, L: float, E: float, G: float, I: float, A: float, kappa: float) -> tuple[float, float]:
@@ -56,7 +56,7 @@ class Cantilever:
         traction on the tip, tip face rigid-fitted about its centroid."""
         from skfem import FacetBasis
 
-        from bearingsim.meshes.verification import cantilever_mesh
+        from ..meshes.verification import cantilever_mesh
 
         mesh = cantilever_mesh(self.length, self.width, self.height, mesh_size).to_skfem()
         model = ElasticModel.build(mesh, order, {"beam": (self.youngs_modulus, self.poisson_ratio)})
@@ -91,7 +91,7 @@ class LameTube:
         """FE surface-mean radial displacement at the bore and outside [m], and dofs."""
         from skfem import FacetBasis, LinearForm
 
-        from bearingsim.meshes.verification import quarter_tube_mesh
+        from ..meshes.verification import quarter_tube_mesh
 
         mesh = quarter_tube_mesh(self.inner_radius, self.outer_radius, self.half_length, mesh_size).to_skfem()
         model = ElasticModel.build(mesh, order, {"tube": (self.youngs_modulus, self.poisson_ratio)})
@@ -118,7 +118,7 @@ class LameTube:
         surface-mean radial displacement at the bore and outside [m], and dofs."""
         from skfem import FacetBasis, LinearForm
 
-        from bearingsim.fe_model.axisymmetric import HarmonicModel
+        from .axisymmetric import HarmonicModel
 
         a, b, H = self.inner_radius, self.outer_radius, self.half_length
         mesh = _section(a, b, 0.0, H, mesh_size, {
@@ -164,7 +164,7 @@ class TubeCantilever:
         (tip deflection [m], tip rotation [rad], dofs)."""
         from skfem import FacetBasis
 
-        from bearingsim.fe_model.axisymmetric import AxisymmetricRegion, HarmonicModel, mode1_load, rigid_fit_rows
+        from .axisymmetric import AxisymmetricRegion, HarmonicModel, mode1_load, rigid_fit_rows
 
         a, b, L = self.inner_radius, self.outer_radius, self.length
         mesh = _section(a, b, -L, 0.0, mesh_size, {
@@ -182,6 +182,6 @@ class TubeCantilever:
 
 def _section(r0: float, r1: float, z0: float, z1: float, mesh_size: float, lines: dict):
     """skfem MeshTri of the rectangle [r0, r1] x [z0, z1] (part "tube"), uniform triangles."""
-    from bearingsim.meshes.section import mesh_rectangles
+    from ..meshes.section import mesh_rectangles
 
     return mesh_rectangles({"tube": [(r0, r1, z0, z1)]}, lines, mesh_size, mesh_size, 1.0, 1e-6).to_skfem()

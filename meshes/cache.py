@@ -8,9 +8,9 @@ import importlib.metadata
 import json
 import pathlib
 
-from bearingsim.meshes.housing import HousingGeometry, build_housing_mesh, build_section_mesh
-from bearingsim.meshes.mesh_data import MeshData
-from bearingsim.meshes.section import SectionMesh
+from .housing import HousingGeometry, build_housing_mesh, build_section_mesh
+from .mesh_data import MeshData
+from .section import SectionMesh
 
 # bump when a builder changes what it produces for the same inputs
 BUILDER_VERSION = 2  # 3-D tetrahedra, build_housing_mesh

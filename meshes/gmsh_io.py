@@ -1,7 +1,7 @@
 """gmsh session handling and mesh extraction into `MeshData`.
 
 gmsh is imported inside the functions (docs/contributing.md §6): importing it loads X11/GL
-libraries that a bare machine may lack (see pipeline/system_libraries.py).
+libraries that a bare machine may lack (see pipeline/machine/system_libraries.py).
 """
 
 from __future__ import annotations
@@ -12,7 +12,7 @@ from typing import Iterator
 
 import numpy as np
 
-from bearingsim.meshes.mesh_data import MeshData
+from .mesh_data import MeshData
 
 GMSH_TET4 = 4
 GMSH_TRI3 = 2

@@ -25,9 +25,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from bearingsim.meshes.gmsh_io import classify_surface, close, extract_mesh, gmsh_session, grade_towards_curves, set_uniform_size
-from bearingsim.meshes.mesh_data import MeshData
-from bearingsim.meshes.section import SectionMesh, mesh_rectangles
+from .gmsh_io import classify_surface, close, extract_mesh, gmsh_session, grade_towards_curves, set_uniform_size
+from .mesh_data import MeshData
+from .section import SectionMesh, mesh_rectangles
 
 # Section mesh (build_section_mesh): the size grows linearly from edge_refinement x mesh_size at
 # every corner of the section back to mesh_size at CORNER_REACH x the thinnest wall from it.

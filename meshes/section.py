@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from bearingsim.meshes.mesh_data import MeshData, facet_lookup, load_grouped_mesh, match_facets, save_grouped_mesh
+from .mesh_data import MeshData, facet_lookup, load_grouped_mesh, match_facets, save_grouped_mesh
 
 Rectangle = tuple[float, float, float, float]  # r0, r1, z0, z1 [m]
 
@@ -85,7 +85,7 @@ def mesh_rectangles(
     `lines` maps a surface-group name to a rule on a boundary line ("r", r, z0, z1) (a
     cylinder) or ("z", z, r0, r1) (a plane annulus); every group must match a line.
     """
-    from bearingsim.meshes.gmsh_io import gmsh_session
+    from .gmsh_io import gmsh_session
 
     with gmsh_session("section") as gmsh:
         occ = gmsh.model.occ

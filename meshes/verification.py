@@ -11,8 +11,8 @@ from __future__ import annotations
 
 import math
 
-from bearingsim.meshes.gmsh_io import classify_surface, extract_mesh, gmsh_session, set_uniform_size
-from bearingsim.meshes.mesh_data import MeshData
+from .gmsh_io import classify_surface, extract_mesh, gmsh_session, set_uniform_size
+from .mesh_data import MeshData
 
 
 def cantilever_mesh(length: float, width: float, height: float, mesh_size: float) -> MeshData:

@@ -6,7 +6,7 @@
     run.summary["cage_speed_mean"], run.quasistatic["balls"], run.timeseries()["cage/speed"]
 
 The same staged runner, cache and run-directory files as the command line
-(`pipeline.runner.run_stages`): a stage whose inputs are unchanged is not recomputed, and a
+(`pipeline.staging.runner.run_stages`): a stage whose inputs are unchanged is not recomputed, and a
 run directory written here is one `bearingsim render` or `bearingsim run` can continue.
 Errors are raised, not mapped to exit codes: `SceneError` for a bad scene or override (it
 names the key), `StageNotAvailable`, `RunDirectoryBusy`, and the solver's own
@@ -48,8 +48,8 @@ def load_scene(scene, overrides: Mapping[str, Any] | Iterable[str] | None = None
     value goes through the same TOML parsing and validation as the file, so a bad one raises
     `SceneError` naming the key, the value, what is allowed and the unit.
     """
-    from .numba_cache import configure_numba_cache
-    from .scene import Scene, apply_overrides, read_scene_table, resolve
+    from .machine.numba_cache import configure_numba_cache
+    from .scene.load import Scene, apply_overrides, read_scene_table, resolve
 
     configure_numba_cache()  # scene validation loads a few kernels' modules
     if isinstance(scene, Scene):
@@ -94,7 +94,7 @@ def _flatten(mapping: Mapping, prefix: str) -> Iterator[tuple[str, Any]]:
 def _toml_literal(key: str, value: Any) -> str:
     import tomli_w
 
-    from .schema import SceneError
+    from .scene.schema import SceneError
 
     if isinstance(value, np.ndarray):
         value = value.tolist()
@@ -127,10 +127,10 @@ def run(scene, run_dir: str | Path | None = None, stages: str | Iterable[str] = 
               "all" every stage they need (as `bearingsim run --force`); or an iterable of names.
     progress: None/False silent; True prints stage progress to stderr; or a callable
               (stage, text, fraction).
-    store:    a stage store shared between run directories (as sweeps use; see pipeline.runner).
+    store:    a stage store shared between run directories (as sweeps use; see pipeline.staging.runner).
     """
-    from .no_follow import named_in_python
-    from .scene import Scene
+    from .staging.no_follow import named_in_python
+    from .scene.load import Scene
 
     if not isinstance(scene, Scene) or overrides is not None:
         scene = load_scene(scene, overrides)
@@ -146,13 +146,13 @@ def run_pipeline(scene, run_dir: Path, targets: list[str], force: set[str] = fro
                  progress: ProgressCallback | None = None, store: str | Path | None = None,
                  origin: str | None = None) -> list:
     """The command line's pipeline path (`cli._pipeline`), without its console: check what
-    can be checked before solving (pipeline.validity), claim the run directory (new, empty
+    can be checked before solving (pipeline.scene.validity), claim the run directory (new, empty
     or bearingsim's), hold its lock, log to `<run_dir>/run.log`, write scene.toml and
     versions.json, then `runner.run_stages(scene, run_dir, STAGES, targets, force)`.
     Returns the StageOutcomes; the scene's and the stages' validity warnings are issued as
     Python warnings (and logged)."""
-    from .numba_cache import configure_numba_cache
-    from .run_session import check_before_solving, claimed, run_log, run_stages_logged
+    from .machine.numba_cache import configure_numba_cache
+    from .stages.session import check_before_solving, claimed, run_log, run_stages_logged
 
     configure_numba_cache()  # before any kernel loads, as the command line does
     run_dir = Path(run_dir)
@@ -251,7 +251,7 @@ class Run:
     def stages(self) -> dict[str, str]:
         """Stage name -> "done" for every finished stage in the directory, plus the status of
         this call's outcomes ("computed", "cached", "not needed", ...)."""
-        from .artefacts import read_manifest
+        from .staging.artefacts import read_manifest
 
         this_call = {o.name: o.status for o in self.outcomes}
         status = {}
@@ -375,9 +375,9 @@ def export_stiffness(scene, run_dir: str | Path | None = None, speeds_rpm: Itera
     """The stiffness table of `scene` written to `<run_dir>/stiffness/` (stiffness.csv,
     stiffness.json). Runs (or reuses, by its cache key) the identify stage first when the
     hinge is identified by FE. `scene`: a Scene or a scene name/path."""
-    from .artefacts import claim_run_directory, run_directory_lock
-    from .no_follow import named_in_python
-    from .scene import Scene
+    from .staging.artefacts import claim_run_directory, run_directory_lock
+    from .staging.no_follow import named_in_python
+    from .scene.load import Scene
     from .stiffness_export import STIFFNESS_DIR, check_speeds, stiffness_table, table_inputs, write_stiffness_table
 
     if not isinstance(scene, Scene):

@@ -204,7 +204,7 @@ def hinge_columns(hinge: dict | None) -> list[tuple[str, str, float]]:
 
 def hinge_of(scene, identify_dir: Path | None) -> dict | None:
     """The hinge the dynamic stage uses (`stages.simulate.hinge_matrices`), or None."""
-    from .schema import SceneError
+    from .scene.schema import SceneError
     from .stages.identify import HINGE_FILE
     from .stages.simulate import hinge_matrices
 
@@ -220,7 +220,7 @@ def hinge_of(scene, identify_dir: Path | None) -> dict | None:
 
 
 def check_speeds(speeds_rpm: Iterable[float] | float | None, scene) -> np.ndarray:
-    from .schema import SceneError
+    from .scene.schema import SceneError
 
     if speeds_rpm is None:
         return np.array([scene.speed.inner_rpm], dtype=float)
@@ -239,7 +239,7 @@ def stiffness_table(scene, speeds_rpm: Iterable[float] | float | None = None, *,
     """Solve the quasi-static equilibrium of `scene` at each inner-ring speed [rev/min]
     [default: the scene's `speed.inner_rpm`] and tabulate the bearing's 5x5 stiffness with
     the hinge. `identify_dir`: the finished identify stage (needed for hinge.source = "fe")."""
-    from .scene import apply_overrides, resolve
+    from .scene.load import apply_overrides, resolve
     from .stages.quasistatic import solve
 
     speeds = check_speeds(speeds_rpm, scene)
@@ -267,10 +267,10 @@ def stiffness_table(scene, speeds_rpm: Iterable[float] | float | None = None, *,
 
 
 def _validity_warnings(scene, result, rpm: float) -> tuple[str, ...]:
-    """The quasistatic stage's own result checks (pipeline.validity): an error (e.g. a contact
+    """The quasistatic stage's own result checks (pipeline.scene.validity): an error (e.g. a contact
     angle past the land at this speed) raises, naming the speed; warnings are returned."""
-    from .schema import SceneError
-    from .result_checks import quasistatic_findings
+    from .scene.schema import SceneError
+    from .staging.result_checks import quasistatic_findings
 
     findings = quasistatic_findings(scene, result.to_json_dict())
     errors = [f for f in findings if f.level == "error"]
@@ -285,9 +285,9 @@ def write_stiffness_table(table: StiffnessTable, out_dir: Path, inputs: dict | N
     a `stage.json` manifest like a stage's (so bearingsim may replace the folder later)."""
     import time
 
-    from .artefacts import (MANIFEST, atomic_write_json, atomic_write_text, input_key, stage_files,
+    from .staging.artefacts import (MANIFEST, atomic_write_json, atomic_write_text, input_key, stage_files,
                             staged_directory)
-    from .provenance import package_version
+    from .staging.provenance import package_version
 
     out_dir = Path(out_dir)
     inputs = inputs if inputs is not None else {"scene": table.scene}
@@ -312,8 +312,8 @@ def table_inputs(scene, table: StiffnessTable) -> dict:
 
 def parse_speeds(text: str) -> list[float]:
     """Command-line speeds: `1000,3060,6000` or `start:stop:count` (as `--vary`) [rev/min]."""
-    from .schema import SceneError
-    from .sweep.spec import parse_values
+    from .scene.schema import SceneError
+    from .scene.sweep_section import parse_values
 
     values = parse_values("speeds", text, "--speeds")
     if len(values) > MAX_SPEEDS:

@@ -17,7 +17,7 @@ import pytest
 
 import bearingsim
 from bearingsim.pipeline.api import forced_stages, override_strings
-from bearingsim.pipeline.schema import SceneError
+from bearingsim.pipeline.scene.schema import SceneError
 
 README = Path(__file__).resolve().parents[1] / "README.md"
 SCENE = "helicopter-b-given-hinge"
@@ -84,7 +84,7 @@ def test_readme_example_runs_and_gives_named_results(example):
 def test_api_and_command_line_share_stages_and_cache(example):
     from typer.testing import CliRunner
 
-    from bearingsim.pipeline.cli import app
+    from bearingsim.pipeline.cli.commands import app
 
     _, where = example
     run_dir = where / "runs" / "demo"
@@ -187,7 +187,7 @@ def test_a_refused_directory_is_named_as_the_python_argument(tmp_path):
     assert f"run_dir={str(mine)!r}: the directory holds files" in message
     assert f"e.g. run_dir={str(mine / 'run')!r}" in message and "--out" not in message
     assert sorted(p.name for p in mine.iterdir()) == ["notes.txt"]
-    from bearingsim.pipeline.artefacts import claim_run_directory
+    from bearingsim.pipeline.staging.artefacts import claim_run_directory
     with pytest.raises(bearingsim.OutputRefused, match=r"^--out .*e\.g\. --out "):
         claim_run_directory(mine)
 

@@ -131,7 +131,7 @@ def test_the_scipy_baseline_sparsity_pattern_covers_the_jacobian():
     solve another problem), and the pattern is sparse (block-arrow)."""
     from bearingsim.dynamics.bearing import BearingModel, layout
     from bearingsim.dynamics.bearing.run import initial_coordinates
-    from bearingsim.pipeline.scene import load_scene
+    from bearingsim.pipeline.scene.load import load_scene
     from bearingsim.pipeline.stages.simulate import build_model
     from bearingsim.pipeline.studies.scipy_baseline import jac_sparsity, ode_rhs
 

@@ -29,7 +29,7 @@ def _settled(tmp_path, moment: float) -> dict:
     import h5py
     from typer.testing import CliRunner
 
-    from bearingsim.pipeline.cli import app
+    from bearingsim.pipeline.cli.commands import app
 
     out = tmp_path / f"m{moment:g}"
     args = ["simulate", "helicopter-b-given-hinge", "--out", str(out), "--set", f"load.moment={moment}"]

@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from bearingsim.pipeline.cli import app
+from bearingsim.pipeline.cli.commands import app
 
 runner = CliRunner()
 GIVEN = (Path(__file__).parents[1] / "pipeline" / "scenes" / "helicopter-b-given-hinge.toml").read_text()

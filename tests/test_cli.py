@@ -9,7 +9,7 @@ import pytest
 
 from typer.testing import CliRunner
 
-from bearingsim.pipeline.cli import app
+from bearingsim.pipeline.cli.commands import app
 
 runner = CliRunner()
 
@@ -40,7 +40,7 @@ def test_scenes_lists_builtins():
 
 def test_scenes_prints_a_builtin_scene_to_start_from(tmp_path):
     """`bearingsim scenes NAME > mine.toml` gives a file that loads as the same scene."""
-    from bearingsim.pipeline.scene import load_scene
+    from bearingsim.pipeline.scene.load import load_scene
 
     result = runner.invoke(app, ["scenes", "helicopter-b-given-hinge"])
     assert result.exit_code == 0 and result.stderr == ""
@@ -65,7 +65,7 @@ def test_render_of_a_non_run_directory_is_a_clear_error(tmp_path):
 def test_light_commands_do_not_import_heavy_libraries():
     """docs/contributing.md rule 6: scene checking must not pay for gmsh, pyvista or matplotlib."""
     code = (
-        "import sys; from typer.testing import CliRunner; from bearingsim.pipeline.cli import app;"
+        "import sys; from typer.testing import CliRunner; from bearingsim.pipeline.cli.commands import app;"
         "r = CliRunner().invoke(app, ['check', 'helicopter-b-given-hinge']);"
         "assert r.exit_code == 0, r.output;"
         "heavy = [m for m in ('gmsh', 'pyvista', 'vtk', 'matplotlib', 'skfem') if m in sys.modules];"
@@ -77,7 +77,7 @@ def test_light_commands_do_not_import_heavy_libraries():
 
 def test_a_second_run_into_a_busy_run_directory_is_refused(tmp_path):
     # two processes writing one run directory would swap stage results over each other
-    from bearingsim.pipeline.artefacts import run_directory_lock
+    from bearingsim.pipeline.staging.artefacts import run_directory_lock
 
     with run_directory_lock(tmp_path):
         result = CliRunner().invoke(app, ["quasistatic", "deep-groove-209", "--out", str(tmp_path)])
@@ -117,7 +117,7 @@ def test_help_shows_units_and_defaults_in_square_brackets():
     import re
     import typing
 
-    from bearingsim.pipeline.cli import app
+    from bearingsim.pipeline.cli.commands import app
 
     def squeeze(text: str) -> str:
         return re.sub(r"[\s│]+", "", text)

@@ -1,4 +1,4 @@
-"""Typer commands that take a settings object (pipeline/cli_options.py): every field of the
+"""Typer commands that take a settings object (pipeline/cli/options.py): every field of the
 dataclass is an option of its own, with its name, default and help, and the command receives
 the dataclass built from them."""
 
@@ -11,8 +11,8 @@ import typer
 from typer.main import get_command
 from typer.testing import CliRunner
 
-from bearingsim.pipeline.cli import app
-from bearingsim.pipeline.cli_options import flat_options
+from bearingsim.pipeline.cli.commands import app
+from bearingsim.pipeline.cli.options import flat_options
 
 runner = CliRunner()
 

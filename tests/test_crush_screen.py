@@ -69,7 +69,7 @@ def test_the_residual_is_what_no_cage_offset_takes_up():
 
 
 def test_a_residual_beyond_the_pocket_clearance_is_warned():
-    from bearingsim.pipeline.result_checks import _screen_premise_findings
+    from bearingsim.pipeline.staging.result_checks import _screen_premise_findings
 
     screen = {"regime": "pressed", "crush_margin": 1.0, "pocket_clearance": 1.191e-3, "pocket_index_range": 0.0}
     beyond = _screen_premise_findings({**screen, "excursion_residual_peak_to_peak": 2.5e-3}, "load.moment", "load")
@@ -100,7 +100,7 @@ def test_reference_bearing_regimes_against_the_outer_race_control_formula(moment
     by the trapezoidal rule. It must give the screen's s_pp within 2 % and the same regime:
     pocket clearance 1.18 mm and guide clearance 0.29 mm (docs/model.md §2) put the limits at
     s_pp = 1.18 mm (pressed) and 1.76 mm (crushed)."""
-    from bearingsim.pipeline.scene import load_scene
+    from bearingsim.pipeline.scene.load import load_scene
     from bearingsim.pipeline.stages.quasistatic import cage_screen, solve
 
     # at the reference temperature: the clearances are Table 1's as drawn

@@ -94,7 +94,7 @@ def test_the_hinge_table_pastes_into_a_scene(identified):
     the scene then carries the identified values."""
     import tomllib
 
-    from bearingsim.pipeline.scene import read_scene_table, resolve
+    from bearingsim.pipeline.scene.load import read_scene_table, resolve
 
     _, out, result, _ = identified
     with open(out / "hinge.toml", "rb") as fh:

@@ -2,7 +2,7 @@
 
 import pytest
 
-from bearingsim.pipeline import system_libraries as sl
+from bearingsim.pipeline.machine import system_libraries as sl
 
 
 def test_nothing_missing_when_every_library_is_found(monkeypatch):

@@ -7,7 +7,7 @@ import json
 import pytest
 from typer.testing import CliRunner
 
-from bearingsim.pipeline.cli import app
+from bearingsim.pipeline.cli.commands import app
 from bearingsim.pipeline.figures import worker as figure_worker
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"

@@ -16,8 +16,8 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from bearingsim.pipeline.artefacts import RUN_MARKER
-from bearingsim.pipeline.cli import app
+from bearingsim.pipeline.staging.artefacts import RUN_MARKER
+from bearingsim.pipeline.cli.commands import app
 
 runner = CliRunner()
 SCENE_TEXT = (Path(__file__).parents[1] / "pipeline" / "scenes" / "deep-groove-209.toml").read_text()

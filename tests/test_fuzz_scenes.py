@@ -23,9 +23,9 @@ import pytest
 import tomli_w
 from typer.testing import CliRunner
 
-from bearingsim.pipeline.cli import app
-from bearingsim.pipeline.scene import read_scene_table
-from bearingsim.pipeline.validity import STATIC_CAPACITY_PRESSURE
+from bearingsim.pipeline.cli.commands import app
+from bearingsim.pipeline.scene.load import read_scene_table
+from bearingsim.pipeline.scene.validity import STATIC_CAPACITY_PRESSURE
 
 SEED = 20261123
 BASES = ("deep-groove-209", "helicopter-b-given-hinge", "helicopter-b")

@@ -139,7 +139,7 @@ def test_semi_axis_coefficients_equal_the_table_evaluation_at_each_angle():
     """The array form used by the burn-zone render equals `hertz_table_eval` angle by angle."""
     from bearingsim.dynamics.contact.hertz import hertz_table_eval, race_hertz_table, semi_axis_coefficients
     from bearingsim.dynamics.geometry import effective_modulus
-    from bearingsim.pipeline.scene import load_scene
+    from bearingsim.pipeline.scene.load import load_scene
 
     scene = load_scene("helicopter-b-given-hinge")
     table = race_hertz_table(scene.bearing, effective_modulus(scene.materials.ball, scene.materials.race), outer=True)

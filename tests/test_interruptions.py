@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from bearingsim.pipeline.cli import app
+from bearingsim.pipeline.cli.commands import app
 
 runner = CliRunner()
 

@@ -1,4 +1,4 @@
-"""Compiling once per machine (pipeline.kernel_cache): the lock and marker, the configuration
+"""Compiling once per machine (pipeline.machine.kernel_cache): the lock and marker, the configuration
 key, and the sweep worker's cache location."""
 
 from __future__ import annotations
@@ -11,8 +11,8 @@ from pathlib import Path
 
 import pytest
 
-from bearingsim.pipeline import kernel_cache
-from bearingsim.pipeline.scene import load_scene
+from bearingsim.pipeline.machine import kernel_cache
+from bearingsim.pipeline.scene.load import load_scene
 
 
 def _compile_in_child(cache: str, log: str, delay: float) -> None:
@@ -71,7 +71,8 @@ def test_one_configurations_compile_does_not_hold_up_anothers(tmp_path, monkeypa
 
 
 def test_compile_ahead_starts_only_for_a_dynamic_run_on_a_cold_cache_and_several_cores(tmp_path, monkeypatch):
-    from bearingsim.pipeline import compile_ahead, cores
+    from bearingsim.pipeline.cli import compile_ahead
+    from bearingsim.pipeline.machine import cores
 
     started = []
     monkeypatch.setattr(compile_ahead.subprocess, "Popen", lambda *a, **k: started.append(a) or _FakeChild())
@@ -120,7 +121,7 @@ def test_a_sweep_worker_uses_the_machines_cache(tmp_path, monkeypatch):
     """A Dask worker process that did not come through the command line (as under an outside
     scheduler) points numba at the per-user cache before running a point."""
     distributed = pytest.importorskip("distributed")
-    from bearingsim.pipeline.numba_cache import source_fingerprint
+    from bearingsim.pipeline.machine.numba_cache import source_fingerprint
     from bearingsim.pipeline.sweep.point_runner import prepare_worker
 
     monkeypatch.delenv("NUMBA_CACHE_DIR", raising=False)
@@ -233,7 +234,7 @@ _SAME_BITS_RUN = """
 import hashlib, json
 import numpy as np
 from bearingsim.dynamics.bearing import simulate_bearing
-from bearingsim.pipeline.scene import load_scene
+from bearingsim.pipeline.scene.load import load_scene
 from bearingsim.pipeline.stages.simulate import build_model
 
 scene = load_scene("helicopter-b-given-hinge")

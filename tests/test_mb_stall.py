@@ -59,7 +59,7 @@ def test_undamped_hht_on_case_b_stops_with_the_time_and_what_to_try():
     from bearingsim.dynamics.bearing import BearingModel
     from bearingsim.dynamics.bearing.run import initial_coordinates
     from bearingsim.dynamics.multibody.compiled import integrate_compiled
-    from bearingsim.pipeline.scene import load_scene
+    from bearingsim.pipeline.scene.load import load_scene
     from bearingsim.pipeline.stages.simulate import build_model
 
     scene = load_scene("helicopter-b-given-hinge", ["solver.alpha=0"])

@@ -15,15 +15,15 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from bearingsim.pipeline.cli import app
+from bearingsim.pipeline.cli.commands import app
 from bearingsim.pipeline.console import INTEGRATION_HINTS, PHRASES, explain
 
 ROOT = Path(__file__).parents[1]
 SECTIONS = "bearing|cage|materials|lubricant|load|speed|hinge|fe|solver|physics|output|sweep"
 KEY = re.compile(rf"(?<![\w./`])({SECTIONS})\.([a-z_][a-z0-9_]*(?:\.[a-z_][a-z0-9_]*)?)(?![\w(])")
 NOT_KEYS = re.compile(r"\.(toml|json|csv|h5|png|py|md|log)$")
-OWN_FILES = ("cli.py", "console.py", "validity.py", "scene.py", "schema.py", "runner.py", "artefacts.py",
-             "provenance.py")
+OWN_FILES = ("cli/commands.py", "console.py", "scene/validity.py", "scene/load.py", "scene/schema.py",
+             "staging/runner.py", "staging/artefacts.py", "staging/provenance.py")
 runner = CliRunner()
 
 

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from bearingsim.dynamics.quasistatic.crush_screen import CageClearances, required_offset
-from bearingsim.pipeline.scene import load_scene
+from bearingsim.pipeline.scene.load import load_scene
 
 # Expansion coefficients typed from their sources (not read from the code under test):
 # AISI 52100, 11.9e-6 1/K over 0–100 °C (ASM data as tabulated for the alloy); silicon bronze
@@ -63,7 +63,7 @@ def test_a_scene_without_lubricant_stays_at_the_reference_temperature():
 
 
 def test_bad_thermal_keys_name_key_range_and_unit():
-    from bearingsim.pipeline.schema import SceneError
+    from bearingsim.pipeline.scene.schema import SceneError
 
     with pytest.raises(SceneError, match=r"thermal.cage_degC.*allowed.*degC"):
         load_scene("helicopter-b-given-hinge", ["thermal.cage_degC=900"])
@@ -118,7 +118,7 @@ def test_pitch_errors_take_their_spread_off_the_pocket_clearance():
 
 
 def test_pitch_errors_need_one_value_a_pocket():
-    from bearingsim.pipeline.schema import SceneError
+    from bearingsim.pipeline.scene.schema import SceneError
 
     with pytest.raises(SceneError, match="one per pocket"):
         load_scene("helicopter-b-given-hinge", ["cage.pocket_index_errors=[1e-6, 2e-6]"])
@@ -197,7 +197,7 @@ def test_a_run_reports_the_cage_touching_the_inner_land(tmp_path):
 
     from typer.testing import CliRunner
 
-    from bearingsim.pipeline.cli import app
+    from bearingsim.pipeline.cli.commands import app
 
     bore, od = 0.150 + 10e-6, 0.16542
     args = ["simulate", "helicopter-b-given-hinge", "--out", str(tmp_path / "run")]
@@ -220,7 +220,7 @@ def test_quasistatic_json_reports_operating_clearances_and_a_smaller_margin_hot(
 
     from typer.testing import CliRunner
 
-    from bearingsim.pipeline.cli import app
+    from bearingsim.pipeline.cli.commands import app
 
     def screen(*extra):
         args = ["quasistatic", "helicopter-b", "--json", "--out", str(tmp_path / f"r{len(extra)}")]

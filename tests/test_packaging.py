@@ -1,5 +1,6 @@
-"""One import namespace: pyproject.toml installs exactly the packages under bearingsim.*, one
-per folder holding an __init__.py, and the top-level folders map to bearingsim.<folder>."""
+"""One import namespace: the repository root is the package bearingsim, pyproject.toml installs
+exactly the packages under it, one per product folder holding an __init__.py, and the API's
+face lists its names once for the run time and once for static tools."""
 
 from __future__ import annotations
 
@@ -18,22 +19,32 @@ def test_every_package_folder_is_installed_under_bearingsim():
     listed = set(_config()["packages"])
     found = {"bearingsim"} | {
         "bearingsim." + ".".join(p.parent.relative_to(ROOT).parts)
-        for top in TOP for p in (ROOT / top).rglob("__init__.py")
-        if "root_package" not in p.parts and "__pycache__" not in p.parts}
+        for top in TOP for p in (ROOT / top).rglob("__init__.py") if "__pycache__" not in p.parts}
     assert listed == found, f"pyproject.toml packages differ from the folders: {sorted(listed ^ found)}"
 
 
 def test_nothing_but_bearingsim_at_top_level():
     cfg = _config()
     assert all(p == "bearingsim" or p.startswith("bearingsim.") for p in cfg["packages"])
-    assert cfg["package-dir"] == {"bearingsim": "pipeline/root_package",
-                                  **{f"bearingsim.{t}": t for t in TOP}}
+    assert cfg["package-dir"] == {"bearingsim": "."}
+
+
+def test_the_face_names_the_same_api_for_static_tools_and_at_run_time():
+    import ast
+
+    import bearingsim
+
+    tree = ast.parse((ROOT / "__init__.py").read_text(encoding="utf-8"))
+    checked = next(node for node in tree.body if isinstance(node, ast.If) and ast.unparse(node.test) == "TYPE_CHECKING")
+    static = {alias.name: "bearingsim" + "." * (imp.level > 0) + (imp.module or "")
+              for imp in checked.body for alias in imp.names}
+    assert static == bearingsim._API
 
 
 def test_the_console_script_is_in_the_namespace():
     scripts = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]["scripts"]
     # main, not the typer app: main turns SIGTERM into a logged interruption first
-    assert scripts == {"bearingsim": "bearingsim.pipeline.cli:main"}
+    assert scripts == {"bearingsim": "bearingsim.pipeline.cli.commands:main"}
 
 
 def test_no_module_imports_a_top_level_folder_by_its_bare_name():
@@ -45,13 +56,23 @@ def test_no_module_imports_a_top_level_folder_by_its_bare_name():
     assert not offenders, f"import bearingsim.<folder> instead: {offenders}"
 
 
-def test_dynamics_and_fe_model_never_import_each_other_or_pipeline():
-    import re
+def test_the_product_imports_itself_relatively():
+    """An absolute bearingsim.* import resolves only where bearingsim is installed; a relative one
+    resolves from the files too, which is what static tools read (docs/architecture.md)."""
+    import ast
 
-    for folder, banned in (("dynamics", ("fe_model", "pipeline", "meshes")), ("fe_model", ("dynamics", "pipeline"))):
-        pat = re.compile(r"^\s*(from|import)\s+bearingsim\.(" + "|".join(banned) + r")\b", re.M)
-        offenders = [str(p.relative_to(ROOT)) for p in (ROOT / folder).rglob("*.py") if pat.search(p.read_text(encoding="utf-8"))]
-        assert not offenders, f"{folder} must not import {banned}: {offenders}"
+    def absolute_imports(path: Path) -> list[str]:
+        found = []
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Import):
+                found += [a.name for a in node.names if a.name.split(".")[0] == "bearingsim"]
+            elif isinstance(node, ast.ImportFrom) and not node.level and (node.module or "").split(".")[0] == "bearingsim":
+                found.append(node.module)
+        return found
+
+    files = [*(p for folder in TOP for p in (ROOT / folder).rglob("*.py")), ROOT / "__init__.py", ROOT / "__main__.py"]
+    offenders = {str(p.relative_to(ROOT)): names for p in files if (names := absolute_imports(p))}
+    assert not offenders, f"import relatively (from ..dynamics import ...): {offenders}"
 
 
 def test_python_dash_m_runs_the_command_line():

@@ -13,7 +13,7 @@ import pytest
 from bearingsim.pipeline.render.burn_zone_data import BurnZoneMap, OuterRaceProfile
 from bearingsim.pipeline.render.paraview_series import frame_indices, write_paraview
 from bearingsim.pipeline.results.timeseries import Series, write_timeseries
-from bearingsim.pipeline.scene import load_scene
+from bearingsim.pipeline.scene.load import load_scene
 
 pv = pytest.importorskip("pyvista")
 

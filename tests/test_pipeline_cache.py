@@ -8,9 +8,9 @@ import dataclasses
 
 import pytest
 
-from bearingsim.pipeline.artefacts import atomic_write_json, read_manifest
-from bearingsim.pipeline.runner import Stage, run_stages
-from bearingsim.pipeline.scene import read_scene_table, resolve
+from bearingsim.pipeline.staging.artefacts import atomic_write_json, read_manifest
+from bearingsim.pipeline.staging.runner import Stage, run_stages
+from bearingsim.pipeline.scene.load import read_scene_table, resolve
 
 
 @pytest.fixture()

@@ -26,7 +26,7 @@ from bearingsim.dynamics.quasistatic import solver
 from bearingsim.dynamics.operating_point import OperatingPoint
 from bearingsim.dynamics.quasistatic.options import QuasiStaticOptions
 from bearingsim.dynamics.quasistatic.solver import QuasiStaticError, solve_quasistatic
-from bearingsim.pipeline.cli import app
+from bearingsim.pipeline.cli.commands import app
 
 STEEL = Material(208e9, 0.3, 7850)
 HELI = BearingGeometry(0.01905, 22, 0.1584, 0.1573, 0.009753, 0.009906,

@@ -11,10 +11,10 @@ import pytest
 from typer.testing import CliRunner
 
 from bearingsim.dynamics.multibody.results import IntegrationError, Result
-from bearingsim.pipeline.cli import app
+from bearingsim.pipeline.cli.commands import app
 from bearingsim.pipeline.console import explain
-from bearingsim.pipeline.scene import load_scene
-from bearingsim.pipeline.schema import SceneError
+from bearingsim.pipeline.scene.load import load_scene
+from bearingsim.pipeline.scene.schema import SceneError
 
 runner = CliRunner()
 SCENE_TEXT = (Path(__file__).parents[1] / "pipeline" / "scenes" / "deep-groove-209.toml").read_text()
@@ -38,7 +38,7 @@ def test_inch_ball_diameter_is_flagged(inches):
     import copy
     import dataclasses
 
-    from bearingsim.pipeline.validity import _plausibility
+    from bearingsim.pipeline.scene.validity import _plausibility
 
     scene = load_scene("deep-groove-209")
     bearing = copy.copy(scene.bearing)

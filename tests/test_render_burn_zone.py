@@ -16,7 +16,7 @@ from bearingsim.pipeline.render.burn_zone_data import (
     outer_semi_major_axis,
     sector_energy,
 )
-from bearingsim.pipeline.scene import load_scene
+from bearingsim.pipeline.scene.load import load_scene
 
 SCENE = load_scene("helicopter-b-given-hinge", ["thermal.parts_degC=20"])  # Table 1 as drawn
 

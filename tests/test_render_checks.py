@@ -11,7 +11,7 @@ import os
 import pytest
 from typer.testing import CliRunner
 
-from bearingsim.pipeline.cli import app
+from bearingsim.pipeline.cli.commands import app
 
 runner = CliRunner()
 
@@ -64,7 +64,7 @@ def test_simulate_recomputes_what_render_refuses(run_copy):
 
 
 def test_render_cannot_write_names_the_directory(run_copy, monkeypatch):
-    import bearingsim.pipeline.runner as runner_module
+    import bearingsim.pipeline.staging.runner as runner_module
 
     def read_only(*args, **kwargs):
         raise PermissionError(13, "Permission denied", str(run_copy / "report"))
@@ -86,7 +86,7 @@ def test_render_of_a_read_only_run_directory(run_copy):
 
 
 def test_ctrl_c_during_render_is_logged(run_copy, monkeypatch):
-    import bearingsim.pipeline.runner as runner_module
+    import bearingsim.pipeline.staging.runner as runner_module
 
     def interrupted(*args, **kwargs):
         raise KeyboardInterrupt

@@ -12,11 +12,11 @@ import pytest
 import tomli_w
 from typer.testing import CliRunner
 
-from bearingsim.pipeline.artefacts import atomic_write_json, read_manifest
-from bearingsim.pipeline.cli import app
+from bearingsim.pipeline.staging.artefacts import atomic_write_json, read_manifest
+from bearingsim.pipeline.cli.commands import app
 from bearingsim.pipeline.results.timeseries import Series, write_timeseries
-from bearingsim.pipeline.runner import run_stages, stage_key
-from bearingsim.pipeline.scene import load_scene
+from bearingsim.pipeline.staging.runner import run_stages, stage_key
+from bearingsim.pipeline.scene.load import load_scene
 from bearingsim.pipeline.stages import STAGES
 from bearingsim.pipeline.stages.identify import STAGE as IDENTIFY
 from bearingsim.pipeline.stages.quasistatic import STAGE as QUASISTATIC
@@ -117,7 +117,7 @@ def _no_solving(monkeypatch):
     monkeypatch.setattr(bearingsim.dynamics.bearing, "simulate_bearing", boom)
     monkeypatch.setattr(bearingsim.dynamics.quasistatic.solver, "solve_quasistatic", boom)
     monkeypatch.setattr(bearingsim.fe_model, "identify_hinge", boom)
-    monkeypatch.setattr("bearingsim.pipeline.runner.run_stages", boom)  # render never runs the pipeline
+    monkeypatch.setattr("bearingsim.pipeline.staging.runner.run_stages", boom)  # render never runs the pipeline
 
 
 def test_render_command_regenerates_the_report_without_solving(run_dir, monkeypatch):
@@ -236,7 +236,7 @@ def test_the_reports_heat_arc_across_zero_reads_in_0_to_360(tmp_path):
 def test_the_report_states_the_loads_the_run_used():
     """A --set override changes the loads but not the scene's description text."""
     from bearingsim.pipeline.render.report import operating_line
-    from bearingsim.pipeline.scene import load_scene
+    from bearingsim.pipeline.scene.load import load_scene
 
     scene = load_scene("helicopter-b-given-hinge", ["load.moment=300", "solver.duration=0.05"])
     assert "430" in scene.description  # the file's words, unchanged by the override
@@ -248,7 +248,7 @@ def test_the_report_states_the_loads_the_run_used():
 def test_fe_renders_drawn_beside_are_the_ones_drawn_here(run_dir, tmp_path, monkeypatch):
     """On two cores the report draws the FE load cases in a second process while it draws the
     burn zone: the same records and byte for byte the same files as drawn in this process."""
-    from bearingsim.pipeline import cores
+    from bearingsim.pipeline.machine import cores
     from bearingsim.pipeline.render import run_report
 
     run, scene, _ = run_dir
@@ -275,7 +275,7 @@ def test_fe_renders_fall_back_to_this_process(run_dir, tmp_path, monkeypatch, ca
     from concurrent.futures import Future, ProcessPoolExecutor
     from concurrent.futures.process import BrokenProcessPool
 
-    from bearingsim.pipeline import cores
+    from bearingsim.pipeline.machine import cores
     from bearingsim.pipeline.render import run_report
 
     def submit(self, *args, **kwargs):

@@ -11,8 +11,8 @@ import pytest
 
 from bearingsim.dynamics.bearing import ModelOptions
 from bearingsim.dynamics.multibody.settings import HHTSettings, JacobianReuse
-from bearingsim.pipeline.scene import load_scene
-from bearingsim.pipeline.schema import SceneError
+from bearingsim.pipeline.scene.load import load_scene
+from bearingsim.pipeline.scene.schema import SceneError
 
 SCENE = "helicopter-b-given-hinge"
 
@@ -28,7 +28,7 @@ def test_the_scene_builds_the_settings_objects_themselves():
 def test_every_integrator_setting_is_a_scene_key_with_a_doc():
     """No field defined twice: the [solver] table has exactly the integrator's fields plus
     `duration`, each with its meaning (docs/scenes.md is generated from them)."""
-    from bearingsim.pipeline.scene_sections import SolverSettings
+    from bearingsim.pipeline.scene.sections import SolverSettings
 
     names = [f.name for f in dataclasses.fields(SolverSettings)]
     assert names == [f.name for f in dataclasses.fields(HHTSettings)] + ["duration"]

@@ -8,14 +8,14 @@ import math
 import pytest
 
 from bearingsim.dynamics.geometry import BearingGeometry
-from bearingsim.pipeline.scene import (
+from bearingsim.pipeline.scene.load import (
     apply_overrides,
     builtin_scene_names,
     load_scene,
     read_scene_table,
     resolve,
 )
-from bearingsim.pipeline.schema import SceneError
+from bearingsim.pipeline.scene.schema import SceneError
 
 
 @pytest.fixture(scope="module")
@@ -149,7 +149,7 @@ def test_geometry_rejects_direct_construction_errors():
 
 def test_a_built_in_name_wins_over_a_folder_of_that_name(tmp_path, monkeypatch):
     """`bearingsim run helicopter-b` from a folder holding the run directory helicopter-b/."""
-    from bearingsim.pipeline.scene import load_scene
+    from bearingsim.pipeline.scene.load import load_scene
 
     (tmp_path / "helicopter-b").mkdir()
     monkeypatch.chdir(tmp_path)

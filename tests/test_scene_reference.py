@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from bearingsim.pipeline.scene_reference import render
+from bearingsim.pipeline.scene.reference import render
 
 DOC = Path(__file__).resolve().parents[1] / "docs" / "scenes.md"
 
@@ -13,7 +13,7 @@ DOC = Path(__file__).resolve().parents[1] / "docs" / "scenes.md"
 def test_docs_scenes_md_is_current():
     assert DOC.read_text(encoding="utf-8") == render(), (
         "docs/scenes.md is stale: regenerate it with "
-        "`python -m bearingsim.pipeline.scene_reference > docs/scenes.md`")
+        "`python -m bearingsim.pipeline.scene.reference > docs/scenes.md`")
 
 
 def test_every_key_has_a_meaning():
@@ -25,7 +25,7 @@ def test_every_key_has_a_meaning():
 def test_every_built_in_scene_key_is_documented():
     import tomllib
 
-    from bearingsim.pipeline.scene import builtin_scene_names, read_scene_table
+    from bearingsim.pipeline.scene.load import builtin_scene_names, read_scene_table
 
     text = render()
     for name in builtin_scene_names():

@@ -6,7 +6,7 @@ from __future__ import annotations
 import pytest
 from typer.testing import CliRunner
 
-from bearingsim.pipeline.cli import app
+from bearingsim.pipeline.cli.commands import app
 
 # a coarse, uniform mesh: the identification in a few seconds (accuracy is not the point here)
 COARSE = ["--set", "fe.mesh_size=0.035", "--set", "fe.edge_refinement=1.0", "--set", "fe.element_order=1"]
@@ -22,7 +22,7 @@ def _identify(scene, out, *extra):
 
 @pytest.mark.filterwarnings("ignore")
 def test_a_second_scene_with_the_same_fe_inputs_reuses_the_identification(tmp_path):
-    from bearingsim.pipeline.artefacts import read_manifest
+    from bearingsim.pipeline.staging.artefacts import read_manifest
 
     first = _identify("helicopter-b", tmp_path / "b")
     assert "identify     computed" in first

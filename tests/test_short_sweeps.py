@@ -11,8 +11,8 @@ import functools
 import pytest
 from rich.console import Console
 
-from bearingsim.pipeline.artefacts import atomic_write_json
-from bearingsim.pipeline.runner import Stage
+from bearingsim.pipeline.staging.artefacts import atomic_write_json
+from bearingsim.pipeline.staging.runner import Stage
 from bearingsim.pipeline.sweep import stability_map
 from bearingsim.pipeline.sweep.console import print_results
 from bearingsim.pipeline.sweep.driver import gather, plan_sweep, run_sweep

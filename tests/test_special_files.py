@@ -22,7 +22,7 @@ def bearingsim(*args, timeout=60):
     def limit():
         resource.setrlimit(resource.RLIMIT_AS, (3 << 30, 3 << 30))
 
-    return subprocess.run([sys.executable, "-c", "from bearingsim.pipeline.cli import main; main()", *args],
+    return subprocess.run([sys.executable, "-c", "from bearingsim.pipeline.cli.commands import main; main()", *args],
                           capture_output=True, text=True, timeout=timeout, preexec_fn=limit)
 
 
@@ -75,7 +75,7 @@ def test_every_command_refuses_a_fifo_at_once(command, tmp_path):
 def test_a_scene_just_under_the_limit_is_read(tmp_path):
     from pathlib import Path
 
-    from bearingsim.pipeline.scene import read_scene_table
+    from bearingsim.pipeline.scene.load import read_scene_table
 
     text = (Path(__file__).parents[1] / "pipeline" / "scenes" / "deep-groove-209.toml").read_text()
     padded = text + "#" * (MAX_SCENE_BYTES - len(text.encode()) - 1) + "\n"

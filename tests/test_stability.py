@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 from bearingsim.pipeline.studies import stability as st
-from bearingsim.pipeline.scene import builtin_scene_names, load_scene
-from bearingsim.pipeline.schema import SceneError
+from bearingsim.pipeline.scene.load import builtin_scene_names, load_scene
+from bearingsim.pipeline.scene.schema import SceneError
 
 CASES = ("high-moment", "high-speed", "zero-clearance", "preload", "stiff-hinge", "soft-hinge",
          "dry-contact", "tiny-guide-clearance", "light-cage", "load-step", "far-from-equilibrium")
@@ -94,7 +94,7 @@ def test_short_case_passes_and_a_zero_budget_is_a_clear_refusal():
 def test_cli_rejects_an_unknown_case():
     from typer.testing import CliRunner
 
-    from bearingsim.pipeline.cli import app
+    from bearingsim.pipeline.cli.commands import app
 
     result = CliRunner().invoke(app, ["stability", "no-such-case"])
     assert result.exit_code == 2 and "high-moment" in result.output
@@ -104,7 +104,7 @@ def test_cli_prints_the_table_with_its_units(tmp_path):
     """The printed table is the file's: units in brackets are text, not console markup."""
     from typer.testing import CliRunner
 
-    from bearingsim.pipeline.cli import app
+    from bearingsim.pipeline.cli.commands import app
 
     result = CliRunner().invoke(app, ["stability", "load-step", "--window", "4e-5", "--out", str(tmp_path)])
     assert result.exit_code == 0, result.output[-2000:]

@@ -12,7 +12,7 @@ import pytest
 from typer.testing import CliRunner
 
 from bearingsim.dynamics.quasistatic.crush_screen import CageClearances, LandFilm, crush_screen, excursion_of
-from bearingsim.pipeline.cli import app
+from bearingsim.pipeline.cli.commands import app
 
 runner = CliRunner()
 Z = 22

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import bearingsim
-from bearingsim.pipeline.schema import SceneError
+from bearingsim.pipeline.scene.schema import SceneError
 from bearingsim.pipeline.stages.quasistatic import solve
 from bearingsim.pipeline.stiffness_export import (
     CSV_TERMS,
@@ -145,7 +145,7 @@ def test_fe_hinge_is_read_from_the_identify_stage(tmp_path):
 
 
 def _stiffness_command_registered() -> bool:
-    from bearingsim.pipeline.cli import app
+    from bearingsim.pipeline.cli.commands import app
 
     return any((c.name or c.callback.__name__) == "stiffness" for c in app.registered_commands)
 
@@ -154,7 +154,7 @@ def _stiffness_command_registered() -> bool:
 def test_command_line_writes_the_same_table(tmp_path):
     from typer.testing import CliRunner
 
-    from bearingsim.pipeline.cli import app
+    from bearingsim.pipeline.cli.commands import app
 
     result = CliRunner().invoke(app, ["stiffness", SCENE, "--speeds", "1000,3060", "--out", str(tmp_path)])
     assert result.exit_code == 0, result.output

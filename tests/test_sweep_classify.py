@@ -1,5 +1,5 @@
 """Cage-motion classes from summary metrics: the rules and limits documented in
-pipeline/sweep/classify.py (module docstring) are the reference of these tests."""
+pipeline/scene/cage_classes.py (module docstring) are the reference of these tests."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ import math
 
 import pytest
 
-from bearingsim.pipeline.sweep.classify import CageClassThresholds, classify_cage
+from bearingsim.pipeline.scene.cage_classes import CageClassThresholds, classify_cage
 
 
 def summary(metal=0.0, spread=None, whirl=0.0, variation=0.003, speed=143.7, duration=0.1,

@@ -8,10 +8,10 @@ from pathlib import Path
 
 import pytest
 
-from bearingsim.pipeline.schema import SceneError
+from bearingsim.pipeline.scene.schema import SceneError
 from bearingsim.pipeline.sweep.driver import plan_sweep
 from bearingsim.pipeline.sweep.point_runner import point_run_table, run_point
-from bearingsim.pipeline.sweep.spec import build_sweep_section, with_command_line
+from bearingsim.pipeline.scene.sweep_section import build_sweep_section, with_command_line
 
 SCENE = "helicopter-b-given-hinge"
 

@@ -6,7 +6,7 @@ import math
 
 import pytest
 
-from bearingsim.pipeline.sweep.classify import CageClassThresholds
+from bearingsim.pipeline.scene.cage_classes import CageClassThresholds
 from bearingsim.pipeline.sweep.points import SweepPoint
 from bearingsim.pipeline.sweep.stability_map import axis_label, map_axes, plot_stability_map
 from bearingsim.pipeline.sweep.table import SUMMARY_COLUMNS, read_table, result_row, write_table

@@ -11,9 +11,9 @@ import math
 
 import pytest
 
-from bearingsim.pipeline.artefacts import atomic_write_json
-from bearingsim.pipeline.runner import Stage
-from bearingsim.pipeline.sweep.classify import CAGE_CLASSES
+from bearingsim.pipeline.staging.artefacts import atomic_write_json
+from bearingsim.pipeline.staging.runner import Stage
+from bearingsim.pipeline.scene.cage_classes import CAGE_CLASSES
 from bearingsim.pipeline.sweep.driver import gather, plan_sweep, run_sweep
 from bearingsim.pipeline.sweep.point_runner import RECORD_FILE, run_point
 from bearingsim.pipeline.sweep.table import read_table

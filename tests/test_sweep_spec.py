@@ -7,12 +7,12 @@ import copy
 
 import pytest
 
-from bearingsim.pipeline.scene import read_scene_table, resolve
-from bearingsim.pipeline.schema import SceneError
+from bearingsim.pipeline.scene.load import read_scene_table, resolve
+from bearingsim.pipeline.scene.schema import SceneError
 from bearingsim.pipeline.stages import STAGES
-from bearingsim.pipeline.runner import stage_key
+from bearingsim.pipeline.staging.runner import stage_key
 from bearingsim.pipeline.sweep.points import SweepPoint, expand, point_table
-from bearingsim.pipeline.sweep.spec import build_sweep_section, parse_vary, with_command_line
+from bearingsim.pipeline.scene.sweep_section import build_sweep_section, parse_vary, with_command_line
 
 
 @pytest.fixture(scope="module")

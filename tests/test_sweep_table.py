@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from bearingsim.pipeline.sweep.classify import CageClassThresholds
+from bearingsim.pipeline.scene.cage_classes import CageClassThresholds
 from bearingsim.pipeline.sweep.driver import plan_sweep, table_rows
 from bearingsim.pipeline.sweep.points import SweepPoint
 from bearingsim.pipeline.sweep.table import read_table, result_row, write_table

@@ -6,9 +6,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from bearingsim.pipeline import tolerances as tol
-from bearingsim.pipeline.scene import load_scene
-from bearingsim.pipeline.schema import SceneError
+from bearingsim.pipeline.quasistatic import tolerances as tol
+from bearingsim.pipeline.scene.load import load_scene
+from bearingsim.pipeline.scene.schema import SceneError
 
 # Sources of the typed numbers: Table 1 of the reference paper (docs/model.md §2) for the
 # dimensions; AISI 52100 11.9e-6 1/K and silicon bronze C65500 18.0e-6 1/K (test_operating_clearances).

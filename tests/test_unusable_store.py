@@ -8,7 +8,7 @@ import os
 import pytest
 from typer.testing import CliRunner
 
-from bearingsim.pipeline.cli import app
+from bearingsim.pipeline.cli.commands import app
 
 # a coarse, uniform mesh: the identification in a few seconds (accuracy is not the point here)
 COARSE = ["--set", "fe.mesh_size=0.035", "--set", "fe.edge_refinement=1.0", "--set", "fe.element_order=1"]

@@ -20,11 +20,11 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from bearingsim.pipeline import provenance
-from bearingsim.pipeline.artefacts import RUN_MARKER, atomic_write_json, input_key, sweep_stale_temporaries
-from bearingsim.pipeline.cli import app
-from bearingsim.pipeline.runner import Stage, run_stages, stage_key
-from bearingsim.pipeline.scene import load_scene
+from bearingsim.pipeline.staging import provenance
+from bearingsim.pipeline.staging.artefacts import RUN_MARKER, atomic_write_json, input_key, sweep_stale_temporaries
+from bearingsim.pipeline.cli.commands import app
+from bearingsim.pipeline.staging.runner import Stage, run_stages, stage_key
+from bearingsim.pipeline.scene.load import load_scene
 from bearingsim.pipeline.stages import STAGES
 
 runner = CliRunner()
@@ -102,7 +102,7 @@ def test_a_run_directory_of_an_older_version_is_still_recognised(tmp_path):
                                                         (0o077, 0o600, 0o700)])
 def test_result_files_follow_the_umask(umask, file_mode, dir_mode, tmp_path):
     out = tmp_path / "run"
-    proc = subprocess.run([sys.executable, "-c", "from bearingsim.pipeline.cli import main; main()",
+    proc = subprocess.run([sys.executable, "-c", "from bearingsim.pipeline.cli.commands import main; main()",
                            "quasistatic", "deep-groove-209", "--out", str(out)],
                           capture_output=True, text=True, preexec_fn=lambda: os.umask(umask))
     assert proc.returncode == 0, proc.stderr
@@ -244,7 +244,7 @@ def test_the_command_line_sweeps_old_temporaries(tmp_path):
 
 
 def test_ctrl_c_is_logged_and_exits_130(tmp_path, monkeypatch):
-    import bearingsim.pipeline.runner as runner_module
+    import bearingsim.pipeline.staging.runner as runner_module
 
     def interrupted(*args, **kwargs):
         raise KeyboardInterrupt

@@ -14,7 +14,7 @@ import pytest
 from typer.testing import CliRunner
 
 from bearingsim.dynamics.multibody.results import Result
-from bearingsim.pipeline.cli import app
+from bearingsim.pipeline.cli.commands import app
 from bearingsim.pipeline.studies.stability import case_names, case_path
 
 runner = CliRunner()

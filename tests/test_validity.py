@@ -1,4 +1,4 @@
-"""The physical-validity layer (pipeline.validity): scene checks before any solve, result checks
+"""The physical-validity layer (pipeline.scene.validity): scene checks before any solve, result checks
 after it, and the command line's answers to the cases of the issue "Never silently wrong".
 
 Reference numbers: the 209 bearing of deep-groove-209 (Harris & Kotzalas, Rolling Bearing
@@ -15,10 +15,11 @@ import math
 import pytest
 from typer.testing import CliRunner
 
-from bearingsim.pipeline import result_checks, validity
-from bearingsim.pipeline.cli import app
-from bearingsim.pipeline.scene import load_scene, read_scene_table, resolve
-from bearingsim.pipeline.schema import SceneError
+from bearingsim.pipeline.staging import result_checks
+from bearingsim.pipeline.scene import validity
+from bearingsim.pipeline.cli.commands import app
+from bearingsim.pipeline.scene.load import load_scene, read_scene_table, resolve
+from bearingsim.pipeline.scene.schema import SceneError
 
 runner = CliRunner()
 
@@ -186,7 +187,7 @@ def test_values_in_the_wrong_unit_are_warned(setting, key):
 
 
 def test_builtin_scenes_have_no_findings():
-    from bearingsim.pipeline.scene import builtin_scene_names
+    from bearingsim.pipeline.scene.load import builtin_scene_names
 
     for name in builtin_scene_names():
         assert validity.scene_findings(load_scene(name)) == [], name
@@ -265,7 +266,7 @@ def test_json_writer_never_writes_nan_or_infinity(tmp_path):
     """Issue case 3: a NaN made summary.json invalid JSON."""
     import numpy as np
 
-    from bearingsim.pipeline.artefacts import atomic_write_json
+    from bearingsim.pipeline.staging.artefacts import atomic_write_json
 
     atomic_write_json(tmp_path / "x.json", {"a": float("nan"), "b": [np.inf, -np.inf, 1.5],
                                              "c": np.array([np.nan, 2.0]), "d": np.float64("nan")})
@@ -303,7 +304,7 @@ def test_the_built_in_lubricant_and_film_floor_are_not_warned():
 
 def test_a_ball_in_millimetres_is_named_in_the_groove_error():
     """One key typed in mm trips the groove check first; the message says what is likely wrong."""
-    from bearingsim.pipeline.schema import SceneError
+    from bearingsim.pipeline.scene.schema import SceneError
 
     with pytest.raises(SceneError, match=r"ball_diameter = 19.05 m would be a ball of 19.05 metres.*not millimetres"):
         load_scene("helicopter-b-given-hinge", ["bearing.ball_diameter=19.05"])

@@ -1,5 +1,5 @@
 """Land heat, film-thickness ratio, classes, risk and the verdict (pipeline/results/
-cage_metrics.py, pipeline/sweep/classify.py, pipeline/results/verdict.py) on synthetic
+cage_metrics.py, pipeline/scene/cage_classes.py, pipeline/results/verdict.py) on synthetic
 series whose answers are known by construction, and the verdict printed by the CLI."""
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ from bearingsim.pipeline.results.cage_metrics import (
     time_weights,
 )
 from bearingsim.pipeline.results.verdict import cage_verdict, format_arc, verdict_lines, verdict_rows
-from bearingsim.pipeline.sweep.classify import CageClassThresholds, classify_cage, risk_level
+from bearingsim.pipeline.scene.cage_classes import CageClassThresholds, classify_cage, risk_level
 
 from .test_settled_window import C, EPS0, OMEGA, summary_of, synthetic_run
 
@@ -264,7 +264,7 @@ def test_format_arc():
 # --- the command line ---------------------------------------------------------------------
 
 def test_run_and_simulate_print_the_verdict(tmp_path, monkeypatch):
-    import bearingsim.pipeline.cli as cli
+    import bearingsim.pipeline.cli.commands as cli
 
     direction = np.radians(30.0 + 4.0 * np.sin(2 * math.pi * 3.0 * T))
     summary = _summary(synthetic_run(0.88, direction, T))

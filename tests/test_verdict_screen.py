@@ -7,7 +7,7 @@ import json
 
 from typer.testing import CliRunner
 
-from bearingsim.pipeline.cli import app
+from bearingsim.pipeline.cli.commands import app
 from bearingsim.pipeline.results.simulation_output import screen_summary
 from bearingsim.pipeline.results.summary_keys import numeric_keys, unit_of
 from bearingsim.pipeline.results.verdict import screen_sentence, verdict_rows

@@ -240,7 +240,7 @@ def _finish_pocket(fig, ax, out, run):
 def _screen_curve(moment: float):
     """(psi grid, s) of the crush screen (M.115) for the reference bearing at `moment`."""
     from bearingsim.dynamics.quasistatic.crush_screen import orbital_excursion
-    from bearingsim.pipeline.scene import load_scene
+    from bearingsim.pipeline.scene.load import load_scene
     from bearingsim.pipeline.stages.quasistatic import solve
 
     scene = load_scene("helicopter-b-given-hinge", [f"load.moment={moment}"])

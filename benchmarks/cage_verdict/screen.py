@@ -15,7 +15,7 @@ STATES = {"operating": [], "cold": ["thermal.parts_degC=20"]}
 
 
 def _screen(moment: float, extra: list[str]) -> dict:
-    from bearingsim.pipeline.scene import load_scene
+    from bearingsim.pipeline.scene.load import load_scene
     from bearingsim.pipeline.stages.quasistatic import cage_screen, solve
 
     scene = load_scene("helicopter-b-given-hinge", [f"load.moment={moment}"] + extra)

@@ -1,11 +1,10 @@
-"""MkDocs hook (and a script): lay out the installed package's tree for static tools.
+"""MkDocs hook (and a script): a folder named `bearingsim` for griffe (mkdocstrings).
 
-pyproject.toml installs the repository's top-level folders as `bearingsim.*`, so the source tree
-has no `bearingsim/` folder and griffe (mkdocstrings) finds no `bearingsim.pipeline`. Before a
-build this hook links the folders into `.api_source/bearingsim/` as an install would place them,
-and mkdocs.yml points mkdocstrings there. Type checkers and editors that read the source
-tree can use the same folder (docs/architecture.md): `python docs/_hooks/package_tree.py` lays it
-out without building the site. Nothing is copied, only linked.
+The repository root is the package `bearingsim`, but griffe looks a package up by the name of
+its folder, and a clone's folder may be called anything. Before a build this hook links the
+root's `__init__.py` and its package folders into `.api_source/bearingsim/`, and mkdocs.yml
+points mkdocstrings there. Type checkers and editors need no such folder: the product imports
+itself relatively (docs/architecture.md). Nothing is copied, only linked.
 """
 
 from __future__ import annotations
@@ -26,7 +25,7 @@ def on_startup(**kwargs):
         raise RuntimeError(f"{TREE} exists and was not made by this hook; remove it or move it away")
     package.mkdir(parents=True, exist_ok=True)
     marker.write_text("made by docs/_hooks/package_tree.py\n")
-    links = {"__init__.py": ROOT / "pipeline" / "root_package" / "__init__.py",
+    links = {"__init__.py": ROOT / "__init__.py",
              **{name: ROOT / name for name in SUBPACKAGES}}
     for name, target in links.items():
         link = package / name

@@ -15,7 +15,7 @@ import math
 import numba
 import numpy as np
 
-from bearingsim.dynamics._speed.compile_policy import VEC
+from .compile_policy import VEC
 
 LN2 = math.log(2.0)
 _INV_LN2 = 1.0 / LN2

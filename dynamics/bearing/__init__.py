@@ -9,7 +9,7 @@ The names below load their module on first use, so that the scene loader, which 
 `ModelOptions` from `[physics]`, imports neither numba nor the kernels.
 """
 
-from bearingsim.dynamics._lazy import lazy_exports
+from .._lazy import lazy_exports
 
 _EXPORTS = {
     "BearingModel": ".model", "BearingModelParams": ".params", "BearingRun": ".run",

@@ -16,16 +16,16 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from bearingsim.dynamics._speed.compile_policy import FIRST_CLASS, INTERNAL, NO_REFCOUNT, WITH_REFCOUNT
-from bearingsim.dynamics.contact.pocket import (
+from .._speed.compile_policy import FIRST_CLASS, INTERNAL, NO_REFCOUNT, WITH_REFCOUNT
+from ..contact.pocket import (
     P_OUT_APPROACH, P_OUT_DFN_DRATE, P_OUT_FRICTION_POWER, P_OUT_IN_CONTACT,
 )
-from bearingsim.dynamics.lubrication.film import film_central_nvm_batch
-from bearingsim.dynamics.multibody.crv import crv_to_matrix_into, skew
-from bearingsim.dynamics.multibody.hinge import add_hinge_force, hinge_energy, hinge_forces
-from bearingsim.dynamics.multibody.joints import prescribe_velocity_residual
-from bearingsim.dynamics.multibody.rigid_body import gyroscopic_damping
-from bearingsim.dynamics.multibody.small import add_into, eye3, mm, mtv_into, mv, mv_into
+from ..lubrication.film import film_central_nvm_batch
+from ..multibody.crv import crv_to_matrix_into, skew
+from ..multibody.hinge import add_hinge_force, hinge_energy, hinge_forces
+from ..multibody.joints import prescribe_velocity_residual
+from ..multibody.rigid_body import gyroscopic_damping
+from ..multibody.small import add_into, eye3, mm, mtv_into, mv, mv_into
 
 from .bundles import Ball, Bodies, Body
 from .cage_forces import journal_diag, journal_forces, journal_tangent, pocket_diag, pocket_forces, pocket_tangent

@@ -16,7 +16,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from bearingsim.dynamics.traction.fast import TractionRule
+from ..traction.fast import TractionRule
 
 
 class Ball(NamedTuple):

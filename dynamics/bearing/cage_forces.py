@@ -7,19 +7,19 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from bearingsim.dynamics._speed.compile_policy import KERNEL, NO_REFCOUNT
-from bearingsim.dynamics.journal.hybrid import (
+from .._speed.compile_policy import KERNEL, NO_REFCOUNT
+from ..journal.hybrid import (
     J_OUT_CONTACT_AZIMUTH, J_OUT_DF_DOMEGA_CAGE, J_OUT_DF_DPOS, J_OUT_DF_DVEL,
     J_OUT_DT_DOMEGA_CAGE, J_OUT_DT_DPOS, J_OUT_DT_DVEL, J_OUT_EPS, J_OUT_FILM_POWER, J_OUT_FORCE,
     J_OUT_FRICTION_POWER, J_OUT_METAL_FORCE, J_OUT_MIN_FILM, J_OUT_TORQUE, cage_race_journal_into,
 )
-from bearingsim.dynamics.contact.pocket import (
+from ..contact.pocket import (
     P_MU, P_OUT_APPROACH, P_OUT_DFN_DDELTA, P_OUT_DFN_DRATE, P_OUT_FN, P_OUT_FORCE_BALL,
     P_OUT_FORCE_CAGE, P_OUT_FRICTION_POWER, P_OUT_IN_CONTACT, P_OUT_MOMENT_BALL,
     P_OUT_MOMENT_CAGE, P_OUT_NORMAL, P_OUT_ORBITAL_POSITION, P_OUT_POINT, P_OUT_SLIDING_SPEED,
     P_V_REG, _pocket_contact_into,
 )
-from bearingsim.dynamics.multibody.small import eye3, outer
+from ..multibody.small import eye3, outer
 
 from .channels import (
     DB_POCKET, DB_POCKET_APPROACH, DB_POCKET_FRICTION_POWER, DB_POCKET_IN_CONTACT, DB_POCKET_ORBITAL,

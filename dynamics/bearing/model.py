@@ -14,13 +14,13 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
-from bearingsim.dynamics._speed.compile_policy import FIRST_CLASS, INTERNAL, KERNEL
-from bearingsim.dynamics.contact.pocket import N_POCKET_OUT, P_BALL_RADIUS, P_POCKET_RADIUS
-from bearingsim.dynamics.journal.hybrid import N_JOURNAL_OUT
-from bearingsim.dynamics.journal.squeeze_film import N_SQUEEZE_OUT
-from bearingsim.dynamics.multibody.compiled import CompiledProblem, KernelFunction
-from bearingsim.dynamics.multibody.joints import prescribe_velocity_blocks
-from bearingsim.dynamics.multibody.linear_solvers import BlockArrowMatrix, assemble_iteration_blocks
+from .._speed.compile_policy import FIRST_CLASS, INTERNAL, KERNEL
+from ..contact.pocket import N_POCKET_OUT, P_BALL_RADIUS, P_POCKET_RADIUS
+from ..journal.hybrid import N_JOURNAL_OUT
+from ..journal.squeeze_film import N_SQUEEZE_OUT
+from ..multibody.compiled import CompiledProblem, KernelFunction
+from ..multibody.joints import prescribe_velocity_blocks
+from ..multibody.linear_solvers import BlockArrowMatrix, assemble_iteration_blocks
 
 from . import channels, layout
 from .assembly import bearing_tangents, evaluate_bearing, mass_diagonal
@@ -289,7 +289,7 @@ class BearingModel:
         the force and tangent kernels are not compiled, only typed
         (`multibody.compiled.compile_loop`). The accepted-step hook is compiled (or loaded) either
         way: it is small and goes with the loop, so the process that compiles the loop ahead of a
-        machine's first run compiles it too (pipeline/compile_ahead.py)."""
+        machine's first run compiles it too (pipeline/cli/compile_ahead.py)."""
         rows = np.array([layout.spin_row(self.params.ball_count)], dtype=np.int64)
         K, C = self._blocks
         # one kernel for the tangent calls and Newton's residual-only calls (want_tangent at run time)

@@ -1,6 +1,6 @@
 """Physics switches and contact parameters of the bearing model: the scene's `[physics]` table.
 
-The scene loader builds this class straight from `[physics]` (pipeline/scene_sections.py),
+The scene loader builds this class straight from `[physics]` (pipeline/scene/sections.py),
 so the field metadata below (unit, range, choices, doc) is the one definition of every
 physics key; docs/scenes.md is generated from it. SI units.
 """
@@ -9,8 +9,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from bearingsim.dynamics.field_checks import check_fields
-from bearingsim.dynamics.traction.laws import LAWS
+from ..field_checks import check_fields
+from ..traction.laws import LAWS
 
 
 @dataclass(frozen=True)

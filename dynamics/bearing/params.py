@@ -8,10 +8,10 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from bearingsim.dynamics.geometry import BearingGeometry, CageGeometry, Material, effective_modulus
-from bearingsim.dynamics.operating_point import OperatingPoint
-from bearingsim.dynamics.traction.fast import TractionRule, unused_traction_rule
-from bearingsim.dynamics.traction.laws import EYRING, LAWS
+from ..geometry import BearingGeometry, CageGeometry, Material, effective_modulus
+from ..operating_point import OperatingPoint
+from ..traction.fast import TractionRule, unused_traction_rule
+from ..traction.laws import EYRING, LAWS
 
 from . import layout
 from .bundles import HingeArrays, RaceTables
@@ -155,7 +155,7 @@ def build_model_params(
         elif law.film:
             raise ValueError(f"{options.traction} traction needs the EHD film (ehd_film = True)")
         if law.film:
-            from bearingsim.dynamics.traction.fast import FastTraction
+            from ..traction.fast import FastTraction
 
             fast = FastTraction.build(lubricant)
             if law.code != EYRING:
@@ -166,7 +166,7 @@ def build_model_params(
     pocket, journal, psi, clearance = np.zeros(1), np.zeros(1), np.zeros(Z), float("nan")
     if cage is not None:
         pocket, journal, clearance = _cage_params(bearing, cage, ball, race, cage_material, lubricant, options, fp, ip)
-        from bearingsim.dynamics.contact.pocket import pocket_azimuths
+        from ..contact.pocket import pocket_azimuths
 
         psi = pocket_azimuths(Z, cage.pocket_index_errors, 0.5 * cage.mean_diameter)
     if hinge is not None:
@@ -189,8 +189,8 @@ def build_model_params(
 
 
 def _cage_params(bearing, cage, ball, race, cage_material, lubricant, options, fp, ip):
-    from bearingsim.dynamics.journal.hybrid import journal_parameters_for_cage
-    from bearingsim.dynamics.contact.pocket import pocket_parameters_for_cage
+    from ..journal.hybrid import journal_parameters_for_cage
+    from ..contact.pocket import pocket_parameters_for_cage
 
     if cage_material is None:
         raise ValueError("a bearing with a cage needs the cage material (materials.cage)")

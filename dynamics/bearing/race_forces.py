@@ -16,16 +16,16 @@ import math
 import numba
 import numpy as np
 
-from bearingsim.dynamics._speed.compile_policy import NO_REFCOUNT
-from bearingsim.dynamics.contact.hertz import TAB_KH, hermite, table_position
-from bearingsim.dynamics.contact.race import (
+from .._speed.compile_policy import NO_REFCOUNT
+from ..contact.hertz import TAB_KH, hermite, table_position
+from ..contact.race import (
     OUT_ALPHA, OUT_DELTA, OUT_EX, OUT_EY, OUT_LEVER, OUT_N, OUT_P, OUT_SLIDE, OUT_SPIN,
     OUT_SRR, OUT_U_SUM, ball_race_contact_kernel,
 )
-from bearingsim.dynamics.lubrication.film import FILM_BATCH_ROWS, film_central_nvm_terms, film_hamrock_dowson
-from bearingsim.dynamics.traction import laws
-from bearingsim.dynamics.traction.fast import traction_fast
-from bearingsim.dynamics.traction.laws.coulomb import coulomb_traction
+from ..lubrication.film import FILM_BATCH_ROWS, film_central_nvm_terms, film_hamrock_dowson
+from ..traction import laws
+from ..traction.fast import traction_fast
+from ..traction.laws.coulomb import coulomb_traction
 
 from .bundles import ContactScratch
 from .channels import Channel, RowLayout

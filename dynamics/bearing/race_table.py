@@ -17,11 +17,11 @@ import math
 import numba
 import numpy as np
 
-from bearingsim.dynamics._speed.compile_policy import NO_REFCOUNT
-from bearingsim.dynamics.contact.hertz import (
+from .._speed.compile_policy import NO_REFCOUNT
+from ..contact.hertz import (
     TAB_CA, TAB_CB, TAB_DCA, TAB_DCB, TAB_DKH, TAB_KH, TABLE_COLUMNS, race_hertz_table,
 )
-from bearingsim.dynamics.lubrication.film import nvm_geometry_terms
+from ..lubrication.film import nvm_geometry_terms
 
 TAB_FILM = TABLE_COLUMNS  # first film column
 N_FILM_TERMS = 6          # R_x and the five terms of film.nvm_geometry_terms

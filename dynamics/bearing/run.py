@@ -13,10 +13,10 @@ from typing import Callable, NamedTuple
 
 import numpy as np
 
-from bearingsim.dynamics.multibody.crv import crv_from_rotation_vector, crv_to_matrix
-from bearingsim.dynamics.multibody.compiled import compile_loop, integrate_compiled
-from bearingsim.dynamics.multibody.results import IntegrationError
-from bearingsim.dynamics.multibody.settings import HHTSettings
+from ..multibody.crv import crv_from_rotation_vector, crv_to_matrix
+from ..multibody.compiled import compile_loop, integrate_compiled
+from ..multibody.results import IntegrationError
+from ..multibody.settings import HHTSettings
 
 from . import layout
 from .channels import declared as declared_channels, read as read_channel
@@ -160,7 +160,7 @@ def simulate_bearing(params: BearingModelParams, start: dict, settings: HHTSetti
 def load_kernels(params: BearingModelParams, start: dict, settings: HHTSettings) -> None:
     """Compile (or load from numba's cache) every kernel a run of `params` calls, with the
     first steps of the run (`warm_up_compiled_loop`). The caller may hold a lock around it so
-    that processes sharing a cache compile once (pipeline.kernel_cache), and times it."""
+    that processes sharing a cache compile once (pipeline.machine.kernel_cache), and times it."""
     params = params.with_float32_residual()
     model = BearingModel(params)
     q0, v0 = initial_coordinates(params, start)

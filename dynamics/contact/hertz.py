@@ -23,7 +23,7 @@ import math
 import numba
 import numpy as np
 
-from bearingsim.dynamics._speed.compile_policy import KERNEL, NO_REFCOUNT
+from .._speed.compile_policy import KERNEL, NO_REFCOUNT
 
 # Columns of a Hertz table row (value, d/dα pairs for cubic Hermite interpolation).
 TAB_KH, TAB_DKH, TAB_KAPPA, TAB_DKAPPA, TAB_CA, TAB_DCA, TAB_CB, TAB_DCB = range(8)

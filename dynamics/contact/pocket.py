@@ -40,7 +40,7 @@ import math
 import numba
 import numpy as np
 
-from bearingsim.dynamics._speed.compile_policy import KERNEL, NO_REFCOUNT
+from .._speed.compile_policy import KERNEL, NO_REFCOUNT
 
 # --- parameter vector layout -----------------------------------------------------------
 P_BALL_RADIUS = 0  # r_b [m]
@@ -308,7 +308,7 @@ def pocket_parameters(*, ball_diameter: float, pocket_diameter: float, pitch_rad
 def pocket_parameters_for_cage(bearing, cage, ball_material, cage_material, *, restitution: float,
                                friction_coefficient: float, **options) -> np.ndarray:
     """`pocket_parameters` from dynamics.geometry objects (D, d_p, d_c/2, run-out, E' ball–cage)."""
-    from bearingsim.dynamics.geometry import effective_modulus
+    from ..geometry import effective_modulus
 
     return pocket_parameters(
         ball_diameter=bearing.ball_diameter, pocket_diameter=cage.pocket_diameter,

@@ -41,7 +41,7 @@ import math
 import numba
 import numpy as np
 
-from bearingsim.dynamics._speed.compile_policy import NO_REFCOUNT
+from .._speed.compile_policy import NO_REFCOUNT
 
 OUT_DELTA = 0  # δ [m]
 OUT_ALPHA = 1  # α [rad]

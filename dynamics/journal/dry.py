@@ -16,7 +16,7 @@ import math
 
 import numba
 
-from bearingsim.dynamics._speed.compile_policy import KERNEL
+from .._speed.compile_policy import KERNEL
 
 # Palmgren's power law is an empirical fit for steel on steel (Palmgren, Ball and Roller
 # Bearing Engineering, 3rd ed., 1959; quoted with Lundberg's formula in Harris & Kotzalas,

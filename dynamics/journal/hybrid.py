@@ -42,9 +42,9 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
-from bearingsim.dynamics._speed.compile_policy import KERNEL
-from bearingsim.dynamics.journal.dry import lundberg_load
-from bearingsim.dynamics.journal.squeeze_film import N_SQUEEZE_OUT, squeeze_film_force
+from .._speed.compile_policy import KERNEL
+from .dry import lundberg_load
+from .squeeze_film import N_SQUEEZE_OUT, squeeze_film_force
 
 # --- parameter vector layout -----------------------------------------------------------
 J_RADIUS = 0  # R, land radius [m]
@@ -406,7 +406,7 @@ def journal_parameters_for_cage(bearing, cage, cage_material, race_material, *, 
 
     Extra keyword options (eps0, mode, ...) pass through unchanged.
     """
-    from bearingsim.dynamics.geometry import effective_modulus
+    from ..geometry import effective_modulus
 
     geometry = JournalGeometry(radius=0.5 * cage.guide_land_diameter(bearing),
                                length=cage.guide_land_length(bearing), clearance=cage.guide_clearance(bearing),

@@ -38,7 +38,7 @@ import math
 import numba
 import numpy as np
 
-from bearingsim.dynamics._speed.compile_policy import KERNEL
+from .._speed.compile_policy import KERNEL
 
 N_SQUEEZE_OUT = 10  # force (2), dF/de at fixed V (2x2 row-major), dF/dV (2x2 row-major)
 

@@ -30,8 +30,8 @@ import math
 
 import numba
 
-from bearingsim.dynamics._speed.compile_policy import KERNEL, VEC
-from bearingsim.dynamics._speed.simd_math import exp_array, log_array
+from .._speed.compile_policy import KERNEL, VEC
+from .._speed.simd_math import exp_array, log_array
 
 
 @numba.njit(**KERNEL)

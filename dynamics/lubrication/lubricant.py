@@ -20,7 +20,7 @@ from importlib import resources
 
 import numpy as np
 
-from bearingsim.dynamics.lubrication import rheology
+from . import rheology
 
 KELVIN_OFFSET = 273.15
 

@@ -29,7 +29,7 @@ import math
 import numba
 import numpy as np
 
-from bearingsim.dynamics._speed.compile_policy import KERNEL
+from .._speed.compile_policy import KERNEL
 
 MODEL_BARUS = 0
 MODEL_ROELANDS = 1

@@ -7,7 +7,7 @@ The names below load their module on first use, so that the scene loader, which 
 integrator's `HHTSettings` from `[solver]`, imports neither numba nor the kernels.
 """
 
-from bearingsim.dynamics._lazy import lazy_exports
+from .._lazy import lazy_exports
 
 _EXPORTS = {
     "HingeStiffness": ".hinge", "hinge_energy": ".hinge", "hinge_forces": ".hinge", "hinge_strains": ".hinge",

@@ -54,7 +54,7 @@ import numba
 import numpy as np
 from numba.core import types as nbtypes
 
-from bearingsim.dynamics._speed.compile_policy import INTERNAL, KERNEL, NO_REFCOUNT
+from .._speed.compile_policy import INTERNAL, KERNEL, NO_REFCOUNT
 
 from .buffers import zeroed
 from .hht import NEWTON_CONVERGED, NEWTON_DIVERGED, hht_residual, newmark_kinematics, newton_verdict, \

@@ -24,7 +24,7 @@ import math
 import numba
 import numpy as np
 
-from bearingsim.dynamics._speed.compile_policy import KERNEL
+from .._speed.compile_policy import KERNEL
 
 # Below this |theta| [rad] the series of 4 tan(x/4)/x is used (its next term is x^4/1280).
 _SMALL_ANGLE = 1e-4

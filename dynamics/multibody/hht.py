@@ -19,7 +19,7 @@ import math
 import numba
 import numpy as np
 
-from bearingsim.dynamics._speed.compile_policy import KERNEL
+from .._speed.compile_policy import KERNEL
 
 from .crv import update_configuration
 from .newton import IterationMatrix

@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 import numba
 import numpy as np
 
-from bearingsim.dynamics._speed.compile_policy import KERNEL
+from .._speed.compile_policy import KERNEL
 
 from .crv import skew
 from .small import add_into, copy_into, mm, mtv, mtv3, mv, outer

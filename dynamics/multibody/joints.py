@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import numba
 
-from bearingsim.dynamics._speed.compile_policy import KERNEL
+from .._speed.compile_policy import KERNEL
 
 from .linear_solvers import BlockArrowMatrix
 

@@ -29,7 +29,7 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
-from bearingsim.dynamics._speed.compile_policy import KERNEL, NO_REFCOUNT, WITH_REFCOUNT
+from .._speed.compile_policy import KERNEL, NO_REFCOUNT, WITH_REFCOUNT
 
 from .small import copy_into
 

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import numba
 
-from bearingsim.dynamics._speed.compile_policy import KERNEL
+from .._speed.compile_policy import KERNEL
 
 from .results import SolverStats
 from .settings import HHTSettings, JacobianReuse

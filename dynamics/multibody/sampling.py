@@ -20,7 +20,7 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
-from bearingsim.dynamics._speed.compile_policy import KERNEL
+from .._speed.compile_policy import KERNEL
 
 from .crv import update_configuration
 

@@ -1,7 +1,7 @@
 """Numerical settings of the HHT-α integrator (docs/model.md §9), validated on construction.
 
 The scene's `[solver]` table is built straight into these settings (plus the run's
-`duration`, pipeline/scene_sections.py): the field metadata below (unit, range, choices,
+`duration`, pipeline/scene/sections.py): the field metadata below (unit, range, choices,
 doc) is the one definition of every solver key, and docs/scenes.md is generated from it.
 """
 
@@ -10,7 +10,7 @@ from __future__ import annotations
 import enum
 from dataclasses import dataclass, field
 
-from bearingsim.dynamics.field_checks import check_fields
+from ..field_checks import check_fields
 
 
 class JacobianReuse(enum.StrEnum):

@@ -21,7 +21,7 @@ import math
 
 import numba
 
-from bearingsim.dynamics._speed.compile_policy import KERNEL
+from .._speed.compile_policy import KERNEL
 
 from .settings import HHTSettings
 

@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from bearingsim.dynamics.journal.hybrid import ocvirk_force
+from ..journal.hybrid import ocvirk_force
 
 
 @dataclass(frozen=True)

@@ -22,8 +22,8 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
-from bearingsim.dynamics._speed.compile_policy import KERNEL
-from bearingsim.dynamics.contact.hertz import hertz_table_eval
+from .._speed.compile_policy import KERNEL
+from ..contact.hertz import hertz_table_eval
 
 
 class Grooves(NamedTuple):

@@ -12,9 +12,9 @@ kinematics with race control, updated by fixed-point passes until they settle.
 
 Example::
 
-    from bearingsim.dynamics.geometry import BearingGeometry, Material
-    from bearingsim.dynamics.operating_point import OperatingPoint
-    from bearingsim.dynamics.quasistatic.solver import solve_quasistatic
+    from ..geometry import BearingGeometry, Material
+    from ..operating_point import OperatingPoint
+    from .solver import solve_quasistatic
     res = solve_quasistatic(geometry, steel, steel,
                             OperatingPoint(axial=34000.0, moment=430.0, inner_speed=320.4))
 """
@@ -26,15 +26,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from bearingsim.dynamics.geometry import BearingGeometry, Material, effective_modulus
-from bearingsim.dynamics.contact.hertz import (DEFAULT_TABLE_NODES, TAB_DKH, TAB_KH, hertz_table_eval, max_pressure,
+from ..geometry import BearingGeometry, Material, effective_modulus
+from ..contact.hertz import (DEFAULT_TABLE_NODES, TAB_DKH, TAB_KH, hertz_table_eval, max_pressure,
                             race_hertz_table)
-from bearingsim.dynamics.quasistatic.kernels import (BALL_COLUMNS, B_AI, B_AO, B_DI, B_DO, B_FR, B_FZ, B_QI, B_QO,
+from .kernels import (BALL_COLUMNS, B_AI, B_AO, B_DI, B_DO, B_FR, B_FZ, B_QI, B_QO,
                                           B_STATUS, STATUS_FAILED, BallLoads, Grooves, ball_kinematics,
                                           bearing_equilibrium)
-from bearingsim.dynamics.operating_point import OperatingPoint
-from bearingsim.dynamics.quasistatic.options import QuasiStaticOptions
-from bearingsim.dynamics.quasistatic.result import QuasiStaticResult, tilt_rotation_matrix
+from ..operating_point import OperatingPoint
+from .options import QuasiStaticOptions
+from .result import QuasiStaticResult, tilt_rotation_matrix
 
 
 class QuasiStaticError(RuntimeError):

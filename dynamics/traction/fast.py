@@ -54,14 +54,14 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
-from bearingsim.dynamics.lubrication import rheology
-from bearingsim.dynamics.traction import laws
-from bearingsim.dynamics.traction.laws import dispatch
-from bearingsim.dynamics._speed.aligned import CACHE_LINE, empty_aligned
-from bearingsim.dynamics._speed.compile_policy import KERNEL, NO_REFCOUNT, VEC, VEC_UNFUSED
-from bearingsim.dynamics._speed.simd_math import log_array, log_array32
-from bearingsim.dynamics._speed.table_lookup import last_position32, lerp_picked32, pick_rows, split_position32
-from bearingsim.dynamics.traction.nodes import max_nodes, pack_rule, place_nodes
+from ..lubrication import rheology
+from . import laws
+from .laws import dispatch
+from .._speed.aligned import CACHE_LINE, empty_aligned
+from .._speed.compile_policy import KERNEL, NO_REFCOUNT, VEC, VEC_UNFUSED
+from .._speed.simd_math import log_array, log_array32
+from .._speed.table_lookup import last_position32, lerp_picked32, pick_rows, split_position32
+from .nodes import max_nodes, pack_rule, place_nodes
 
 FLAG_OK = 0
 FLAG_PRESSURE_CLAMPED = 1

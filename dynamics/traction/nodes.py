@@ -38,7 +38,7 @@ import math
 import numba
 import numpy as np
 
-from bearingsim.dynamics._speed.compile_policy import VEC
+from .._speed.compile_policy import VEC
 
 ANGLE_MAP_BETA = 0.3  # strength of the 4-fold angular stretch of the inside rule
 

@@ -34,10 +34,10 @@ import math
 import numba
 import numpy as np
 
-from bearingsim.dynamics._speed.compile_policy import KERNEL
-from bearingsim.dynamics.lubrication import rheology
-from bearingsim.dynamics.traction import laws
-from bearingsim.dynamics.traction.laws import dispatch
+from .._speed.compile_policy import KERNEL
+from ..lubrication import rheology
+from . import laws
+from .laws import dispatch
 
 @numba.njit(**KERNEL)
 def traction_on_grid(a, b, h, tau0, du0, dv0, w_s, eta_u, grid, law=laws.EYRING):

@@ -22,7 +22,7 @@ def new_figure(**kwargs):
 
 
 def save_png(fig, path: Path, dpi: int = 110) -> None:
-    from ..artefacts import atomic_write_bytes
+    from ..staging.artefacts import atomic_write_bytes
 
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=dpi)

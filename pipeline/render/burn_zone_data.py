@@ -153,8 +153,8 @@ def outer_contact_points(ball_xyz: np.ndarray, outer_angle: np.ndarray,
 def outer_semi_major_axis(bearing, ball, race, outer_angle: np.ndarray, outer_load: np.ndarray) -> np.ndarray:
     """Hertz semi-major axis a = c_a(alpha) Q^{1/3} [m] of the ball–outer contacts, along
     the groove (§6.2, exact constants tabulated in alpha by `dynamics.contact.hertz`)."""
-    from bearingsim.dynamics.geometry import effective_modulus
-    from bearingsim.dynamics.contact.hertz import race_hertz_table, semi_axis_coefficients
+    from ...dynamics.geometry import effective_modulus
+    from ...dynamics.contact.hertz import race_hertz_table, semi_axis_coefficients
 
     table = race_hertz_table(bearing, effective_modulus(ball, race), outer=True)
     c_a, _ = semi_axis_coefficients(table, np.ascontiguousarray(outer_angle, dtype=float))

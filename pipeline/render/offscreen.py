@@ -1,7 +1,7 @@
 """The VTK/pyvista edge of the renderers: import on demand, off-screen by default.
 
 VTK loads EGL and Mesa's DRI driver at import and segfaults rather than raising when they
-are missing, so `pyvista_offscreen` checks them first (`pipeline.system_libraries`).
+are missing, so `pyvista_offscreen` checks them first (`pipeline.machine.system_libraries`).
 Every render is drawn off-screen at a fixed window size; an interactive window is opened
 only on request and only when a display exists (`DISPLAY` or `WAYLAND_DISPLAY`).
 """
@@ -13,7 +13,7 @@ import os
 from pathlib import Path
 from typing import Callable
 
-from ..artefacts import atomic_write_bytes
+from ..staging.artefacts import atomic_write_bytes
 
 WINDOW_SIZE = (1600, 900)  # px; fixed so that renders of two runs compare pixel for pixel
 
@@ -25,7 +25,7 @@ def display_available() -> bool:
 
 def pyvista_offscreen():
     """Import pyvista for off-screen rendering, after checking VTK's system libraries."""
-    from ..system_libraries import require_libraries
+    from ..machine.system_libraries import require_libraries
 
     require_libraries("vtk")
     import pyvista

@@ -91,7 +91,7 @@ def _units(mesh, units: dict[str, str]) -> None:
 
 def write_pvd(path: Path, entries: list[tuple[float, str]]) -> None:
     """A ParaView collection: one (time [s], file relative to `path`) per frame."""
-    from ..artefacts import atomic_write_text
+    from ..staging.artefacts import atomic_write_text
 
     rows = "".join(f'    <DataSet timestep="{t:.9g}" group="" part="0" file={quoteattr(f)}/>\n' for t, f in entries)
     atomic_write_text(path, '<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">\n'

@@ -331,7 +331,7 @@ def provenance_section(run_dir: Path, stage_dirs: dict[str, Path]) -> str:
 def write_report_html(path: Path, scene, run_dir: Path, stage_dirs: dict[str, Path], out_dir: Path,
                       fe_records: list[dict], burn: dict | None, evidence: dict | None = None) -> None:
     """Assemble and write the page (atomically)."""
-    from ..artefacts import atomic_write_text
+    from ..staging.artefacts import atomic_write_text
 
     sim = stage_dirs.get("simulate")
     summary = _read_json(sim / "summary.json") if sim else None

@@ -22,7 +22,7 @@ from typing import Callable
 
 import numpy as np
 
-from ..artefacts import atomic_write_json
+from ..staging.artefacts import atomic_write_json
 from ..results.timeseries import Series
 
 REPORT_FILE = "report.html"
@@ -239,7 +239,7 @@ def fe_renders(scene, identify_dir: Path | None, out_dir: Path, show: bool,
     from concurrent.futures import ProcessPoolExecutor
     from concurrent.futures.process import BrokenProcessPool
 
-    from ..cores import usable_cores
+    from ..machine.cores import usable_cores
 
     if identify_dir is None:
         yield lambda: []

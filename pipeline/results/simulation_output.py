@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..artefacts import atomic_write_text
+from ..staging.artefacts import atomic_write_text
 from .cage_metrics import DEFAULT_LAND_ROUGHNESS, CageSeries, GuideLand, PocketImpacts, cage_summary
 from .summary_keys import summary_units
 from .verdict import cage_verdict
@@ -70,7 +70,7 @@ def write_simulation_results(out_dir: Path, scene, params, start, run, wall_time
                              quasistatic: dict | None = None) -> dict:
     """Write all files of the simulate stage; return the summary dict. `quasistatic`: the
     quasi-static stage's result, whose crush screen the summary repeats."""
-    from ..provenance import package_version
+    from ..staging.provenance import package_version
 
     series = collect_series(run, params)
     # timeseries.h5 is written in a thread while the summary and figures are computed: its gzip

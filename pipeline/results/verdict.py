@@ -2,7 +2,7 @@
 
 One dict built from the summary metrics of the settled window
 (`pipeline.results.cage_metrics`): the cage-motion class and risk level
-(`pipeline.sweep.classify`, default thresholds), the loaded sector of the land, the
+(`pipeline.scene.cage_classes`, default thresholds), the loaded sector of the land, the
 thinnest land film (when, where, and its ratio to the roughness), metal contact, whirl, the
 pocket impacts and a one-sentence `text`. Angles are in degrees, azimuth from +x towards
 +y in the scene's (global) frame; films in µm; forces in N. The raw SI keys stay in
@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import math
 
-from ..sweep.classify import CageClassThresholds, classify_cage, risk_level
+from ..scene.cage_classes import CageClassThresholds, classify_cage, risk_level
 
 LAND_NAMES = {"outer": "outer-race land", "inner": "inner-race land"}
 

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ..runner import Stage
+from ..staging.runner import Stage
 from .identify import STAGE as IDENTIFY
 from .quasistatic import STAGE as QUASISTATIC
 from .report import STAGE as REPORT

@@ -8,9 +8,9 @@ from __future__ import annotations
 
 import dataclasses
 
-from ..runner import Stage, StageContext
-from ..scene import Scene
-from ..schema import SceneError
+from ..staging.runner import Stage, StageContext
+from ..scene.load import Scene
+from ..scene.schema import SceneError
 
 HINGE_FILE = "hinge.toml"
 RING_KEYS = ("inner_bore_diameter", "inner_shoulder_diameter", "outer_outside_diameter", "width")
@@ -20,7 +20,7 @@ def ring_seat(scene: Scene):
     """The bearing dimensions the FE geometry needs, as fe_model's plain-number type: the
     drawing dimensions (the housing's own thermal growth is not modelled, so neither is the
     rings')."""
-    from bearingsim.fe_model import RingSeat
+    from ...fe_model import RingSeat
 
     b = scene.nominal.bearing
     missing = [k for k in RING_KEYS if getattr(b, k) is None]
@@ -44,9 +44,9 @@ def identify_inputs(scene: Scene) -> dict:
 
 
 def compute(ctx: StageContext) -> dict:
-    from bearingsim.fe_model import identify_hinge
+    from ...fe_model import identify_hinge
 
-    from ..system_libraries import require_libraries
+    from ..machine.system_libraries import require_libraries
 
     require_libraries("gmsh")
     ring = ring_seat(ctx.scene)

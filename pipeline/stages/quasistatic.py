@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import dataclasses
 
-from ..artefacts import atomic_write_json
-from ..quasistatic_solution import cage_screen, land_shift, screen_payload, solve  # noqa: F401 - used by bench, tests
-from ..runner import Stage, StageContext
-from ..scene import Scene
+from ..staging.artefacts import atomic_write_json
+from ..quasistatic.solution import cage_screen, land_shift, screen_payload, solve  # noqa: F401 - used by bench, tests
+from ..staging.runner import Stage, StageContext
+from ..scene.load import Scene
 
 RESULT_FILE = "quasistatic.json"
 FIGURE_FILE = "load_distribution.png"
@@ -40,10 +40,10 @@ def quasistatic_inputs(scene: Scene) -> dict:
 def compute(ctx: StageContext) -> dict:
     from ..figures.worker import draw
 
-    from ..kernel_cache import ensure_compiled
+    from ..machine.kernel_cache import ensure_compiled
 
     ctx.progress("solving equilibrium", 0.0)
-    solved = []  # on a cold cache the first solve compiles, once per machine (pipeline.kernel_cache)
+    solved = []  # on a cold cache the first solve compiles, once per machine (pipeline.machine.kernel_cache)
     ensure_compiled(ctx.scene, lambda: solved.append(solve(ctx.scene)), "quasistatic")
     result = solved[0] if solved else solve(ctx.scene)
     payload = result.to_json_dict()
@@ -52,7 +52,7 @@ def compute(ctx: StageContext) -> dict:
         payload["cage_screen"] = screen
     tolerance = None
     if ctx.scene.tolerances is not None and screen is not None:
-        from ..tolerances import analyse, summary, write_samples_csv
+        from ..quasistatic.tolerances import analyse, summary, write_samples_csv
 
         ctx.progress(f"crush probability over {ctx.scene.tolerances.samples} tolerance stacks", 0.4)
         tolerance = analyse(ctx.scene)

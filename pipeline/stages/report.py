@@ -19,7 +19,7 @@ import dataclasses
 import logging
 from pathlib import Path
 
-from ..runner import Stage, StageContext, StageOutcome
+from ..staging.runner import Stage, StageContext, StageOutcome
 
 class StageResultsDamaged(ValueError):
     """A finished stage's files changed or went missing since it wrote them: `render` shows
@@ -54,7 +54,7 @@ STAGE = Stage(
 def finished_upstream(run_dir: Path) -> dict[str, str]:
     """name -> key of the upstream stages that finished in `run_dir` (manifest status done).
     StageResultsDamaged when a file of one of them changed or is missing since it was written."""
-    from ..artefacts import cache_state, read_manifest
+    from ..staging.artefacts import cache_state, read_manifest
 
     keys = {}
     for name in STAGE.depends:
@@ -76,8 +76,8 @@ def render_run(run_dir: Path, show: bool = False, progress=None) -> StageOutcome
 
     Raises FileNotFoundError when `run_dir` holds no scene.toml or no finished stage.
     """
-    from ..runner import compute_stage, stage_key
-    from ..scene import load_scene
+    from ..staging.runner import compute_stage, stage_key
+    from ..scene.load import load_scene
 
     run_dir = Path(run_dir)
     scene_file = run_dir / "scene.toml"

@@ -11,9 +11,9 @@ import time
 
 import numpy as np
 
-from ..artefacts import atomic_write_json
-from ..runner import Stage, StageContext
-from ..scene import Scene
+from ..staging.artefacts import atomic_write_json
+from ..staging.runner import Stage, StageContext
+from ..scene.load import Scene
 from .identify import HINGE_FILE
 
 TIMESERIES_FILE = "timeseries.h5"
@@ -37,7 +37,7 @@ def hinge_matrices(scene: Scene, identify_dir) -> tuple | None:
         return None
     if h.source == "given":
         return np.array(h.stiffness_matrix()), np.array(h.bending), h.damping_ratio_time
-    from bearingsim.fe_model import read_hinge
+    from ...fe_model import read_hinge
 
     H_u, H_psi, _ = read_hinge(identify_dir / HINGE_FILE)
     return np.asarray(H_u, float), np.asarray(H_psi, float), h.damping_ratio_time
@@ -45,7 +45,7 @@ def hinge_matrices(scene: Scene, identify_dir) -> tuple | None:
 
 def check_dynamic_physics(scene: Scene) -> None:
     """Refuse the `[physics]` keys the dynamic run cannot honour, naming the key."""
-    from ..schema import SceneError
+    from ..scene.schema import SceneError
 
     if not scene.physics.centrifugal:
         raise SceneError("physics.centrifugal", "false acts only on the quasi-static solve: the dynamic "
@@ -58,7 +58,7 @@ def check_dynamic_physics(scene: Scene) -> None:
 
 def build_model(scene: Scene, identify_dir=None):
     """(model parameters, quasi-static start) for `scene` — shared with `bench`."""
-    from bearingsim.dynamics.quasistatic.result import initial_state
+    from ...dynamics.quasistatic.result import initial_state
 
     from .quasistatic import solve
 
@@ -70,9 +70,9 @@ def build_model(scene: Scene, identify_dir=None):
 def model_params(scene: Scene, identify_dir, static_x, static_R):
     """The dynamic model's parameters of `scene`, with the inner race's static position
     static_x [m] and rotation static_R (the quasi-static solution's)."""
-    from bearingsim.dynamics.bearing import build_model_params
+    from ...dynamics.bearing import build_model_params
 
-    from ..quasistatic_solution import operating_point
+    from ..quasistatic.solution import operating_point
 
     s, m = scene, scene.materials
     return build_model_params(
@@ -100,9 +100,9 @@ def compile_dynamic_kernels(scene: Scene, params, start) -> None:
     kernel and the time loop under their own lock (which a `compile_ahead` child may hold,
     compiling them meanwhile), then the first steps of the run, with everything compiled. Each
     of the three compiles apart from the others: they call each other as first-class functions."""
-    from bearingsim.dynamics.bearing.run import compile_force_kernel_and_loop, compile_tangent_kernel, load_kernels
+    from ...dynamics.bearing.run import compile_force_kernel_and_loop, compile_tangent_kernel, load_kernels
 
-    from ..kernel_cache import ensure_compiled, force_configuration, tangent_configuration
+    from ..machine.kernel_cache import ensure_compiled, force_configuration, tangent_configuration
 
     ensure_compiled(scene, lambda: compile_tangent_kernel(params), tangent_configuration(scene))
     ensure_compiled(scene, lambda: compile_force_kernel_and_loop(params, scene.solver), force_configuration(scene))
@@ -110,16 +110,16 @@ def compile_dynamic_kernels(scene: Scene, params, start) -> None:
 
 
 def compute(ctx: StageContext) -> dict:
-    from bearingsim.dynamics.bearing import simulate_bearing
+    from ...dynamics.bearing import simulate_bearing
 
     from ..results.simulation_output import write_simulation_results
 
-    from ..kernel_cache import ensure_compiled
+    from ..machine.kernel_cache import ensure_compiled
 
     scene = ctx.scene
     ctx.progress("quasi-static start", 0.0)
     params, start = build_model(scene, ctx.upstream.get("identify"))
-    # on a cold cache: compile once per machine, other processes wait and load (pipeline.kernel_cache)
+    # on a cold cache: compile once per machine, other processes wait and load (pipeline.machine.kernel_cache)
     ctx.progress("loading the force kernels", 0.0)
     compile_seconds = ensure_compiled(scene, lambda: compile_dynamic_kernels(scene, params, start))
     wall0 = time.perf_counter()

@@ -18,8 +18,8 @@ def claim_study_directory(out_dir) -> None:
     file of the user's named stability.md, say, is never replaced."""
     from pathlib import Path
 
-    from bearingsim.pipeline.artefacts import OutputRefused, mark_directory, refused_unless_usable
-    from bearingsim.pipeline.no_follow import out_name
+    from ..staging.artefacts import OutputRefused, mark_directory, refused_unless_usable
+    from ..staging.no_follow import out_name
 
     out = Path(out_dir)
     with refused_unless_usable(out):
@@ -48,7 +48,7 @@ def write_study_files(study, out_dir, stem: str, markdown: str, plot) -> list:
     import json
     from pathlib import Path
 
-    from bearingsim.pipeline.artefacts import atomic_write_text
+    from ..staging.artefacts import atomic_write_text
 
     out = Path(out_dir)
     claim_study_directory(out)

@@ -13,7 +13,7 @@ from pathlib import Path
 def run_bench(scene, identify_dir, quick: bool, out_dir: Path, with_fe: bool = True,
               progress=print) -> tuple[list[Path], str]:
     """Run the studies; returns (written files, markdown tables)."""
-    from bearingsim.pipeline.stages.simulate import build_model
+    from ..stages.simulate import build_model
 
     from . import work_precision as wp
 
@@ -23,7 +23,7 @@ def run_bench(scene, identify_dir, quick: bool, out_dir: Path, with_fe: bool = T
     paths = wp.write_study(study, Path(out_dir))
     tables = ["## Dynamics: error against wall time", "", wp.markdown_table(study)]
     if with_fe and scene.fe is not None:
-        from bearingsim.pipeline.stages.identify import ring_seat
+        from ..stages.identify import ring_seat
 
         from . import identify_precision as ip
 

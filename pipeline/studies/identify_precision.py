@@ -48,7 +48,7 @@ def mesh_grid(quick: bool, fine: bool = False) -> list[tuple[str, int, float, fl
 
 def _solve_one(config, ring, size: float, order: int, model: str) -> dict:
     """Child process: one identification; returns its convergence row and peak RSS [GB]."""
-    from bearingsim.fe_model import convergence_study
+    from ...fe_model import convergence_study
 
     with tempfile.TemporaryDirectory() as tmp:
         table = convergence_study(config, ring, [size], [order], Path(tmp), model)
@@ -59,7 +59,7 @@ def _solve_one(config, ring, size: float, order: int, model: str) -> dict:
 
 def run_identification_study(config, ring, quick: bool, progress=print, fine: bool = False) -> dict:
     """Rows (one per model, order and size) with relative errors against the Richardson value."""
-    from bearingsim.fe_model import richardson
+    from ...fe_model import richardson
 
     ctx = mp.get_context("spawn")
     rows = []
@@ -159,8 +159,8 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--fine", action="store_true", help="add the 0.00125 m P2 mesh (~90 s, ~10 GB)")
     ap.add_argument("--out", type=Path, default=Path("runs/bench"))
     args = ap.parse_args(argv)
-    from bearingsim.pipeline.scene import load_scene
-    from bearingsim.pipeline.stages.identify import ring_seat
+    from ..scene.load import load_scene
+    from ..stages.identify import ring_seat
 
     scene = load_scene(args.scene)
     if scene.fe is None:

@@ -21,8 +21,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from bearingsim.dynamics.multibody.crv import update_configuration
-from bearingsim.dynamics.multibody.linear_solvers import BlockArrowMatrix
+from ...dynamics.multibody.crv import update_configuration
+from ...dynamics.multibody.linear_solvers import BlockArrowMatrix
 
 
 class WallClockExceeded(RuntimeError):
@@ -162,8 +162,8 @@ def run_window(problem, q0, v0, settings, window: float, sample_interval: float,
 
     A problem with a compiled side runs in the compiled loop (`multibody.compiled`), as in a
     user's run, unless `exact_tangent` asks for the Python loop's finite-difference tangent."""
-    from bearingsim.dynamics.multibody import FixedIntervalSampler, IntegrationError, integrate
-    from bearingsim.dynamics.multibody.compiled import RunTrace, integrate_compiled
+    from ...dynamics.multibody import FixedIntervalSampler, IntegrationError, integrate
+    from ...dynamics.multibody.compiled import RunTrace, integrate_compiled
 
     wrapped = Instrumented(problem, exact_tangent=exact_tangent, wall_budget=wall_budget)
     # samples on [0, window): a sample exactly at the window's end can be lost to rounding
@@ -212,9 +212,9 @@ def bearing_window(params, start, settings, window: float, sample_interval: floa
 
     float32_residual: the float32 traction passes of a user's run (`simulate_bearing`); by
     default on unless `exact_tangent` (finite differences need the smooth float64 residual)."""
-    from bearingsim.dynamics.bearing import BearingModel
-    from bearingsim.dynamics.bearing.run import initial_coordinates
-    from bearingsim.dynamics.multibody.linear_solvers import BlockArrowSolver
+    from ...dynamics.bearing import BearingModel
+    from ...dynamics.bearing.run import initial_coordinates
+    from ...dynamics.multibody.linear_solvers import BlockArrowSolver
 
     params = params.with_float32_residual(not exact_tangent if float32_residual is None else float32_residual)
     model = BearingModel(params)

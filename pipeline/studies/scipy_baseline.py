@@ -12,7 +12,7 @@ import scipy.sparse as sp
 def ode_rhs(model, rotation_slots, spin_row):
     """y = (q, v) -> (q_dot, v_dot): q_dot = v except CRV slots, c_dot = H(c)^-T Omega (M.4d);
     v_dot = M^-1 g (diagonal M); the prescribed spin has v_dot = 0."""
-    from bearingsim.dynamics.multibody.crv import crv_H
+    from ...dynamics.multibody.crv import crv_H
 
     n = model.n_dof
     ma, g, zero = np.zeros(n), np.zeros(n), np.zeros(n)
@@ -39,7 +39,7 @@ def jac_sparsity(ball_count: int, has_cage: bool, rotation_slots) -> sp.csr_matr
     on the border bodies (inner race, cage), the border rows on everything. q_dot = v except
     the rotation slots of the border bodies, whose CRV rate H(c)^-T Omega depends on c and
     Omega (3x3 blocks)."""
-    from bearingsim.dynamics.bearing import layout
+    from ...dynamics.bearing import layout
 
     n = layout.n_dof(ball_count, has_cage)
     border = layout.inner_offset(ball_count)

@@ -74,8 +74,8 @@ def case_path(name: str) -> Path:
 
 def perturbed_start(params, start: dict, perturbation: dict) -> tuple[np.ndarray, np.ndarray]:
     """(q0, v0) of the quasi-static start moved away from equilibrium (see PERTURBATIONS)."""
-    from bearingsim.dynamics.bearing import layout
-    from bearingsim.dynamics.bearing.run import initial_coordinates
+    from ...dynamics.bearing import layout
+    from ...dynamics.bearing.run import initial_coordinates
 
     q0, v0 = initial_coordinates(params, start)
     Z = params.ball_count
@@ -89,7 +89,7 @@ def perturbed_start(params, start: dict, perturbation: dict) -> tuple[np.ndarray
 
 def physical_checks(params, run, q0, v0) -> dict:
     """The checks that tell a physical result from garbage; values and whether each holds."""
-    from bearingsim.dynamics.bearing import BearingModel, layout
+    from ...dynamics.bearing import BearingModel, layout
 
     model = BearingModel(params)
     q, v = run.q, run.v
@@ -142,9 +142,9 @@ def _diagnosis(history: np.ndarray) -> str:
 def run_case(name: str, window: float = DEFAULT_WINDOW, wall_budget: float = DEFAULT_WALL_BUDGET,
              sample_interval: float = 1e-5, scene_path: Path | None = None) -> CaseResult:
     """Run one case; every failure becomes a 'refused' result with its message."""
-    from bearingsim.pipeline.scene import load_scene
-    from bearingsim.pipeline.schema import SceneError
-    from bearingsim.pipeline.stages.simulate import build_model
+    from ..scene.load import load_scene
+    from ..scene.schema import SceneError
+    from ..stages.simulate import build_model
 
     from .instrumented import bearing_window
 

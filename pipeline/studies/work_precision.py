@@ -35,7 +35,7 @@ from pathlib import Path
 
 import numpy as np
 
-from bearingsim.dynamics.multibody.settings import HHTSettings
+from ...dynamics.multibody.settings import HHTSettings
 
 from . import wp_metrics as wm
 
@@ -147,8 +147,8 @@ def _run_solve_ivp(opts: dict, params, start, cfg: StudyConfig) -> dict:
     each impact there (`BearingModel.on_accepted_step`); without it the ODE is another model."""
     from scipy import integrate as si
 
-    from bearingsim.dynamics.bearing import BearingModel, layout
-    from bearingsim.dynamics.bearing.run import initial_coordinates
+    from ...dynamics.bearing import BearingModel, layout
+    from ...dynamics.bearing.run import initial_coordinates
 
     from .instrumented import WallClockExceeded
     from .scipy_baseline import jac_sparsity, ode_rhs
@@ -362,8 +362,8 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--out", type=Path, default=Path("runs/bench"))
     ap.add_argument("--set", action="append", default=[], dest="overrides")
     args = ap.parse_args(argv)
-    from bearingsim.pipeline.scene import load_scene
-    from bearingsim.pipeline.stages.simulate import build_model
+    from ..scene.load import load_scene
+    from ..stages.simulate import build_model
 
     scene = load_scene(args.scene, args.overrides)
     params, start = build_model(scene, None)

@@ -24,7 +24,7 @@ DISPLAY_SCALE = {"cage_centre": 1e6, "cage_speed": 1.0, "inner_race": 1e9, "impa
 
 def physical_series(params, q: np.ndarray, v: np.ndarray) -> dict:
     """Sampled quantities of a bearing run: cage centre (N, 2), cage speed (N,), inner race (N, 3)."""
-    from bearingsim.dynamics.bearing import layout
+    from ...dynamics.bearing import layout
 
     Z = params.ball_count
     o = layout.inner_offset(Z)
@@ -43,7 +43,7 @@ def sampled_impacts(params, t: np.ndarray, q: np.ndarray, v: np.ndarray) -> np.n
     tracker the product uses, so every method (HHT-α with any step, solve_ivp) is measured
     on the same time grid. Cost: one residual evaluation per sample.
     """
-    from bearingsim.dynamics.bearing import BearingModel
+    from ...dynamics.bearing import BearingModel
 
     model = BearingModel(params)
     n = model.n_dof

@@ -118,7 +118,7 @@ def sweep(scene, vary: Mapping[str, Any] | Iterable[str] | str, *,
     Finished points of an earlier call are reused (`retry_failed` reruns failed ones).
     """
     from ..api import override_strings
-    from ..no_follow import named_in_python
+    from ..staging.no_follow import named_in_python
     from .driver import dask_client, gather, plan_sweep, replaced_sweep, run_in_process, run_sweep, unfinished
     from .table import read_table
 

@@ -4,7 +4,7 @@ Layout of a sweep directory (`runs/<sweep name>/` by default)::
 
     sweep.json          the plan: scene, axes, points (id, label, overrides)
     points/<id>/        each point's own run directory (scene.toml, stages, point.json)
-    store/              stages shared between points, by key (pipeline.runner)
+    store/              stages shared between points, by key (pipeline.staging.runner)
     results.csv         one row per point (pipeline.sweep.table); results.parquet with pyarrow
     stability_map.png   class map with metal-contact contours (pipeline.sweep.stability_map)
 
@@ -25,14 +25,14 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable
 
-from ..artefacts import OutputRefused, atomic_write_json, mark_directory, refused_unless_usable
-from ..no_follow import out_name
-from ..scene import NAME_MAX, apply_overrides, check_name, read_scene_table, resolve
-from ..schema import SceneError
+from ..staging.artefacts import OutputRefused, atomic_write_json, mark_directory, refused_unless_usable
+from ..staging.no_follow import out_name
+from ..scene.load import NAME_MAX, apply_overrides, check_name, read_scene_table, resolve
+from ..scene.schema import SceneError
 from . import quiet_interrupt
 from .point_runner import PointRequest, finished_record, run_point
 from .points import SweepPoint, expand, point_table, scene_hash
-from .spec import MAX_POINTS, SweepSection, build_sweep_section, check_size, with_command_line
+from ..scene.sweep_section import MAX_POINTS, SweepSection, build_sweep_section, check_size, with_command_line
 from .table import result_row, short_run_warning, write_table
 
 PLAN_FILE, MAP_FILE = "sweep.json", "stability_map.png"
@@ -77,7 +77,7 @@ def plan_sweep(scene, sets: list[str] | None = None, vary: list[str] | None = No
     definition and every point; nothing is computed. A sweep of more than `max_points`
     points is refused before its points are built. `figures` (`--figures/--no-figures`)
     overrides the scene's `[sweep] figures`."""
-    from ..scene import Scene
+    from ..scene.load import Scene
 
     if isinstance(scene, Scene):
         table, origin = dict(scene.raw), getattr(scene, "_origin", "a Scene object of the Python API")

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..artefacts import atomic_write_json
+from ..staging.artefacts import atomic_write_json
 
 RECORD_FILE = "point.json"
 NO_FIGURES = "output.figures=false"  # scene override of a point whose sweep skips figures
@@ -37,7 +37,7 @@ class PointRequest:
     table: dict  # the point's validated scene table
     scene_hash: str
     run_dir: str  # must be reachable from the worker (shared file system for remote ones)
-    store: str | None  # shared stage store (see pipeline.runner.run_stages)
+    store: str | None  # shared stage store (see pipeline.staging.runner.run_stages)
     target: str = "simulate"
     figures: bool = True  # False: the point runs with output.figures = false (no PNGs)
 
@@ -61,11 +61,11 @@ def finished_record(run_dir: Path, scene_hash: str, target: str = "simulate") ->
 
 
 def prepare_worker() -> str:
-    """Point numba at this machine's per-user kernel cache (pipeline.numba_cache) before any
+    """Point numba at this machine's per-user kernel cache (pipeline.machine.numba_cache) before any
     kernel loads; returns it. A worker started by an outside `dask worker` has not been
     through the command line, which does this for local clusters; the compile lock of
-    pipeline.kernel_cache then makes the workers of one machine compile once."""
-    from ..numba_cache import configure_numba_cache
+    pipeline.machine.kernel_cache then makes the workers of one machine compile once."""
+    from ..machine.numba_cache import configure_numba_cache
 
     configure_numba_cache()
     return os.environ["NUMBA_CACHE_DIR"]
@@ -103,9 +103,9 @@ def run_point(request: PointRequest, stages=None) -> dict:
 
 
 def _run_pipeline(request: PointRequest, run_dir: Path, stages) -> dict:
-    from ..provenance import write_run_provenance
-    from ..runner import run_stages
-    from ..scene import resolve
+    from ..staging.provenance import write_run_provenance
+    from ..staging.runner import run_stages
+    from ..scene.load import resolve
 
     if stages is None:
         from ..stages import STAGES as stages
@@ -126,7 +126,7 @@ def point_run_table(request: PointRequest) -> dict:
     does not rerun finished points (the stage keys, which hash the scene, do change)."""
     if request.figures:
         return request.table
-    from ..scene import apply_overrides
+    from ..scene.load import apply_overrides
 
     return apply_overrides(request.table, [NO_FIGURES])
 
@@ -144,7 +144,7 @@ def remove_stale_temporaries(run_dir: Path) -> None:
 
 def _attach_point_log(run_dir: Path) -> logging.Handler:
     """`<run dir>/run.log` of this point only: threads of one worker run other points."""
-    from ..provenance import attach_run_log
+    from ..staging.provenance import attach_run_log
 
     handler = attach_run_log(run_dir)
     thread = threading.get_ident()

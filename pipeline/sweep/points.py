@@ -15,11 +15,11 @@ from typing import Any
 
 import tomli_w
 
-from ..artefacts import input_key
-from ..provenance import package_version
-from ..scene import apply_overrides, resolve
-from ..schema import SceneError
-from .spec import SweepSection
+from ..staging.artefacts import input_key
+from ..staging.provenance import package_version
+from ..scene.load import apply_overrides, resolve
+from ..scene.schema import SceneError
+from ..scene.sweep_section import SweepSection
 
 
 @dataclass(frozen=True)

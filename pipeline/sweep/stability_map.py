@@ -36,8 +36,8 @@ def map_axes(varied: list[str], map_x: str | None = None, map_y: str | None = No
 
 
 def axis_label(key: str) -> str:
-    from .. import scene_sections as sections
-    from ..schema import field_unit
+    from ..scene import sections
+    from ..scene.schema import field_unit
 
     owners = {"load": sections.Load, "speed": sections.Speed, "hinge": sections.Hinge,
               "solver": sections.SolverSettings, "physics": sections.Physics}

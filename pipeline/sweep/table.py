@@ -1,7 +1,7 @@
 """The sweep's results table: one row per point, from the points' records on disk.
 
 Columns: `point_id`, `status` (done | failed | pending), one column per varied scene key,
-`cage_class` and `risk` (`pipeline.sweep.classify`), `too_short_to_settle` (the
+`cage_class` and `risk` (`pipeline.scene.cage_classes`), `too_short_to_settle` (the
 point's run ended before its cage settled: its class is a transient's), the summary metrics of
 docs/scenes.md (with `burn_zone_sector` split into `burn_zone_start` / `burn_zone_end`), run
 counters, `warnings` (the run's own, joined by "; "), `error` (the message of a failed point) and
@@ -21,8 +21,8 @@ import tempfile
 from pathlib import Path
 from typing import Any
 
-from ..artefacts import atomic_write_text
-from .classify import CageClassThresholds, classify_cage, risk_level
+from ..staging.artefacts import atomic_write_text
+from ..scene.cage_classes import CageClassThresholds, classify_cage, risk_level
 
 SUMMARY_COLUMNS = (
     "cage_speed_mean", "kinematic_cage_speed", "cage_speed_variation",
@@ -53,7 +53,7 @@ def column_unit(column: str) -> str | None:
 
 def scene_key_unit(key: str) -> str | None:
     """The unit of a dotted scene key from its section's metadata (None when unknown)."""
-    from ..schema import field_unit
+    from ..scene.schema import field_unit
 
     section, _, name = key.rpartition(".")
     cls = _section_classes().get(section.split(".")[0])
@@ -66,9 +66,9 @@ def scene_key_unit(key: str) -> str | None:
 
 
 def _section_classes() -> dict[str, type]:
-    from bearingsim.dynamics.geometry import BearingGeometry, CageGeometry, Material
+    from ...dynamics.geometry import BearingGeometry, CageGeometry, Material
 
-    from ..scene_sections import Hinge, Load, Output, Physics, SolverSettings, Speed
+    from ..scene.sections import Hinge, Load, Output, Physics, SolverSettings, Speed
 
     return {"bearing": BearingGeometry, "cage": CageGeometry, "materials": Material, "load": Load,
             "speed": Speed, "hinge": Hinge, "solver": SolverSettings, "physics": Physics, "output": Output}

@@ -6,7 +6,7 @@ its integer code and reach it through `dispatch.stress_scale` and `dispatch.resp
 (plain Python, so that loading a scene loads no numba) tells the rest of the package what a
 law needs: the scene's choices (`ModelOptions.traction`), the
 parameter packing (`bearing.params`), the load exponent of the Newton tangent
-(`bearing.race_forces`) and the scene check that a lubricant is given (`pipeline.scene`).
+(`bearing.race_forces`) and the scene check that a lubricant is given (`pipeline.scene.load`).
 
 A new film law is one module, one entry in `LAWS` and its branch in `dispatch`.
 """

@@ -10,7 +10,7 @@ import math
 
 import numba
 
-from bearingsim.dynamics._speed.compile_policy import NO_REFCOUNT
+from ..._speed.compile_policy import NO_REFCOUNT
 
 
 @numba.njit(**NO_REFCOUNT)

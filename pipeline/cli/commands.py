@@ -18,17 +18,17 @@ from typing import Annotated, Optional
 
 import typer
 
-from .cli_options import flat_options
-from .console import escape, explain, finding_lines, make_console
-from .numba_cache import configure_numba_cache
+from .options import flat_options
+from ..console import escape, explain, finding_lines, make_console
+from ..machine.numba_cache import configure_numba_cache
 
 # before any kernel is compiled or loaded: the cache keyed by the dynamics sources
 configure_numba_cache()
 
-from .artefacts import OutputRefused, RunDirectoryBusy  # noqa: E402
+from ..staging.artefacts import OutputRefused, RunDirectoryBusy  # noqa: E402
 from .interrupts import interruption, stop_on_sigterm  # noqa: E402
-from .runner import StageNotAvailable
-from .schema import SceneError
+from ..staging.runner import StageNotAvailable
+from ..scene.schema import SceneError
 
 app = typer.Typer(
     add_completion=False,
@@ -60,7 +60,7 @@ SetOpt = Annotated[Optional[list[str]], typer.Option(
 
 
 def _load(scene: str, overrides: list[str] | None):
-    from .scene import load_scene
+    from ..scene.load import load_scene
 
     return load_scene(scene, overrides or [])
 
@@ -84,9 +84,9 @@ def _pipeline(scene_arg: str, overrides, out, targets: list[str], force: set[str
     """Load, validate, then run `targets` with progress on stderr; map errors to exit codes.
 
     Everything that can be checked without solving is checked before any file is written:
-    the scene (pipeline.validity), what the stages to run need, and that the run directory
+    the scene (pipeline.scene.validity), what the stages to run need, and that the run directory
     is bearingsim's to write (new, empty or marked by it)."""
-    from .run_session import check_before_solving, claimed
+    from ..stages.session import check_before_solving, claimed
 
     try:
         scene = _load(scene_arg, overrides)
@@ -122,7 +122,7 @@ def _pipeline(scene_arg: str, overrides, out, targets: list[str], force: set[str
 
 def _run_locked(scene, scene_arg, run_dir, targets, force, quiet, notes=(), shared=True):
     """The stages of `_pipeline`, run while it holds the run directory's lock."""
-    from .run_session import run_log
+    from ..stages.session import run_log
 
     with contextlib.ExitStack() as logged:
         try:
@@ -140,8 +140,8 @@ def _run_stages_reported(scene, scene_arg, run_dir, targets, force, quiet, notes
     kernel cache the dynamic run's kernels compile meanwhile in a second process
     (`compile_ahead`)."""
     from . import compile_ahead
-    from .runner import closure
-    from .stages import STAGES
+    from ..staging.runner import closure
+    from ..stages import STAGES
 
     child = compile_ahead.start(scene, closure(STAGES, targets))
     try:
@@ -151,9 +151,9 @@ def _run_stages_reported(scene, scene_arg, run_dir, targets, force, quiet, notes
 
 
 def _run_stages_with_exit_codes(scene, scene_arg, run_dir, targets, force, quiet, notes, shared):
-    from .artefacts import SHARED_STAGES, shared_store_dir
-    from .run_session import run_stages_logged
-    from .scene import read_scene_table
+    from ..staging.artefacts import SHARED_STAGES, shared_store_dir
+    from ..stages.session import run_stages_logged
+    from ..scene.load import read_scene_table
 
     log = logging.getLogger("bearingsim")
     hint = ("\nnote: " + "\nnote: ".join(f.text for f in notes)) if notes else ""
@@ -234,7 +234,7 @@ def scenes(name: Annotated[Optional[str], typer.Argument(
     """List the built-in scenes with one-line descriptions, or print one of them."""
     from rich.table import Table
 
-    from .scene import builtin_scene_names, builtin_scene_text, read_scene_table
+    from ..scene.load import builtin_scene_names, builtin_scene_text, read_scene_table
 
     if name is not None:
         try:
@@ -252,10 +252,10 @@ def scenes(name: Annotated[Optional[str], typer.Argument(
 @app.command()
 def check(scene: SceneArg, set_: SetOpt = None) -> None:
     """Validate a scene and print it resolved, with units and the derived geometry."""
-    from .scene_report import print_scene
+    from .scene_tables import print_scene
 
-    from .run_session import fe_findings
-    from .validity import raise_errors, run_findings, scene_findings
+    from ..stages.session import fe_findings
+    from ..scene.validity import raise_errors, run_findings, scene_findings
 
     try:
         resolved = _load(scene, set_)
@@ -273,8 +273,8 @@ def check(scene: SceneArg, set_: SetOpt = None) -> None:
 
 def _check_sweep_table(scene: str, overrides) -> None:
     """Every point of the scene's own [sweep] table, validated as `sweep` would (SceneError)."""
-    from .scene import apply_overrides, read_scene_table
-    from .sweep.driver import plan_sweep
+    from ..scene.load import apply_overrides, read_scene_table
+    from ..sweep.driver import plan_sweep
 
     table = apply_overrides(read_scene_table(scene)[0], list(overrides or []))
     sweep = table.get("sweep")
@@ -286,24 +286,24 @@ def _check_sweep_table(scene: str, overrides) -> None:
 def quasistatic(scene: SceneArg, json_: Annotated[bool, typer.Option("--json", help="Print the result as one JSON object on stdout.")] = False,
                 out: OutOpt = None, force: ForceOpt = False, set_: SetOpt = None) -> None:
     """Static equilibrium: ball loads, contact angles, inner-race displacement, stiffness."""
-    from .figures.worker import prestart
+    from ..figures.worker import prestart
 
     prestart()  # matplotlib loads in a second process while this one loads the scene and solves
 
-    from .artefacts import dumps_json
+    from ..staging.artefacts import dumps_json
 
     run_dir, result = _quasistatic_result(scene, set_, out, force, json_)
     if json_:
         sys.stdout.write(dumps_json(result) + "\n")
     else:
-        from .scene_report import print_quasistatic
+        from .scene_tables import print_quasistatic
 
         print_quasistatic(result, out_console)
 
 
 def _quasistatic_result(scene: str, overrides, out, force: bool, quiet: bool) -> tuple[Path, dict]:
     """Run (or reuse) the quasi-static stage and read its result file."""
-    from .stages.quasistatic import RESULT_FILE
+    from ..stages.quasistatic import RESULT_FILE
 
     _, run_dir, _ = _pipeline(scene, overrides, out, ["quasistatic"], {"quasistatic"} if force else set(), quiet=quiet)
     path = run_dir / "quasistatic" / RESULT_FILE
@@ -326,8 +326,8 @@ def tolerances(scene: SceneArg,
                    "whose dynamic results a changed quasi-static stage would make stale]."))] = None,
                force: ForceOpt = False, set_: SetOpt = None) -> None:
     """Crush probability over tolerance stacks: P(free/pressed/crushed), margin distribution, drivers."""
-    from .stages.quasistatic import SAMPLES_FILE, TOLERANCE_FIGURE
-    from .tolerance_report import print_tolerances, tolerance_overrides
+    from ..stages.quasistatic import SAMPLES_FILE, TOLERANCE_FIGURE
+    from .tolerance_tables import print_tolerances, tolerance_overrides
 
     try:
         overrides = list(set_ or []) + tolerance_overrides(tolerance_file, samples, seed)
@@ -341,7 +341,7 @@ def tolerances(scene: SceneArg,
         out = Path("runs") / f"{resolved.name}-tolerances"
     run_dir, result = _quasistatic_result(scene, overrides, out, force, json_)
     if json_:
-        from .artefacts import dumps_json
+        from ..staging.artefacts import dumps_json
 
         sys.stdout.write(dumps_json(result["crush_probability"]) + "\n")
         return
@@ -354,7 +354,7 @@ def tolerances(scene: SceneArg,
 def warmup(scenes: Annotated[Optional[list[str]], typer.Argument(
         help=_literal("Scenes to compile for (files or built-in names) [default: every built-in scene]."))] = None) -> None:
     """Compile the force kernels once for this machine (container images, cluster nodes): later runs start warm."""
-    from .kernel_cache import cache_directory
+    from ..machine.kernel_cache import cache_directory
     from .warmup import warm_up
 
     def report(row: dict) -> None:
@@ -375,8 +375,8 @@ def stiffness(scene: SceneArg,
                   help=_literal("Inner-ring speeds [rev/min]: a,b,c or start:stop:count [default: the scene's speed.inner_rpm]."))] = None,
               out: OutOpt = None, set_: SetOpt = None) -> None:
     """Bearing (5x5) and hinge stiffness over inner-ring speeds: CSV + JSON for rotordynamics codes (ROSS)."""
-    from .api import export_stiffness
-    from .stiffness_export import CSV_FILE, JSON_FILE, STIFFNESS_DIR, parse_speeds
+    from ..api import export_stiffness
+    from ..stiffness_export import CSV_FILE, JSON_FILE, STIFFNESS_DIR, parse_speeds
 
     try:
         resolved = _load(scene, set_)
@@ -430,7 +430,7 @@ def run(scene: SceneArg, out: OutOpt = None, force: ForceOpt = False, set_: SetO
         no_store: NoStoreOpt = False) -> None:
     """Full pipeline: identify -> quasistatic -> simulate -> report (cached stages are skipped;
     the FE identification is shared between run directories with the same FE inputs)."""
-    from .stages import STAGE_NAMES
+    from ..stages import STAGE_NAMES
 
     _, run_dir, _ = _pipeline(scene, set_, out, ["report"], set(STAGE_NAMES) if force else set(),
                               shared=not no_store)
@@ -439,7 +439,7 @@ def run(scene: SceneArg, out: OutOpt = None, force: ForceOpt = False, set_: SetO
 
 def _print_verdict(run_dir: Path) -> None:
     """The verdict of the run's summary.json on stderr (nothing when the run has no summary)."""
-    from .results.verdict import verdict_lines
+    from ..results.verdict import verdict_lines
 
     try:
         summary = json.loads((run_dir / "simulate" / "summary.json").read_text(encoding="utf-8"))
@@ -453,9 +453,9 @@ def _print_verdict(run_dir: Path) -> None:
 def render(run_dir: Annotated[Path, typer.Argument(help="A run directory written by `bearingsim run`.")],
            show: Annotated[bool, typer.Option("--show", help="Open an interactive window when a display is available.")] = False) -> None:
     """Regenerate renders and the report from saved results (never re-solves)."""
-    from .provenance import attach_run_log
-    from .render.offscreen import display_available
-    from .stages.report import StageResultsDamaged, render_run
+    from ..staging.provenance import attach_run_log
+    from ..render.offscreen import display_available
+    from ..stages.report import StageResultsDamaged, render_run
 
     if not (run_dir / "scene.toml").is_file():
         _fail(EXIT_SCENE, f"{run_dir} is not a run directory (no scene.toml); give the directory "
@@ -504,7 +504,7 @@ def bench(scene: SceneArg,
           fe: Annotated[bool, typer.Option("--fe/--no-fe", help="Also the FE identification study (scenes with hinge.source = 'fe').")] = True,
           set_: SetOpt = None) -> None:
     """Error against run time: work-precision of the dynamic solver (and of the FE hinge identification)."""
-    from .studies.command import run_bench
+    from ..studies.command import run_bench
 
     try:
         resolved = _load(scene, set_)
@@ -528,7 +528,7 @@ def bench(scene: SceneArg,
 def _claim_study(out: Path) -> None:
     """Refuse (exit 2) an --out that is not new, empty or a study folder bearingsim wrote,
     before the study runs."""
-    from .studies import claim_study_directory
+    from ..studies import claim_study_directory
 
     try:
         claim_study_directory(out)
@@ -542,7 +542,7 @@ def stability(cases: Annotated[Optional[list[str]], typer.Argument(help=_literal
               wall_budget: Annotated[float, typer.Option("--wall-budget", help=_literal("Wall-clock budget per case [s]."))] = 180.0,
               out: Annotated[Path, typer.Option("--out", help="Where the table and plot go.")] = Path("runs/stability")) -> None:
     """Stability suite: stiff and extreme cases, each a pass or a clearly reported refusal."""
-    from .studies.stability import case_names, markdown_table, run_suite, write_suite
+    from ..studies.stability import case_names, markdown_table, run_suite, write_suite
 
     for option, value, example in (("--window", window, "0.01"), ("--wall-budget", wall_budget, "180")):
         if not (math.isfinite(value) and value > 0.0):
@@ -594,9 +594,9 @@ class SweepOptions:
 @flat_options
 def sweep(scene: SceneArg, options: SweepOptions) -> None:
     """Parameter sweep on Dask: one pipeline run per point, a results table and a cage-stability map."""
-    from .sweep.console import class_counts, print_results
-    from .sweep.driver import claim_sweep_directory, gather, plan_sweep, replaced_sweep, table_rows, unfinished
-    from .sweep.table import read_table
+    from ..sweep.console import class_counts, print_results
+    from ..sweep.driver import claim_sweep_directory, gather, plan_sweep, replaced_sweep, table_rows, unfinished
+    from ..sweep.table import read_table
 
     o = options
     try:
@@ -641,8 +641,8 @@ def sweep(scene: SceneArg, options: SweepOptions) -> None:
 def _run_sweep_points(plan, o: SweepOptions) -> list:
     """Run the points of `plan` that are not finished, on a Dask cluster (`--scheduler`, or a
     local one of `--workers`), or none when every point finished before; the records of all."""
-    from .sweep.console import SweepProgress
-    from .sweep.driver import dask_client, run_sweep, unfinished
+    from ..sweep.console import SweepProgress
+    from ..sweep.driver import dask_client, run_sweep, unfinished
 
     try:
         if not unfinished(plan, o.retry_failed)[1]:  # all points finished before: no cluster needed
@@ -654,7 +654,7 @@ def _run_sweep_points(plan, o: SweepOptions) -> list:
     except KeyboardInterrupt as exc:
         how, code = interruption(exc)
         if not o.scheduler:  # the local cluster is closed: no worker writes the points any more
-            from .sweep.point_runner import remove_stale_temporaries
+            from ..sweep.point_runner import remove_stale_temporaries
 
             for request in plan.requests:
                 remove_stale_temporaries(Path(request.run_dir))

@@ -8,7 +8,7 @@ from pathlib import Path
 from rich.console import Console
 from rich.table import Table
 
-from .schema import SceneError
+from ..scene.schema import SceneError
 
 
 def tolerance_overrides(path: Path | None, samples: int | None, seed: int | None) -> list[str]:

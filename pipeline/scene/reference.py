@@ -2,7 +2,7 @@
 dataclasses the scene loader builds (unit, range, choices, default, doc), so the document
 cannot drift from what `bearingsim check` accepts (tests/test_scene_reference.py compares).
 
-    python -m bearingsim.pipeline.scene_reference > docs/scenes.md
+    python -m bearingsim.pipeline.scene.reference > docs/scenes.md
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ INTRO = """# Scene reference
 A scene is one TOML file (or a built-in name, `bearingsim scenes`); `--set KEY=VALUE` changes
 one key on the command line with the same checks. SI units throughout, except where the key
 says otherwise (`_rpm`, `_degC`). `bearingsim check SCENE` validates a scene and prints it
-resolved. This page is generated from the code (`python -m bearingsim.pipeline.scene_reference`);
+resolved. This page is generated from the code (`python -m bearingsim.pipeline.scene.reference`);
 a test keeps it current. The model behind the keys is [docs/model.md](model.md).
 
 Top level: `name` (required; names the run directory `runs/<name>/`), `description`
@@ -31,15 +31,15 @@ defaults then fall back to the dry laws: `traction = "coulomb"`, `cage_race = "d
 
 
 def _sections():
-    from bearingsim.dynamics.geometry import BearingGeometry, CageGeometry, Material
-    from bearingsim.dynamics.lubrication.lubricant import Lubricant
+    from ...dynamics.geometry import BearingGeometry, CageGeometry, Material
+    from ...dynamics.lubrication.lubricant import Lubricant
 
-    from .scene_sections import CatalogueBearing, Hinge, Load, Output, Physics, SolverSettings, Speed, Thermal
-    from .sweep.classify import CageClassThresholds
-    from .sweep.spec import SweepSection
+    from .sections import CatalogueBearing, Hinge, Load, Output, Physics, SolverSettings, Speed, Thermal
+    from .cage_classes import CageClassThresholds
+    from .sweep_section import SweepSection
 
     def fe():
-        from bearingsim.fe_model.config import FEConfig
+        from ...fe_model.config import FEConfig
 
         return FEConfig
 
@@ -73,7 +73,7 @@ def _sections():
         ("[sweep]", SweepSection, "How `bearingsim sweep` varies the scene (docs/sweeps.md); it "
                                   "changes no stage key. `vary` maps dotted keys to `\"start:stop:count\"` or "
                                   "lists; `points` lists explicit points for `mode = \"list\"`."),
-        ("[sweep.thresholds]", CageClassThresholds, "Limits of the cage classes (pipeline/sweep/classify.py)."),
+        ("[sweep.thresholds]", CageClassThresholds, "Limits of the cage classes (pipeline/scene/cage_classes.py)."),
     ], fe
 
 
@@ -135,8 +135,8 @@ def section_table(cls) -> str:
 
 
 def tolerance_section() -> str:
-    """`[tolerances]`: not a dataclass but a table of quantities (pipeline/tolerances.py)."""
-    from .tolerance_spec import MAX_SAMPLES, QUANTITIES
+    """`[tolerances]`: not a dataclass but a table of quantities (pipeline/quasistatic/tolerances.py)."""
+    from .tolerance_section import MAX_SAMPLES, QUANTITIES
 
     rows = ["## [tolerances]\n",
             "Tolerance stacks for the crush probability (docs/model.md §10.2; `bearingsim tolerances`; also "

@@ -1,6 +1,6 @@
 """SIGTERM handled like Ctrl-C: a batch system's or `timeout`'s stop raises in the main thread
 where the process is, so the interrupted stage's temporary folder is removed on the way out
-(pipeline.artefacts.staged_directory) and the command logs it and exits 143."""
+(pipeline.staging.artefacts.staged_directory) and the command logs it and exits 143."""
 
 from __future__ import annotations
 

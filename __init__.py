@@ -1,8 +1,9 @@
 """bearingsim: internal dynamics of ball bearings under high moment load.
 
-This file is the top of the installed namespace (`pyproject.toml` maps the package
-`bearingsim` here, and `bearingsim.pipeline`, `.dynamics`, `.fe_model`, `.meshes` to the
-repository's top-level folders of those names). See docs/model.md for the model.
+The repository root is the package: this file is its face, and the top-level folders
+`pipeline/`, `dynamics/`, `fe_model/`, `meshes/` are `bearingsim.pipeline` and so on (`pyproject.toml`).
+Inside the package every import is relative, so a type checker or an editor reading the clone
+resolves it as an install would. See docs/model.md for the model.
 
 The Python API (README "Python API"; `bearingsim.pipeline.api`)::
 
@@ -15,7 +16,19 @@ The Python API (README "Python API"; `bearingsim.pipeline.api`)::
 Its names load on first use: `import bearingsim` imports no numba, matplotlib or gmsh.
 """
 
+from typing import TYPE_CHECKING
+
 __version__ = "0.1.0"
+
+if TYPE_CHECKING:  # what static tools see; at run time each name loads on first use (_API)
+    from .pipeline.api import Run, export_stiffness, load_scene, open_run, run, stage_names
+    from .pipeline.results.named_arrays import NamedArray, TimeSeries
+    from .pipeline.scene.load import Scene
+    from .pipeline.scene.schema import SceneError
+    from .pipeline.staging.artefacts import OutputRefused, RunDirectoryBusy
+    from .pipeline.staging.runner import StageNotAvailable
+    from .pipeline.stiffness_export import StiffnessTable, stiffness_table
+    from .pipeline.sweep.api import SweepResult, sweep
 
 _API = {
     "load_scene": "bearingsim.pipeline.api",
@@ -30,11 +43,11 @@ _API = {
     "export_stiffness": "bearingsim.pipeline.api",
     "stiffness_table": "bearingsim.pipeline.stiffness_export",
     "StiffnessTable": "bearingsim.pipeline.stiffness_export",
-    "Scene": "bearingsim.pipeline.scene",
-    "SceneError": "bearingsim.pipeline.schema",
-    "StageNotAvailable": "bearingsim.pipeline.runner",
-    "RunDirectoryBusy": "bearingsim.pipeline.artefacts",
-    "OutputRefused": "bearingsim.pipeline.artefacts",
+    "Scene": "bearingsim.pipeline.scene.load",
+    "SceneError": "bearingsim.pipeline.scene.schema",
+    "StageNotAvailable": "bearingsim.pipeline.staging.runner",
+    "RunDirectoryBusy": "bearingsim.pipeline.staging.artefacts",
+    "OutputRefused": "bearingsim.pipeline.staging.artefacts",
 }
 
 __all__ = ["__version__", *sorted(_API)]

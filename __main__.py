@@ -1,6 +1,6 @@
 """`python -m bearingsim`: the command line, where the `bearingsim` script is not on PATH
 (a virtual environment that is not activated, Windows' per-user scripts folder)."""
 
-from bearingsim.pipeline.cli import main
+from .pipeline.cli.commands import main
 
 main()

@@ -1,6 +1,6 @@
 """The `[tolerances]` table of a scene: what may vary, how, and how many stacks (docs/scenes.md).
 
-Validated when the scene loads; the analysis itself is pipeline.tolerances (docs/model.md §10.2).
+Validated when the scene loads; the analysis itself is pipeline.quasistatic.tolerances (docs/model.md §10.2).
 """
 
 from __future__ import annotations

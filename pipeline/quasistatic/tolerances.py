@@ -32,8 +32,8 @@ from typing import Any
 
 import numpy as np
 
-from .schema import SceneError
-from .tolerance_spec import QUANTITIES, ToleranceSpec, build_tolerance_spec  # noqa: F401 - part of this API
+from ..scene.schema import SceneError
+from ..scene.tolerance_section import QUANTITIES, ToleranceSpec, build_tolerance_spec  # noqa: F401 - part of this API
 
 # --- the stacks ------------------------------------------------------------------------------
 def sample_deviations(spec: ToleranceSpec, samples: int | None = None, seed: int | None = None) -> dict[str, np.ndarray]:
@@ -52,7 +52,7 @@ def _deviation(dev: dict[str, np.ndarray], n: int):
 
 def _growth(scene, dev: dict[str, np.ndarray], n: int) -> dict[str, np.ndarray]:
     """M.120's 1 + alpha Delta T of each part at each stack's (deviated) temperature."""
-    from bearingsim.dynamics.thermal import growth_factor
+    from ...dynamics.thermal import growth_factor
 
     t, a, d = scene.temperatures, scene.expansion, _deviation(dev, n)
     alpha = {"inner_ring": a.race, "outer_ring": a.race, "ball": a.ball, "cage": a.cage}
@@ -62,7 +62,7 @@ def _growth(scene, dev: dict[str, np.ndarray], n: int) -> dict[str, np.ndarray]:
 def stack_clearances(scene, dev: dict[str, np.ndarray], n: int):
     """CageClearances (arrays of n) of the stacks: the scene's drawing dimensions plus the
     deviations, each part grown to its (deviated) temperature (M.120)."""
-    from bearingsim.dynamics.quasistatic.crush_screen import CageClearances
+    from ...dynamics.quasistatic.crush_screen import CageClearances
 
     b, c, d, f = scene.nominal.bearing, scene.nominal.cage, _deviation(dev, n), _growth(scene, dev, n)
     outside = (c.outside_diameter + d("cage_outside_diameter")) * f["cage"]
@@ -83,10 +83,10 @@ def _excursion_at(scene, moment: float, axial: float, diametral_clearance: float
     """(s1, s_pp, cos and sin of the push azimuth, the land shift of M.124 flattened (4)) of the scene at these
     loads, its inner ring grown or shrunk to give the operating diametral clearance P_d (None:
     the scene's)."""
-    from bearingsim.dynamics import thermal as th
-    from bearingsim.dynamics.quasistatic.crush_screen import excursion_of
+    from ...dynamics import thermal as th
+    from ...dynamics.quasistatic.crush_screen import excursion_of
 
-    from .quasistatic_solution import land_shift, solve
+    from .solution import land_shift, solve
 
     b = scene.bearing
     if diametral_clearance is not None:
@@ -153,7 +153,7 @@ class ToleranceResult:
 def analyse(scene, spec: ToleranceSpec | None = None, samples: int | None = None,
             seed: int | None = None) -> ToleranceResult:
     """Sample the stacks of `spec` (default: the scene's [tolerances]) and screen each."""
-    from bearingsim.dynamics.quasistatic.crush_screen import margin_and_regime, non_guiding_gap, required_offset
+    from ...dynamics.quasistatic.crush_screen import margin_and_regime, non_guiding_gap, required_offset
 
     spec = spec or scene.tolerances
     if spec is None:
@@ -264,7 +264,7 @@ def write_samples_csv(path, result: ToleranceResult) -> None:
     """Every stack: its deviations, clearances, margin and regime; units in the headers."""
     import io
 
-    from .artefacts import atomic_write_bytes
+    from ..staging.artefacts import atomic_write_bytes
 
     names = list(result.deviations)
     header = [f"{n}_deviation [{QUANTITIES[n][0]}]" for n in names] + [

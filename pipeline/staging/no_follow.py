@@ -1,7 +1,7 @@
 """Files that bearingsim appends to or locks in place (`run.log`, `.lock`), opened so that a
 link or a special file put there is refused instead of written through.
 
-Everything else in a run directory is written by an atomic rename (pipeline.artefacts),
+Everything else in a run directory is written by an atomic rename (pipeline.staging.artefacts),
 which replaces a link instead of following it; only files opened for appending or locking
 need this guard.
 """

@@ -34,7 +34,7 @@ def package_version() -> str:
 def source_checkout() -> Path | None:
     """The repository root when bearingsim runs from a source checkout (an editable
     install or a bare checkout), else None (an installed wheel)."""
-    root = Path(__file__).resolve().parent.parent
+    root = Path(__file__).resolve().parents[2]  # pipeline/staging/ -> the repository root
     if (root / "pyproject.toml").is_file() and all((root / f).is_dir() for f in SOURCE_FOLDERS):
         return root
     return None

@@ -21,8 +21,8 @@ import tomllib
 from dataclasses import dataclass, field
 from typing import Any
 
-from ..schema import SceneError, build
-from .classify import CageClassThresholds
+from .schema import SceneError, build
+from .cage_classes import CageClassThresholds
 
 NOT_VARIABLE = ("name", "description", "sweep")
 # A sweep larger than this is refused unless asked for (`--max-points`): 10 000 points of the

@@ -1,4 +1,4 @@
-"""Result checks of pipeline.validity: a finished stage's own numbers against the limits of
+"""Result checks of pipeline.scene.validity: a finished stage's own numbers against the limits of
 the model (docs/model.md §6, §10), and stage failures that are such a limit.
 
 The quasi-static result (`quasistatic.json`) is checked for a contact angle past the groove
@@ -15,7 +15,7 @@ import math
 from pathlib import Path
 from typing import Any
 
-from .validity import (ABSURD, MIN_SAMPLES, PLASTIC_LIMIT_PRESSURE, STATIC_CAPACITY_PRESSURE, Finding, _g,
+from ..scene.validity import (ABSURD, MIN_SAMPLES, PLASTIC_LIMIT_PRESSURE, STATIC_CAPACITY_PRESSURE, Finding, _g,
                        error, warning)
 
 RESULT_FILES = {"quasistatic": "quasistatic.json", "simulate": "summary.json"}

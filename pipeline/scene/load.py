@@ -15,11 +15,11 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
-from bearingsim.dynamics import thermal as th
-from bearingsim.dynamics.geometry import BearingGeometry, CageGeometry, Material
-from bearingsim.dynamics.traction.laws import LAWS as TRACTION_LAWS
+from ...dynamics import thermal as th
+from ...dynamics.geometry import BearingGeometry, CageGeometry, Material
+from ...dynamics.traction.laws import LAWS as TRACTION_LAWS
 
-from .scene_sections import (
+from .sections import (
     CatalogueBearing,
     Hinge,
     Load,
@@ -72,7 +72,7 @@ class Scene:
     nominal: Parts | None = None  # as given, at the reference temperature
     temperatures: th.PartTemperatures = th.PartTemperatures()
     expansion: th.ExpansionCoefficients = th.ExpansionCoefficients()
-    tolerances: Any | None = None  # pipeline.tolerances.ToleranceSpec when [tolerances] is given
+    tolerances: Any | None = None  # pipeline.quasistatic.tolerances.ToleranceSpec when [tolerances] is given
 
 
 # --- built-in scenes -------------------------------------------------------------------
@@ -240,7 +240,7 @@ def resolve_lubricant(table: Any):
         return None
     if not isinstance(table, dict):
         raise SceneError("lubricant", f"expected a table, got {table!r}")
-    from bearingsim.dynamics.lubrication import lubricant as lub  # light: numpy + a data file
+    from ...dynamics.lubrication import lubricant as lub  # light: numpy + a data file
 
     table = dict(table)
     name = table.get("name")
@@ -258,7 +258,7 @@ def resolve_lubricant(table: Any):
 def resolve_fe(table: Any, hinge: Hinge) -> Any | None:
     if hinge.source != "fe":
         return None
-    from bearingsim.fe_model.config import FEConfig
+    from ...fe_model.config import FEConfig
 
     return build(FEConfig, table if table is not None else {}, "fe")
 
@@ -272,7 +272,7 @@ def resolve(table: dict, origin: str = "<table>") -> Scene:
         if key not in table:
             raise SceneError(key, f"required {'key' if key == 'name' else 'table'} is missing in {origin}")
     if "sweep" in table:  # how to vary the scene, not physics: validated, then kept out of raw
-        from .sweep.spec import build_sweep_section
+        from .sweep_section import build_sweep_section
 
         build_sweep_section(table["sweep"])
         table = {k: v for k, v in table.items() if k != "sweep"}
@@ -333,7 +333,7 @@ def resolve(table: dict, origin: str = "<table>") -> Scene:
         temperatures=temperatures,
         expansion=expansion,
     )
-    # geometry the model cannot represent, resources a run cannot have (pipeline.validity),
+    # geometry the model cannot represent, resources a run cannot have (pipeline.scene.validity),
     # checked on the parts as drawn; then the parts grown to their operating temperatures
     from .validity import raise_errors, scene_findings
 
@@ -341,7 +341,7 @@ def resolve(table: dict, origin: str = "<table>") -> Scene:
     operating = operating_parts(nominal, temperatures, expansion)
     scene = dataclasses.replace(scene, bearing=operating.bearing, cage=operating.cage, materials=operating.materials)
     if "tolerances" in table:
-        from .tolerance_spec import build_tolerance_spec
+        from .tolerance_section import build_tolerance_spec
 
         scene = dataclasses.replace(scene, tolerances=build_tolerance_spec(table["tolerances"], scene))
     return scene

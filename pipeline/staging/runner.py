@@ -6,7 +6,7 @@ the stages it reads from (and the code version), so an unchanged stage is skippe
 changed input is never served from a stale cache. Stages a scene does not need are left
 out entirely.
 
-A finished stage is checked against the model's validity (pipeline.validity): an error
+A finished stage is checked against the model's validity (pipeline.scene.validity): an error
 discards the result (ValidityError), warnings are logged and stored with it. Its manifest
 records a checksum of every file, so a damaged cached result is recomputed; a stage whose
 inputs changed removes the results downstream of it that were computed from the old ones.
@@ -23,11 +23,12 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
-from . import result_checks, validity
+from . import result_checks
+from ..scene import validity
 from .artefacts import (atomic_write_json, cache_state, foreign_files, input_key, read_manifest,
                         remove_stage_dir, stage_files, staged_directory)
 from .provenance import code_version
-from .scene import Scene
+from ..scene.load import Scene
 
 log = logging.getLogger("bearingsim")
 

@@ -3,7 +3,7 @@
 Physical sections (`[bearing]`, `[cage]`, `[materials]`) and the settings the dynamics take
 (`[physics]`, the integrator's part of `[solver]`) reuse the dynamics' own types; the ones
 below are the scene-only sections. Field metadata gives unit and range; the generic builder
-in `pipeline.schema` enforces them.
+in `pipeline.scene.schema` enforces them.
 """
 
 from __future__ import annotations
@@ -11,9 +11,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from bearingsim.dynamics.bearing.options import ModelOptions
-from bearingsim.dynamics.geometry import Material
-from bearingsim.dynamics.multibody.settings import HHTSettings
+from ...dynamics.bearing.options import ModelOptions
+from ...dynamics.geometry import Material
+from ...dynamics.multibody.settings import HHTSettings
 
 
 @dataclass(frozen=True)

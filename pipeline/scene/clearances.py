@@ -8,9 +8,9 @@ from __future__ import annotations
 
 import math
 
-from bearingsim.dynamics.quasistatic.crush_screen import CageClearances, LandFilm
+from ...dynamics.quasistatic.crush_screen import CageClearances, LandFilm
 
-from .scene import Parts, Scene
+from .load import Parts, Scene
 
 
 def cage_clearances(parts: Parts) -> CageClearances:

@@ -5,12 +5,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from .scene import Scene
+from ..scene.load import Scene
 
 
 def operating_point(scene: Scene):
     """The loads on the inner race and the race speeds of `scene` (`[load]`, `[speed]`)."""
-    from bearingsim.dynamics.operating_point import OperatingPoint
+    from ...dynamics.operating_point import OperatingPoint
 
     return OperatingPoint(axial=scene.load.axial, radial=scene.load.radial, moment=scene.load.moment,
                           inner_speed=scene.speed.inner, outer_speed=scene.speed.outer)
@@ -18,8 +18,8 @@ def operating_point(scene: Scene):
 
 def solve(scene: Scene):
     """Solve the quasi-static equilibrium of `scene` (no files)."""
-    from bearingsim.dynamics.quasistatic.options import QuasiStaticOptions
-    from bearingsim.dynamics.quasistatic.solver import solve_quasistatic
+    from ...dynamics.quasistatic.options import QuasiStaticOptions
+    from ...dynamics.quasistatic.solver import solve_quasistatic
 
     return solve_quasistatic(
         scene.bearing, scene.materials.ball, scene.materials.race, operating_point(scene),
@@ -31,7 +31,7 @@ def land_shift(scene: Scene, result) -> np.ndarray:
     """(2, 2) [m]: the guiding land's centre minus the non-guiding land's, in x and y, at the
     cage's two ends (z = -+w_c/2 from the inner ring's centre), from the inner ring's
     displacement and tilt (M.124)."""
-    from bearingsim.dynamics.quasistatic.result import tilt_rotation_matrix
+    from ...dynamics.quasistatic.result import tilt_rotation_matrix
 
     axis = tilt_rotation_matrix(np.asarray(result.inner_tilt, float))[:, 2]
     half = 0.5 * scene.cage.width
@@ -44,10 +44,10 @@ def cage_screen(scene: Scene, result, parts=None):
     (default: the operating parts) gives the clearances."""
     if scene.cage is None:
         return None
-    from bearingsim.dynamics.quasistatic.crush_screen import crush_screen, excursion_of
+    from ...dynamics.quasistatic.crush_screen import crush_screen, excursion_of
 
-    from .clearances import cage_clearances, land_film
-    from .scene import Parts
+    from ..scene.clearances import cage_clearances, land_film
+    from ..scene.load import Parts
 
     parts = parts or Parts(scene.bearing, scene.cage, scene.materials)
     excursion = excursion_of(result.azimuth, result.ball_orbital_speed, 0.5 * scene.cage.mean_diameter)
@@ -62,7 +62,7 @@ def screen_payload(scene: Scene, result) -> dict | None:
     screen = cage_screen(scene, result)
     if screen is None:
         return None
-    from .clearances import clearance_table
+    from ..scene.clearances import clearance_table
 
     payload = screen.to_json_dict()
     if scene.nominal is not None:

@@ -8,7 +8,7 @@ import math
 from rich.console import Console
 from rich.table import Table
 
-from .scene import Scene
+from ..scene.load import Scene
 
 
 def _unit(f: dataclasses.Field) -> str:
@@ -108,7 +108,7 @@ def print_scene(scene: Scene, console: Console) -> None:
     for label, value, unit in derived_geometry(scene):
         derived.add_row(label, f"{value:.6g}", unit)
     console.print(derived)
-    from .clearances import clearance_rows
+    from ..scene.clearances import clearance_rows
 
     t = scene.temperatures
     temps = Table("clearances", f"at {t.reference:g} °C (as drawn)", "operating", "unit", box=None, pad_edge=False,

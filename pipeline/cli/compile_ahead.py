@@ -25,8 +25,8 @@ def start(scene, stage_names: list[str]) -> subprocess.Popen | None:
     """Start the child for `scene` when `stage_names` (the stages this command will run,
     dependencies included) contain the dynamic run, numba's cache is configured and lacks the
     scene's kernels, and this process may use more than one core. Returns the child, or None."""
-    from .cores import usable_cores
-    from .kernel_cache import cache_directory, compiled_marker, force_configuration, kernel_configuration
+    from ..machine.cores import usable_cores
+    from ..machine.kernel_cache import cache_directory, compiled_marker, force_configuration, kernel_configuration
 
     cache = cache_directory()
     if "simulate" not in stage_names or cache is None or usable_cores() < 2:
@@ -34,7 +34,7 @@ def start(scene, stage_names: list[str]) -> subprocess.Popen | None:
     if any(compiled_marker(cache, key).exists() for key in (kernel_configuration(scene), force_configuration(scene))):
         return None
     try:
-        child = subprocess.Popen([sys.executable, "-m", "bearingsim.pipeline.compile_ahead"], stdin=subprocess.PIPE,
+        child = subprocess.Popen([sys.executable, "-m", "bearingsim.pipeline.cli.compile_ahead"], stdin=subprocess.PIPE,
                                  stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         child.stdin.write(pickle.dumps(scene))
         child.stdin.close()
@@ -59,7 +59,7 @@ def stop(child: subprocess.Popen | None) -> None:
 
 
 def _main() -> None:
-    from .kernel_cache import ensure_compiled, force_configuration
+    from ..machine.kernel_cache import ensure_compiled, force_configuration
     from .warmup import compile_force_and_loop
 
     scene = pickle.loads(sys.stdin.buffer.read())

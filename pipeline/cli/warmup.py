@@ -1,5 +1,5 @@
 """`bearingsim warmup`: compile the force kernels of scenes ahead of their first run, for
-container images and cluster nodes (the lock and marker of pipeline.kernel_cache make it once
+container images and cluster nodes (the lock and marker of pipeline.machine.kernel_cache make it once
 per machine and kernel configuration)."""
 
 from __future__ import annotations
@@ -7,13 +7,13 @@ from __future__ import annotations
 import dataclasses
 import time
 
-from .kernel_cache import ensure_compiled, kernel_configuration
+from ..machine.kernel_cache import ensure_compiled, kernel_configuration
 
 
 def _without_fe_hinge(scene):
     """`scene` with an identified hinge replaced by a given one: the hinge's values do not select
     kernels, and the FE stage need not run to compile them."""
-    from .scene_sections import Hinge
+    from ..scene.sections import Hinge
 
     if scene.hinge.source != "fe":
         return scene
@@ -27,9 +27,9 @@ def compile_force_and_loop(scene) -> None:
     position; only the argument types matter)."""
     import numpy as np
 
-    from bearingsim.dynamics.bearing.run import compile_force_kernel_and_loop
+    from ...dynamics.bearing.run import compile_force_kernel_and_loop
 
-    from .stages.simulate import check_dynamic_physics, model_params
+    from ..stages.simulate import check_dynamic_physics, model_params
 
     scene = _without_fe_hinge(scene)
     check_dynamic_physics(scene)
@@ -40,9 +40,9 @@ def compile_scene_kernels(scene) -> None:
     """Compile (or load) every kernel `scene`'s dynamic run calls, without writing results:
     the quasi-static start and the first two steps (an identified hinge is replaced by a given
     one: the hinge's values do not select kernels)."""
-    from bearingsim.dynamics.bearing.run import load_kernels
+    from ...dynamics.bearing.run import load_kernels
 
-    from .stages.simulate import build_model
+    from ..stages.simulate import build_model
 
     scene = _without_fe_hinge(scene)
     params, start = build_model(scene)
@@ -53,11 +53,11 @@ def warm_up(scene_names: list[str] | None = None, report=None) -> list[dict]:
     """Compile the kernels of the built-in scenes (or of `scene_names`: names or files), one
     compile per kernel configuration; `report(row)` is called after each scene. For container
     images and cluster nodes: run once, and every later run on the machine starts warm."""
-    from .numba_cache import configure_numba_cache
-    from .scene import builtin_scene_names, load_scene
+    from ..machine.numba_cache import configure_numba_cache
+    from ..scene.load import builtin_scene_names, load_scene
 
-    from .stages.quasistatic import solve
-    from .validity import run_findings
+    from ..stages.quasistatic import solve
+    from ..scene.validity import run_findings
 
     configure_numba_cache()
     rows, done = [], set()

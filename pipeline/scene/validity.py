@@ -8,7 +8,7 @@ key, the value, what is allowed and the unit):
   cage that does not fit between the rings; the resources a dynamic run would need;
   values that look like the wrong unit) and `run_findings` (what the stages about to
   run cannot do, e.g. an inner-guided cage in the dynamics);
-- **after a stage** — `stage_findings` (in pipeline.result_checks) reads the stage's
+- **after a stage** — `stage_findings` (in pipeline.staging.result_checks) reads the stage's
   own result file (`quasistatic.json`, `summary.json`) and checks it against the limits of
   the model (contact angle past the groove, ellipse truncation, contact pressure beyond the
   steel's limit, a displacement as large as the ball).
@@ -104,7 +104,7 @@ def _g(x: float) -> str:
 def scene_findings(scene) -> list[Finding]:
     """Checks of a resolved scene that need no solve: geometry, resources, units. Geometry is
     checked as the scene gives it (the drawing): messages quote the user's own values; the
-    operating parts are checked where they are grown (pipeline.scene.operating_parts)."""
+    operating parts are checked where they are grown (pipeline.scene.load.operating_parts)."""
     drawn = _as_drawn(scene)
     out: list[Finding] = []
     out += _clearance(drawn)

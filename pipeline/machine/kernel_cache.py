@@ -1,6 +1,6 @@
 """Compile the force kernels once per machine, however many processes start at once.
 
-numba writes compiled kernels to the cache directory of `pipeline.numba_cache` (one per
+numba writes compiled kernels to the cache directory of `pipeline.machine.numba_cache` (one per
 version of the dynamics sources). Two processes that start on a cold cache would each compile
 the same kernels (minutes of CPU each): the sweep's workers, parallel test processes, a user
 running two scenes at once. So the first process of a kernel configuration takes an exclusive

@@ -15,11 +15,11 @@ log = logging.getLogger("bearingsim")
 
 
 def check_before_solving(scene, targets: list[str]) -> list:
-    """The scene's warnings (pipeline.validity findings); raises on what would make the
+    """The scene's warnings (pipeline.scene.validity findings); raises on what would make the
     requested stages meaningless or impossible (SceneError subclasses)."""
-    from .runner import closure
-    from .stages import STAGES
-    from .validity import raise_errors, run_findings, scene_findings
+    from ..staging.runner import closure
+    from . import STAGES
+    from ..scene.validity import raise_errors, run_findings, scene_findings
 
     notes = raise_errors(scene_findings(scene))
     stages = set(closure(STAGES, targets))
@@ -38,10 +38,10 @@ EQUILATERAL_AREA = 0.433  # sqrt(3)/4: area of an equilateral triangle of side 1
 def fe_findings(scene) -> list:
     """What the FE identification would refuse (the [fe] geometry against the bearing ring)
     and the size of its mesh, for a scene whose hinge comes from the FE model."""
-    from bearingsim.meshes.housing import section_rectangles
+    from ...meshes.housing import section_rectangles
 
-    from .stages.identify import ring_seat
-    from .validity import error, warning
+    from .identify import ring_seat
+    from ..scene.validity import error, warning
 
     if scene.hinge.source != "fe" or scene.fe is None:
         return []
@@ -70,7 +70,7 @@ def fe_findings(scene) -> list:
 def claimed(run_dir: Path):
     """Claim `run_dir` (new, empty or bearingsim's, else OutputRefused) and hold its lock
     (RunDirectoryBusy when another process writes it)."""
-    from .artefacts import claim_run_directory, run_directory_lock
+    from ..staging.artefacts import claim_run_directory, run_directory_lock
 
     claim_run_directory(run_dir)
     with run_directory_lock(run_dir):
@@ -81,7 +81,7 @@ def claimed(run_dir: Path):
 def run_log(run_dir: Path):
     """Log the bearingsim logger to `<run_dir>/run.log` while the block runs (OSError when the
     directory cannot take it): a caller's own error handlers inside the block log there too."""
-    from .provenance import attach_run_log
+    from ..staging.provenance import attach_run_log
 
     handler = attach_run_log(run_dir)
     try:
@@ -97,10 +97,10 @@ def run_stages_logged(scene, run_dir: Path, targets: list[str], force: set[str],
     """Inside `claimed(run_dir)` and `run_log(run_dir)`: log what runs, drop a killed run's
     temporaries, write the provenance (scene.toml, versions.json), run the stages. Returns
     the StageOutcomes."""
-    from .artefacts import sweep_stale_temporaries
-    from .provenance import write_run_provenance
-    from .runner import run_stages
-    from .stages import STAGES
+    from ..staging.artefacts import sweep_stale_temporaries
+    from ..staging.provenance import write_run_provenance
+    from ..staging.runner import run_stages
+    from . import STAGES
 
     log.info("bearingsim %s: targets %s%s", scene.name, targets, label)
     for f in notes:

@@ -1,0 +1,1 @@
+"""The command line: `bearingsim` commands, their options and tables, warm-up."""

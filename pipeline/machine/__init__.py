@@ -1,0 +1,1 @@
+"""What this machine provides: compiled-kernel caches, cores, system libraries."""

@@ -1,0 +1,1 @@
+"""The quasi-static solution of a scene, its crush screen and the tolerance study on it."""

@@ -1,0 +1,1 @@
+"""Scenes: the schema, the sections, loading and overrides, physical validity, clearances."""

@@ -1,0 +1,1 @@
+"""The staged runner: cache keys, atomic stage folders, run-directory ownership, provenance."""

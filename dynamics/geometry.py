@@ -3,12 +3,32 @@
 One internal geometry serves every stage. It is built either from the paper's Table-1
 form (groove curvature-centre circle diameters and groove radii) or from catalogue data
 (pitch diameter, conformities, diametral clearance); both resolve to the same fields.
+
+A ring's shoulder (land) diameter is one number for both sides of the groove or a pair
+`(side toward +z, side toward -z)`, as an angular-contact ring has a high and a low shoulder.
+Which side a contact presses on follows from the sign of its contact angle (`contact_side`):
+an axial load on the inner race along +z (positive contact angles) loads the inner ring's
+groove on its -z side and the outer ring's on its +z side (docs/scenes.md, *Ring shoulders*).
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+
+
+SIDES = (1, -1)  # +1: the side of a ring toward +z, -1: toward -z
+SIDE_NAMES = ("side toward +z", "side toward -z")
+
+
+def contact_side(ring: str, contact_angle: float) -> int:
+    """The side (+1 toward +z, -1 toward -z) of `ring`'s groove a ball presses on at
+    `contact_angle` [rad] (+: the contact carries +z thrust on the inner race): the inner ring
+    on its -z side, the outer ring on its +z side (the module docstring)."""
+    positive = contact_angle >= 0.0
+    if ring == "inner":
+        return -1 if positive else 1
+    return 1 if positive else -1
 
 
 @dataclass(frozen=True)
@@ -53,8 +73,14 @@ class BearingGeometry:
     outer_groove_center_diameter: float = field(metadata={"unit": "m", "gt": 0.0, "doc": "d_o: diameter of the circle of outer-groove curvature centres"})
     inner_groove_radius: float = field(metadata={"unit": "m", "gt": 0.0, "doc": "r_i: inner groove (raceway) cross-section radius"})
     outer_groove_radius: float = field(metadata={"unit": "m", "gt": 0.0, "doc": "r_o: outer groove cross-section radius"})
-    inner_shoulder_diameter: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0, "doc": "inner-ring land diameter (ellipse truncation; land of an inner-guided cage)"})
-    outer_shoulder_diameter: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0, "doc": "outer-ring land diameter (ellipse truncation; land of an outer-guided cage)"})
+    inner_shoulder_diameter: float | tuple[float, float] | None = field(default=None, metadata={
+        "unit": "m", "gt": 0.0, "length": 2,
+        "doc": "inner-ring land diameter: one value for both sides, or [side toward +z, side toward -z] "
+               "(ellipse truncation; land of an inner-guided cage)"})
+    outer_shoulder_diameter: float | tuple[float, float] | None = field(default=None, metadata={
+        "unit": "m", "gt": 0.0, "length": 2,
+        "doc": "outer-ring land diameter: one value for both sides, or [side toward +z, side toward -z] "
+               "(ellipse truncation; land of an outer-guided cage)"})
     inner_bore_diameter: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0, "doc": "inner-ring bore (inner-ring mass of the dynamic model, FE seat)"})
     outer_outside_diameter: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0, "doc": "outer-ring outside diameter (FE seat, renders)"})
     width: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0, "doc": "ring width B"})
@@ -93,18 +119,25 @@ class BearingGeometry:
                 f"(neighbour spacing {chord:g} m <= D); at most "
                 f"{int(math.pi / math.asin(min(1.0, D / self.pitch_diameter)))} fit"
             )
+        for ring in ("inner", "outer"):
+            value = getattr(self, f"{ring}_shoulder_diameter")
+            if isinstance(value, tuple) and len(value) != 2:
+                raise ValueError(f"{ring}_shoulder_diameter: give one diameter, or two [side toward +z, "
+                                 f"side toward -z] [m]; got {len(value)} values")
         if self.inner_shoulder_diameter is not None and self.inner_bore_diameter is not None:
-            if self.inner_bore_diameter >= self.inner_shoulder_diameter:
-                raise ValueError(
-                    f"inner_bore_diameter = {self.inner_bore_diameter:g} m must be smaller than "
-                    f"inner_shoulder_diameter = {self.inner_shoulder_diameter:g} m"
-                )
+            for side, d in zip(SIDE_NAMES, self.shoulders("inner")):
+                if self.inner_bore_diameter >= d:
+                    raise ValueError(
+                        f"inner_bore_diameter = {self.inner_bore_diameter:g} m must be smaller than "
+                        f"inner_shoulder_diameter = {d:g} m ({side})"
+                    )
         if self.outer_shoulder_diameter is not None and self.outer_outside_diameter is not None:
-            if self.outer_outside_diameter <= self.outer_shoulder_diameter:
-                raise ValueError(
-                    f"outer_outside_diameter = {self.outer_outside_diameter:g} m must exceed "
-                    f"outer_shoulder_diameter = {self.outer_shoulder_diameter:g} m"
-                )
+            for side, d in zip(SIDE_NAMES, self.shoulders("outer")):
+                if self.outer_outside_diameter <= d:
+                    raise ValueError(
+                        f"outer_outside_diameter = {self.outer_outside_diameter:g} m must exceed "
+                        f"outer_shoulder_diameter = {d:g} m ({side})"
+                    )
 
     @classmethod
     def from_catalogue(
@@ -136,6 +169,26 @@ class BearingGeometry:
             outer_groove_radius=r_o,
             **optional,
         )
+
+    # --- the shoulders (lands), per side of the groove -------------------------------------
+    def shoulders(self, ring: str) -> tuple[float, float] | None:
+        """(land diameter on the side toward +z, on the side toward -z) [m] of `ring`
+        ("inner" | "outer"), None without a shoulder diameter."""
+        value = getattr(self, f"{ring}_shoulder_diameter")
+        if value is None:
+            return None
+        return (float(value[0]), float(value[1])) if isinstance(value, tuple) else (float(value), float(value))
+
+    def shoulder(self, ring: str, side: int) -> float | None:
+        """Land diameter [m] of `ring` on `side` (+1: toward +z, -1: toward -z)."""
+        pair = self.shoulders(ring)
+        return None if pair is None else pair[0 if side > 0 else 1]
+
+    def mean_shoulder_diameter(self, ring: str) -> float | None:
+        """The mean of the two sides' land diameters [m] (one value where a ring is drawn as a
+        plain annulus: the FE seat, renders without sides)."""
+        pair = self.shoulders(ring)
+        return None if pair is None else 0.5 * (pair[0] + pair[1])
 
     # --- derived quantities (docs/model.md §2) -------------------------------------------
     @property
@@ -197,16 +250,36 @@ class BearingGeometry:
         return self.ball_mass(ball) * self.ball_diameter**2 / 10.0
 
 
+GUIDANCES = ("outer", "inner", "ball")
+POCKET_SHAPES = ("cylindrical", "spherical")
+# two lands of one ring whose diameters differ by less than this both guide the cage (equal drawn
+# values stay equal when the ring grows, so this only absorbs rounding)
+_SAME_LAND = 1e-9  # m
+
+
 @dataclass(frozen=True)
 class CageGeometry:
-    """Ball-guided/land-guided cage with cylindrical radial pockets (docs/model.md §2, §7, §8)."""
+    """Land-guided or ball-guided cage with radial pockets (docs/model.md §2, §7, §8).
+
+    `guidance` names what centres the cage: the outer ring's lands (the cage's outside
+    diameter runs in them), the inner ring's lands (its bore runs on them) or the balls
+    (no land: spherical pockets hold it). Of a ring whose two lands differ (a high and a low
+    shoulder), the land with the smaller radial clearance guides; equal lands guide together.
+    """
 
     mean_diameter: float = field(metadata={"unit": "m", "gt": 0.0, "doc": "cage mean diameter (pocket centres)"})
-    pocket_diameter: float = field(metadata={"unit": "m", "gt": 0.0, "doc": "cylindrical pocket diameter (pocket clearance = pocket_diameter - D)"})
+    pocket_diameter: float = field(metadata={"unit": "m", "gt": 0.0, "doc": "pocket diameter (pocket clearance = pocket_diameter - D)"})
     radial_thickness: float = field(metadata={"unit": "m", "gt": 0.0, "doc": "cage radial thickness (outside diameter = mean + thickness)"})
     width: float = field(metadata={"unit": "m", "gt": 0.0, "doc": "cage axial width w_c (sets its overlap with the guide lands)"})
-    guidance: str = field(default="outer", metadata={"choices": ("outer", "inner"),
-                                                     "doc": "which race's lands guide the cage"})
+    guidance: str = field(default="outer", metadata={
+        "choices": GUIDANCES,
+        "doc": "what guides the cage: 'outer' (outer-ring lands), 'inner' (inner-ring lands, which turn with "
+               "the inner ring), 'ball' (the balls, through spherical pockets; no land contact)"})
+    pocket_shape: str | None = field(default=None, metadata={
+        "choices": POCKET_SHAPES,
+        "doc": "'cylindrical' (radial axis: holds the ball along the orbit and axially) or 'spherical' (holds it "
+               "in every direction, so the balls can carry the cage); default: spherical for a ball-guided cage, "
+               "cylindrical otherwise"})
     land_roughness: float = field(default=1.0e-6, metadata={
         "unit": "m", "gt": 0.0, "lt": 1e-4,
         "doc": "composite RMS roughness sigma = sqrt(Rq_rim^2 + Rq_land^2) of cage rim and guide land: "
@@ -234,6 +307,26 @@ class CageGeometry:
                 f"radial_thickness = {self.radial_thickness:g} m must be smaller than "
                 f"mean_diameter = {self.mean_diameter:g} m"
             )
+        if self.guidance == "ball" and self.pocket_shape == "cylindrical":
+            raise ValueError(
+                "guidance = 'ball' with pocket_shape = 'cylindrical': a pocket whose axis is radial cannot hold "
+                "the cage radially, so nothing would centre it; give pocket_shape = 'spherical' (or leave it out), "
+                "or guide the cage on a land (guidance = 'outer' or 'inner')")
+        if self.guidance == "ball" and self.land_length is not None:
+            raise ValueError("land_length is the journal length of the guide lands; a ball-guided cage has none: "
+                             "remove it or guide the cage on a land")
+
+    @property
+    def pocket_form(self) -> str:
+        """The pocket shape in use: `pocket_shape`, or its default by guidance."""
+        if self.pocket_shape is not None:
+            return self.pocket_shape
+        return "spherical" if self.guidance == "ball" else "cylindrical"
+
+    @property
+    def guide_ring(self) -> str | None:
+        """The ring whose lands guide the cage ("outer" | "inner"), None for a ball-guided cage."""
+        return None if self.guidance == "ball" else self.guidance
 
     def check_fits(self, bearing: BearingGeometry) -> None:
         """Cross-checks against the bearing; messages name the scene keys."""
@@ -253,20 +346,22 @@ class CageGeometry:
                 f"cage.pocket_diameter = {self.pocket_diameter:g} m leaves no bar between "
                 f"pockets: the pocket spacing on the cage mean circle is {spacing:g} m"
             )
-        if self.guidance == "outer" and bearing.outer_shoulder_diameter is not None:
-            if self.outside_diameter >= bearing.outer_shoulder_diameter:
-                raise ValueError(
-                    f"cage outside diameter mean_diameter + radial_thickness = "
-                    f"{self.outside_diameter:g} m must be smaller than the guiding land "
-                    f"bearing.outer_shoulder_diameter = {bearing.outer_shoulder_diameter:g} m"
-                )
-        if self.guidance == "inner" and bearing.inner_shoulder_diameter is not None:
-            if self.bore_diameter <= bearing.inner_shoulder_diameter:
-                raise ValueError(
-                    f"cage bore mean_diameter - radial_thickness = {self.bore_diameter:g} m "
-                    f"must exceed the guiding land bearing.inner_shoulder_diameter = "
-                    f"{bearing.inner_shoulder_diameter:g} m"
-                )
+        # the guiding ring's lands here; the other ring's (and a ball-guided cage's) in the
+        # scene's validity checks, which give the allowed range (pipeline.scene.validity)
+        outer = bearing.shoulders("outer") if self.guidance == "outer" else None
+        inner = bearing.shoulders("inner") if self.guidance == "inner" else None
+        if outer is not None and self.outside_diameter >= min(outer):
+            raise ValueError(
+                f"cage outside diameter mean_diameter + radial_thickness = "
+                f"{self.outside_diameter:g} m must be smaller than the outer ring's land "
+                f"bearing.outer_shoulder_diameter = {min(outer):g} m"
+            )
+        if inner is not None and self.bore_diameter <= max(inner):
+            raise ValueError(
+                f"cage bore mean_diameter - radial_thickness = {self.bore_diameter:g} m "
+                f"must exceed the inner ring's land bearing.inner_shoulder_diameter = "
+                f"{max(inner):g} m"
+            )
 
     @property
     def outside_diameter(self) -> float:
@@ -276,60 +371,102 @@ class CageGeometry:
     def bore_diameter(self) -> float:
         return self.mean_diameter - self.radial_thickness
 
+    def clearance_to(self, ring: str, land_diameter: float) -> float:
+        """Radial gap between the cage and a land of `ring` of diameter `land_diameter`, centred [m]."""
+        if ring == "outer":
+            return 0.5 * (land_diameter - self.outside_diameter)
+        return 0.5 * (self.bore_diameter - land_diameter)
+
+    def guide_sides(self, bearing: BearingGeometry) -> tuple[int, ...]:
+        """The sides (+1 toward +z, -1 toward -z) of the guiding ring whose lands guide: the one
+        with the smaller clearance, or both when their diameters are equal (empty for a
+        ball-guided cage)."""
+        ring = self.guide_ring
+        if ring is None:
+            return ()
+        pair = bearing.shoulders(ring)
+        if pair is None:
+            raise ValueError(f"bearing.{ring}_shoulder_diameter is required for a {ring}-ring-guided cage [m]")
+        gaps = [self.clearance_to(ring, d) for d in pair]
+        if abs(pair[0] - pair[1]) <= _SAME_LAND:
+            return SIDES
+        return (SIDES[0],) if gaps[0] < gaps[1] else (SIDES[1],)
+
     def guide_land_diameter(self, bearing: BearingGeometry) -> float:
         """Diameter of the land the cage runs on [m] (requires the shoulder diameter)."""
-        d = bearing.outer_shoulder_diameter if self.guidance == "outer" else bearing.inner_shoulder_diameter
-        if d is None:
-            side = "outer" if self.guidance == "outer" else "inner"
-            raise ValueError(
-                f"bearing.{side}_shoulder_diameter is required for a {side}-race-guided cage [m]"
-            )
-        return d
+        ring = self.guide_ring
+        if ring is None:
+            raise ValueError("a ball-guided cage runs on no land (cage.guidance = 'ball')")
+        return bearing.shoulder(ring, self.guide_sides(bearing)[0])
 
     def pocket_index_range(self) -> float:
         """Spread of the pocket pitch errors, max - min [m] (0 without them)."""
         e = self.pocket_index_errors
         return 0.0 if not e else max(e) - min(e)
 
+    def non_guiding_rings(self) -> tuple[str, ...]:
+        """The rings whose lands face the cage without guiding it."""
+        return {"outer": ("inner",), "inner": ("outer",), "ball": ("inner", "outer")}[self.guidance]
+
     def non_guiding_land_diameter(self, bearing: BearingGeometry) -> float | None:
-        """Diameter of the other ring's land, which faces the cage across the non-guiding gap [m]."""
-        return bearing.inner_shoulder_diameter if self.guidance == "outer" else bearing.outer_shoulder_diameter
+        """Diameter of the other ring's land nearest the cage across the non-guiding gap [m]
+        (for a ball-guided cage, the nearer of the two rings' lands)."""
+        nearest = self._nearest_non_guiding(bearing)
+        return None if nearest is None else nearest[1]
+
+    def _nearest_non_guiding(self, bearing: BearingGeometry) -> tuple[float, float] | None:
+        best = None
+        for ring in self.non_guiding_rings():
+            pair = bearing.shoulders(ring)
+            if pair is None:
+                continue
+            d = min(pair) if ring == "outer" else max(pair)
+            gap = self.clearance_to(ring, d)
+            if best is None or gap < best[0]:
+                best = (gap, d)
+        return best
 
     def non_guiding_clearance(self, bearing: BearingGeometry) -> float | None:
-        """Radial gap between the cage and the non-guiding land, parts centred [m]: cage bore
-        against the inner-ring land for an outer-guided cage, cage outside against the outer-ring
-        land for an inner-guided one (None without that land's diameter)."""
-        land = self.non_guiding_land_diameter(bearing)
-        if land is None:
-            return None
-        if self.guidance == "outer":
-            return 0.5 * (self.bore_diameter - land)
-        return 0.5 * (land - self.outside_diameter)
+        """Radial gap between the cage and the nearest land that does not guide it, parts centred
+        [m]: cage bore against the inner-ring land for an outer-guided cage, cage outside against
+        the outer-ring land for an inner-guided one, the nearer of the two for a ball-guided one
+        (None without those lands' diameters)."""
+        nearest = self._nearest_non_guiding(bearing)
+        return None if nearest is None else nearest[0]
 
     def guide_clearance(self, bearing: BearingGeometry) -> float:
-        """Radial guide clearance C [m] between cage and guiding land."""
-        land = self.guide_land_diameter(bearing)
-        if self.guidance == "outer":
-            return 0.5 * (land - self.outside_diameter)
-        return 0.5 * (self.bore_diameter - land)
+        """Radial guide clearance C [m]: between the cage and its guiding land; for a ball-guided
+        cage, the radial play c_p/2 of its spherical pockets on the balls (docs/model.md §10.1)."""
+        if self.guide_ring is None:
+            return 0.5 * (self.pocket_diameter - bearing.ball_diameter)
+        return self.clearance_to(self.guide_ring, self.guide_land_diameter(bearing))
+
+    def guide_land_count(self, bearing: BearingGeometry) -> int:
+        """How many lands guide the cage: 2 (equal lands either side), 1, or 0 (ball-guided)."""
+        return len(self.guide_sides(bearing))
 
     def guide_land_length(self, bearing: BearingGeometry) -> float:
-        """Journal length L [m]: axial overlap of the cage with the two guiding lands.
+        """Journal length L [m]: the cage's axial overlap with the guiding lands.
 
-        The groove (radius r about the curvature centre, at radius d/2 from the axis)
-        meets the land cylinder at axial distance z_l from the groove plane; the cage
-        (width w_c, centred) overlaps each land by w_c/2 - z_l. `land_length`, when given,
-        replaces it.
+        The groove (radius r about the curvature centre, at radius d/2 from the axis) meets a
+        land cylinder at axial distance z_l from the groove plane; the cage (width w_c,
+        centred) overlaps that land by w_c/2 - z_l. `land_length`, when given, replaces the sum.
         """
         if self.land_length is not None:
             return self.land_length
-        return max(0.0, self.width - self.groove_opening_at_land(bearing))
+        return sum(max(0.0, 0.5 * self.width - 0.5 * self.groove_opening_at_land(bearing, side))
+                   for side in self.guide_sides(bearing))
 
-    def groove_opening_at_land(self, bearing: BearingGeometry) -> float:
-        """Axial width 2 z_l [m] of the guiding race's groove where it meets the land cylinder:
-        the cage overlaps the lands only where it is wider than this."""
-        land_r = 0.5 * self.guide_land_diameter(bearing)
-        if self.guidance == "outer":
+    def groove_opening_at_land(self, bearing: BearingGeometry, side: int | None = None) -> float:
+        """2 z_l [m]: twice the axial distance from the groove plane at which the guiding ring's
+        groove meets its land on `side` (default: the first guiding land). The cage overlaps a
+        land only where its half width exceeds z_l."""
+        ring = self.guide_ring
+        if ring is None:
+            raise ValueError("a ball-guided cage runs on no land (cage.guidance = 'ball')")
+        side = self.guide_sides(bearing)[0] if side is None else side
+        land_r = 0.5 * bearing.shoulder(ring, side)
+        if ring == "outer":
             rc, r = 0.5 * bearing.outer_groove_center_diameter, bearing.outer_groove_radius
         else:
             rc, r = 0.5 * bearing.inner_groove_center_diameter, bearing.inner_groove_radius

@@ -20,6 +20,7 @@ from .._speed.compile_policy import FIRST_CLASS, INTERNAL, NO_REFCOUNT, WITH_REF
 from ..contact.pocket import (
     P_OUT_APPROACH, P_OUT_DFN_DRATE, P_OUT_FRICTION_POWER, P_OUT_IN_CONTACT,
 )
+from ..journal.hybrid import J_GUIDANCE
 from ..lubrication.film import film_central_nvm_batch
 from ..multibody.crv import crv_to_matrix_into, skew
 from ..multibody.hinge import add_hinge_force, hinge_energy, hinge_forces
@@ -28,7 +29,8 @@ from ..multibody.rigid_body import gyroscopic_damping
 from ..multibody.small import add_into, eye3, mm, mtv_into, mv, mv_into
 
 from .bundles import Ball, Bodies, Body
-from .cage_forces import journal_diag, journal_forces, journal_tangent, pocket_diag, pocket_forces, pocket_tangent
+from .cage_forces import (journal_diag, journal_forces, journal_race_tangent, journal_tangent, pocket_diag,
+                          pocket_forces, pocket_tangent)
 from .channels import (
     DB, DB_AI, DB_HI, DB_PMI, DB_QI, DB_SRRI, DG_DRIVE, DG_FLAGS, DG_P_DISS, DG_P_DRIVE, DG_P_EXT,
     DG_V_HERTZ, DG_V_HINGE, N_DG,
@@ -378,6 +380,18 @@ def _border(t, v, model, bodies, loads, ma, g, diag):
     inner, cage = bodies.inner, bodies.cage
     o_i = BALL_DOF * ip[IP_Z]
     R_i = inner.R
+    if ip[IP_CAGE] and ip[IP_JOURNAL]:
+        # first: an inner-guided cage's land reaction acts on the inner race, whose rows follow
+        jres = work.journal_row
+        inner_guided = model.cage.journal[J_GUIDANCE] < 0.0
+        fixed = work.fixed_reaction  # the fixed outer race takes its reaction: nothing reads it
+        fixed[:] = 0.0
+        power = journal_forces(cage, inner if inner_guided else bodies.outer, model.cage.journal, jres,
+                               work.journal_squeeze, g, o_i + RACE_DOF,
+                               loads.F_inner if inner_guided else fixed[0],
+                               loads.M_inner if inner_guided else fixed[1])
+        journal_diag(jres, diag)
+        diag[DG_P_DISS] -= power
     ext_f, ext_m = work.ext_f, work.ext_m
     ext_f[0], ext_f[1], ext_f[2] = fp[FP_FX], 0.0, fp[FP_FZ]
     # a sudden load step (stability suite): the moment jumps at t = FP_T_LOAD_STEP
@@ -409,11 +423,6 @@ def _border(t, v, model, bodies, loads, ma, g, diag):
             g[o_c + 3 + i] += m_cage[i]
         if ip[IP_GYRO]:
             _add_gyroscopic(fp[FP_JCX], fp[FP_JCX], fp[FP_JCZ], Om_c, g, o_c + 3)
-        if ip[IP_JOURNAL]:
-            jres = work.journal_row
-            power = journal_forces(cage, bodies.outer, model.cage.journal, jres, work.journal_squeeze, g, o_c)
-            journal_diag(jres, diag)
-            diag[DG_P_DISS] -= power
     drive = prescribe_velocity_residual(o_i + 5, v, fp[FP_OMEGA_I], 1.0, ma, g)
     diag[DG_DRIVE] = drive
     diag[DG_P_DRIVE] = drive * fp[FP_OMEGA_I]
@@ -437,6 +446,8 @@ def _border_tangents(v, model, bodies, Kb, Cb):
         if ip[IP_JOURNAL]:
             cage_block = slice(CAGE_BORDER, CAGE_BORDER + CAGE_DOF)
             journal_tangent(work.journal_row, Kb[cage_block, cage_block], Cb[cage_block, cage_block])
+            if model.cage.journal[J_GUIDANCE] < 0.0:
+                journal_race_tangent(work.journal_row, Kb, Cb)
 
 
 # The border's tangent terms: kernels with reference counting (they build small arrays), called

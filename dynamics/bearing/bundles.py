@@ -107,7 +107,8 @@ class ResidualWork(NamedTuple):
     contact rows (2Z, N_RC) and pocket rows (Z, N_POCKET_OUT), the contacts' scratch, the
     border load sums, the outer race (x = 0, R = I, v = 0; the kernel sets w = (0, 0, omega_o)
     from the parameters), the rotation (3x3) and spatial angular velocity (3) of the inner race
-    and the cage, the external loads, three material moments (3), the cage–land result row and its film's scratch. Like
+    and the cage, the external loads, three material moments (3), the cage–land result row, its film's scratch and
+    the land reaction on a fixed outer race. Like
     the traction rule's workspace it belongs to one model: one evaluation at a time."""
 
     rows: np.ndarray
@@ -126,6 +127,7 @@ class ResidualWork(NamedTuple):
     moment_cage: np.ndarray  # contact moment sum on the cage, material (3) [N m]
     journal_row: np.ndarray  # the cage–land result row (journal/hybrid.py, N_JOURNAL_OUT)
     journal_squeeze: np.ndarray  # the dynamic cage film's scratch (journal/squeeze_film.py, N_SQUEEZE_OUT)
+    fixed_reaction: np.ndarray  # (2, 3): the land's reaction force and moment on the fixed outer race (unused)
 
 
 class ModelArrays(NamedTuple):

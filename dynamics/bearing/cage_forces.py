@@ -9,9 +9,9 @@ import numpy as np
 
 from .._speed.compile_policy import KERNEL, NO_REFCOUNT
 from ..journal.hybrid import (
-    J_OUT_CONTACT_AZIMUTH, J_OUT_DF_DOMEGA_CAGE, J_OUT_DF_DPOS, J_OUT_DF_DVEL,
-    J_OUT_DT_DOMEGA_CAGE, J_OUT_DT_DPOS, J_OUT_DT_DVEL, J_OUT_EPS, J_OUT_FILM_POWER, J_OUT_FORCE,
-    J_OUT_FRICTION_POWER, J_OUT_METAL_FORCE, J_OUT_MIN_FILM, J_OUT_TORQUE, cage_race_journal_into,
+    J_OUT_CONTACT_AZIMUTH, J_OUT_DF_DOMEGA_CAGE, J_OUT_DF_DOMEGA_RACE, J_OUT_DF_DPOS, J_OUT_DF_DVEL,
+    J_OUT_DT_DOMEGA_CAGE, J_OUT_DT_DOMEGA_RACE, J_OUT_DT_DPOS, J_OUT_DT_DVEL, J_OUT_EPS, J_OUT_FILM_POWER,
+    J_OUT_FORCE, J_OUT_FRICTION_POWER, J_OUT_METAL_FORCE, J_OUT_MIN_FILM, J_OUT_TORQUE, cage_race_journal_into,
 )
 from ..contact.pocket import (
     P_MU, P_OUT_APPROACH, P_OUT_DFN_DDELTA, P_OUT_DFN_DRATE, P_OUT_FN, P_OUT_FORCE_BALL,
@@ -25,7 +25,7 @@ from .channels import (
     DB_POCKET, DB_POCKET_APPROACH, DB_POCKET_FRICTION_POWER, DB_POCKET_IN_CONTACT, DB_POCKET_ORBITAL,
     DG_AZIMUTH, DG_EPS, DG_FILM_POWER, DG_FRICTION_POWER, DG_FX, DG_FY, DG_METAL, DG_MIN_FILM, DG_TORQUE,
 )
-from .layout import CAGE_BORDER
+from .layout import CAGE_BORDER, INNER_BORDER
 from .tangents import add_pair, point_map
 
 
@@ -75,25 +75,39 @@ def pocket_tangent(k, x_b, cage, pp, pres, K, C):
 
 
 @numba.njit(**KERNEL)
-def journal_forces(cage, race, jp, jres, squeeze, g, cage_off):
+def journal_forces(cage, race, jp, jres, squeeze, g, cage_off, race_force, race_moment):
     """Cage on its guiding land (docs/model.md §8): cage and race are `bundles.Body` (the
-    race turns about z); force and torque about z on the cage (spatial), into the cage rows
-    g[cage_off:cage_off+6]; the `cage_race_journal` row, with the derivatives `journal_tangent`
-    reads, into jres (squeeze: the dynamic film's scratch, N_SQUEEZE_OUT). Returns the power
-    of the journal forces on the cage [W] (negative: dissipated). Allocates nothing: the
-    residual of every Newton iteration calls it."""
+    race turns about z and, for an inner-guided cage, moves with the inner race); force and
+    torque about z on the cage (spatial), into the cage rows g[cage_off:cage_off+6]; their
+    reaction on the race, the force and the moment about the race's centre (spatial), added to
+    race_force and race_moment (3 each); the `cage_race_journal` row, with the derivatives
+    `journal_tangent` reads, into jres (squeeze: the dynamic film's scratch, N_SQUEEZE_OUT).
+    Returns the power of the journal on the pair [W] (negative: dissipated). Allocates
+    nothing: the residual of every Newton iteration calls it.
+
+    The film and the line contact act between the cage and the land in the plane of the
+    bearing (docs/model.md §8): the race's tilt does not enter them."""
     vel0, vel1 = cage.v[0] - race.v[0], cage.v[1] - race.v[1]
     w_race_z = race.w[2]
     out = jres
-    cage_race_journal_into(cage.x[0] - race.x[0], cage.x[1] - race.x[1], vel0, vel1, cage.w[2], w_race_z, jp, out,
-                           squeeze)
+    dx, dy, dz = cage.x[0] - race.x[0], cage.x[1] - race.x[1], cage.x[2] - race.x[2]
+    cage_race_journal_into(dx, dy, vel0, vel1, cage.w[2], w_race_z, jp, out, squeeze)
     F = out[J_OUT_FORCE:J_OUT_FORCE + 3]
     T = out[J_OUT_TORQUE]
     # torque about the global z axis, mapped to material moments of the cage
     for i in range(3):
         g[cage_off + i] += F[i]
         g[cage_off + 3 + i] += cage.R[2, i] * T
-    return F[0] * vel0 + F[1] * vel1 + T * (cage.w[2] - w_race_z)
+    # the reaction about the race's centre: -T e_z - d x F, d = cage centre - race centre (F_z = 0)
+    mx, my, mz = dz * F[1], -dz * F[0], -T - (dx * F[1] - dy * F[0])
+    race_force[0] -= F[0]
+    race_force[1] -= F[1]
+    race_moment[0] += mx
+    race_moment[1] += my
+    race_moment[2] += mz
+    # the pair's power: the cage's relative motion, less the race's turning under d x F
+    return (F[0] * vel0 + F[1] * vel1 + T * (cage.w[2] - w_race_z)
+            + mx * race.w[0] + my * race.w[1] + (mz + T) * race.w[2])
 
 
 @numba.njit(**KERNEL)
@@ -106,6 +120,36 @@ def journal_tangent(jres, Kb, Cb):
     Cb[0, 5] -= jres[J_OUT_DF_DOMEGA_CAGE]
     Cb[1, 5] -= jres[J_OUT_DF_DOMEGA_CAGE + 1]
     Cb[5, 5] -= jres[J_OUT_DT_DOMEGA_CAGE]
+
+
+@numba.njit(**KERNEL)
+def journal_race_tangent(jres, Kb, Cb):
+    """The tangents that tie an inner-guided cage to the inner race into the border blocks Kb,
+    Cb (`linear_solvers.Blocks.B`), from the row `journal_forces` left in jres: the journal
+    acts on the offset and velocity of the cage relative to the race, and its reaction on the
+    race is the opposite force and torque about z (the small lever d x F is left out of the
+    tangents). The cage's own block is `journal_tangent`'s."""
+    c, r = np.int64(CAGE_BORDER), np.int64(INNER_BORDER)
+    for M, i_force, i_torque in ((Kb, np.int64(J_OUT_DF_DPOS), np.int64(J_OUT_DT_DPOS)),
+                                 (Cb, np.int64(J_OUT_DF_DVEL), np.int64(J_OUT_DT_DVEL))):
+        for i in range(2):
+            for j in range(2):
+                d = jres[i_force + 2 * i + j]
+                M[c + i, r + j] += d  # the cage's force against the race's position
+                M[r + i, c + j] += d  # the race's force (-F) against the cage's position
+                M[r + i, r + j] -= d
+            dt = jres[i_torque + i]
+            M[c + 5, r + i] += dt
+            M[r + 5, c + i] += dt
+            M[r + 5, r + i] -= dt
+    # the race's spin (its material z rate) enters the film through omega_race
+    for i in range(2):
+        Cb[c + i, r + 5] -= jres[J_OUT_DF_DOMEGA_RACE + i]
+        Cb[r + i, r + 5] += jres[J_OUT_DF_DOMEGA_RACE + i]
+        Cb[r + i, c + 5] += jres[J_OUT_DF_DOMEGA_CAGE + i]
+    Cb[c + 5, r + 5] -= jres[J_OUT_DT_DOMEGA_RACE]
+    Cb[r + 5, r + 5] += jres[J_OUT_DT_DOMEGA_RACE]
+    Cb[r + 5, c + 5] += jres[J_OUT_DT_DOMEGA_CAGE]
 
 
 @numba.njit(**KERNEL)

@@ -130,7 +130,7 @@ def residual_work(Z: int) -> ResidualWork:
         R_inner=np.zeros((3, 3)), w_inner=np.zeros(3), R_cage=np.zeros((3, 3)), w_cage=np.zeros(3),
         ext_f=np.zeros(3), ext_m=np.zeros(3), moment_contact=np.zeros(3), moment_load=np.zeros(3),
         moment_cage=np.zeros(3),
-        journal_row=np.zeros(N_JOURNAL_OUT), journal_squeeze=np.zeros(N_SQUEEZE_OUT))
+        journal_row=np.zeros(N_JOURNAL_OUT), journal_squeeze=np.zeros(N_SQUEEZE_OUT), fixed_reaction=np.zeros((2, 3)))
 
 
 class _Kernel:

@@ -56,6 +56,7 @@ class BearingModelParams:
     hinge: HingeArrays
     has_cage: bool
     guide_clearance: float = float("nan")
+    cage_guidance: str = "outer"  # what centres the cage: "outer" | "inner" | "ball" (geometry.CageGeometry)
     meta: dict = field(default_factory=dict)
 
     @property
@@ -100,18 +101,24 @@ class BearingModelParams:
 
 
 def inner_race_inertia(bearing: BearingGeometry, race: Material) -> tuple[float, float, float]:
-    """(mass [kg], J_diametral, J_polar [kg m^2]) of the inner ring as a plain annulus
-    between the bore and the shoulder diameter (the groove is neglected)."""
+    """(mass [kg], J_diametral, J_polar [kg m^2]) of the inner ring as two plain annuli, one a
+    side of the groove plane, each between the bore and its side's shoulder diameter (the
+    groove is neglected); equal shoulders make it one annulus."""
     missing = [k for k in ("inner_bore_diameter", "inner_shoulder_diameter", "width")
                if getattr(bearing, k) is None]
     if missing:
         raise ValueError(
             f"the dynamic model needs the inner-ring mass: give bearing.{missing[0]} [m] "
             f"(missing: {', '.join('bearing.' + m for m in missing)})")
-    ro, ri, w = 0.5 * bearing.inner_shoulder_diameter, 0.5 * bearing.inner_bore_diameter, bearing.width
-    m = race.density * math.pi * (ro * ro - ri * ri) * w
-    jz = 0.5 * m * (ro * ro + ri * ri)
-    jx = m * (3.0 * (ro * ro + ri * ri) + w * w) / 12.0
+    ri, w = 0.5 * bearing.inner_bore_diameter, bearing.width
+    m = jz = jx = 0.0
+    for d in bearing.shoulders("inner"):
+        ro = 0.5 * d
+        m_half = race.density * math.pi * (ro * ro - ri * ri) * 0.5 * w
+        m += m_half
+        jz += 0.5 * m_half * (ro * ro + ri * ri)
+        # each half about its own centre (w/4 off the groove plane), moved there by Steiner
+        jx += m_half * (3.0 * (ro * ro + ri * ri) + (0.5 * w) ** 2) / 12.0 + m_half * (0.25 * w) ** 2
     return m, jx, jz
 
 
@@ -185,6 +192,7 @@ def build_model_params(
                           G_psi=contiguous(c_G * H_psi), x_A=contiguous(static_x, dtype=float),
                           R_A=contiguous(static_R, dtype=float)),
         has_cage=cage is not None, guide_clearance=clearance, meta={"effective_modulus": e_eff},
+        cage_guidance=cage.guidance if cage is not None else "outer",
     )
 
 
@@ -202,7 +210,7 @@ def _cage_params(bearing, cage, ball, race, cage_material, lubricant, options, f
                                         restitution=options.pocket_restitution,
                                         friction_coefficient=options.pocket_friction)
     journal = np.zeros(1)
-    if options.cage_race != "none":
+    if options.cage_race != "none" and cage.guide_ring is not None:  # a ball-guided cage runs on no land
         viscosity = lubricant.eta0 if lubricant is not None else 0.0
         if options.cage_race in ("hybrid", "hydrodynamic") and viscosity <= 0.0:
             raise ValueError(f"cage_race = {options.cage_race!r} needs a lubricant viscosity")
@@ -210,6 +218,7 @@ def _cage_params(bearing, cage, ball, race, cage_material, lubricant, options, f
             bearing, cage, cage_material, race, viscosity=viscosity,
             friction_coefficient=options.cage_race_friction, eps0=options.cage_race_boundary,
             mode=options.cage_race, film=options.cage_race_film,
-            lands=options.cage_race_lands)
+            # one guiding land (a high shoulder beside a low one) is one journal
+            lands=options.cage_race_lands if cage.guide_land_count(bearing) == 2 else 1)
         ip[IP_JOURNAL] = 1
     return pocket, journal, cage.guide_clearance(bearing)

@@ -26,8 +26,10 @@ from .params import FP_OMEGA_I, BearingModelParams
 
 def initial_coordinates(params: BearingModelParams, start: dict) -> tuple[np.ndarray, np.ndarray]:
     """q0, v0 from `dynamics.quasistatic.result.initial_state(...)`: balls at their
-    equilibrium positions in pure rolling, cage centred at the mean orbital speed, inner
-    race displaced and tilted as in equilibrium and spinning at its prescribed speed."""
+    equilibrium positions in pure rolling, inner race displaced and tilted as in equilibrium
+    and spinning at its prescribed speed, cage turning at the mean orbital speed, centred on
+    what guides it (the outer ring's axis, the inner race's centre, the ball set's centroid)
+    and axially on the balls' mean plane, so that no pocket starts in contact with its ball."""
     Z = params.ball_count
     n = params.n_dof
     q, v = np.zeros(n), np.zeros(n)
@@ -42,6 +44,11 @@ def initial_coordinates(params: BearingModelParams, start: dict) -> tuple[np.nda
     v[o + 5] = params.fp[FP_OMEGA_I]  # material spin = prescribed inner-race speed
     if params.has_cage:
         c = layout.cage_offset(Z, True)
+        balls = np.asarray(start["ball_positions"], dtype=float)
+        guide = params.cage_guidance
+        q[c:c + 2] = (q[o:o + 2] if guide == "inner" else balls[:, :2].mean(axis=0) if guide == "ball"
+                      else 0.0)
+        q[c + 2] = balls[:, 2].mean()
         v[c + 5] = start["cage_angular_speed"]
     return q, v
 
@@ -90,6 +97,8 @@ class BearingRun:
             "inner_race/velocity": RunSeries(self.v[:, o:o + 3], "m/s", "inner-race centre velocity", V),
             "inner_race/axis": RunSeries(R_i[:, :, 2], "-", "inner-race axis (unit vector); its x, y are the tilts about -y, +x", V),
             "inner_race/angular_velocity": RunSeries(self.v[:, o + 3:o + 6], "rad/s", "material angular velocity", V),
+            "inner_race/angle": RunSeries(spin_angle(R_i), "rad", "angle the inner race has turned about +z since "
+                                          "t = 0 (unwrapped): its land's azimuth x is at x + angle", T),
             "balls/position": RunSeries(balls_q[:, :, :3], "m", "ball centres", BV),
             "balls/velocity": RunSeries(balls_v[:, :, :3], "m/s", "ball centre velocities", BV),
             "balls/angular_velocity": RunSeries(balls_v[:, :, 3:], "rad/s", "ball angular velocities (global frame)", BV),
@@ -98,17 +107,26 @@ class BearingRun:
         }
         if self.has_cage:
             c = layout.cage_offset(Z, True)
-            omega = np.einsum("nij,nj->ni", _rotations(self.q[:, c + 3:c + 6]), self.v[:, c + 3:c + 6])
+            R_c = _rotations(self.q[:, c + 3:c + 6])
+            omega = np.einsum("nij,nj->ni", R_c, self.v[:, c + 3:c + 6])
             out.update({
                 "cage/position": RunSeries(self.q[:, c:c + 3], "m", "cage centre (guiding race at the origin)", V),
                 "cage/velocity": RunSeries(self.v[:, c:c + 3], "m/s", "cage centre velocity", V),
                 "cage/angular_velocity": RunSeries(omega, "rad/s", "cage angular velocity, global frame", V),
                 "cage/speed": RunSeries(omega[:, 2], "rad/s", "cage rotation speed about +z", T),
+                "cage/angle": RunSeries(spin_angle(R_c), "rad", "angle the cage has turned about +z since t = 0 "
+                                        "(unwrapped): its rim's azimuth x is at x + angle", T),
             })
         for ch, per_ball in declared_channels(self.has_cage):
             dims = (B if per_ball else T) + (("xy",) if ch.width == 2 else ("xyz",) if ch.width == 3 else ())
             out[ch.name] = RunSeries(read_channel(self.diag, Z, ch.name), ch.unit, ch.description, dims)
         return out
+
+
+def spin_angle(R: np.ndarray) -> np.ndarray:
+    """The angle [rad] rotations R (n, 3, 3) turn +x about +z, unwrapped over the samples (the
+    samples are close enough that a body turns less than half a turn between two)."""
+    return np.unwrap(np.arctan2(R[:, 1, 0], R[:, 0, 0])) if len(R) else np.zeros(0)
 
 
 def _rotations(c: np.ndarray) -> np.ndarray:

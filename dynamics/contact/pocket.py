@@ -1,13 +1,16 @@
-"""Ball–pocket contact: a sphere in a cylindrical cage pocket (docs/model.md §7).
+"""Ball–pocket contact: a sphere in a cylindrical or spherical cage pocket (docs/model.md §7).
 
-Each pocket is a cylinder of radius r_p whose axis is radial in the cage frame, through the
-pocket centre on the cage's mean circle at azimuth psi_k. The ball (radius r_b) penetrates
+A cylindrical pocket is a cylinder of radius r_p whose axis is radial in the cage frame, through
+the pocket centre on the cage's mean circle at azimuth psi_k. The ball (radius r_b) penetrates
 the wall by
 
     delta = rho - (r_p - r_b),    rho = distance of the ball centre from the pocket axis,
 
 along n, the unit vector from the axis to the ball centre in the plane normal to the axis.
-The contact point is on the wall, p = foot of the ball centre on the axis + r_p n.
+The contact point is on the wall, p = foot of the ball centre on the axis + r_p n. A
+spherical pocket (a ball-guided cage's: it holds the ball radially too) is the sphere of radius
+r_p about the pocket centre: rho is the distance of the ball centre from that centre, and n
+points from it to the ball centre.
 
 Normal force (Hertz with hysteresis damping, Hunt–Crossley family):
 
@@ -53,7 +56,11 @@ P_IMPACT_SPEED_REF = 6  # floor / default of the impact speed v_0 [m/s]
 P_MU = 7  # friction coefficient [-]
 P_V_REG = 8  # friction regularisation speed [m/s]
 P_ECCENTRICITY = 9  # run-out: pocket-circle centre off the cage centre along the cage frame's +x [m]
-N_POCKET_PARAMS = 10
+P_SHAPE = 10  # SHAPE_* below
+N_POCKET_PARAMS = 11
+
+SHAPE_CYLINDRICAL, SHAPE_SPHERICAL = 0.0, 1.0
+SHAPES = {"cylindrical": SHAPE_CYLINDRICAL, "spherical": SHAPE_SPHERICAL}
 
 # --- output vector layout ----------------------------------------------------------------
 P_OUT_DELTA = 0  # penetration delta [m] (negative: gap)
@@ -138,7 +145,8 @@ def _pocket_contact_into(out, x_ball, v_ball, w_ball, x_cage, rot_cage, v_cage, 
     ax, ay, az = _column_mix(rot_cage, c, s, 0.0)  # pocket axis, global
     ox, oy, oz = _column_mix(rot_cage, lx, ly, lz)  # pocket centre - cage centre, global
     dx, dy, dz = x_ball[0] - x_cage[0] - ox, x_ball[1] - x_cage[1] - oy, x_ball[2] - x_cage[2] - oz
-    along = dx * ax + dy * ay + dz * az
+    # a cylinder measures the distance from its axis, a sphere from its centre
+    along = dx * ax + dy * ay + dz * az if params[P_SHAPE] == SHAPE_CYLINDRICAL else 0.0
     px, py, pz = dx - along * ax, dy - along * ay, dz - along * az
     rho = math.sqrt(px * px + py * py + pz * pz)
     if rho > 1e-12 * r_p:
@@ -248,12 +256,16 @@ def hertz_point_contact(curvature_sum: float, curvature_difference: float, effec
     return kappa, k_h
 
 
-def pocket_hertz_constant(ball_diameter: float, pocket_diameter: float, effective_modulus: float):
-    """(kappa, k_h) of a ball of diameter D in a cylindrical pocket of diameter d_p (§7).
+def pocket_hertz_constant(ball_diameter: float, pocket_diameter: float, effective_modulus: float,
+                          shape: str = "cylindrical"):
+    """(kappa, k_h) of a ball of diameter D in a pocket of diameter d_p (§7).
 
-    Curvatures: ball 2/D, 2/D; pocket -2/d_p round the cylinder, 0 along its axis.
+    Curvatures: ball 2/D, 2/D; a cylindrical pocket -2/d_p round the cylinder, 0 along its
+    axis (an elliptical contact); a spherical pocket -2/d_p, -2/d_p (a circular one).
     """
     check_pocket_clearance(ball_diameter, pocket_diameter)
+    if shape == "spherical":
+        return hertz_point_contact(4.0 / ball_diameter - 4.0 / pocket_diameter, 0.0, effective_modulus)
     curvature_sum = 4.0 / ball_diameter - 2.0 / pocket_diameter
     return hertz_point_contact(curvature_sum, (2.0 / pocket_diameter) / curvature_sum, effective_modulus)
 
@@ -280,15 +292,18 @@ def pocket_parameters(*, ball_diameter: float, pocket_diameter: float, pitch_rad
                       effective_modulus: float, restitution: float, friction_coefficient: float,
                       reference_impact_speed: float = 0.1, regularisation_speed: float = 1e-3,
                       damping_model: str = "flores", pocket_axial_offset: float = 0.0,
-                      pocket_circle_eccentricity: float = 0.0) -> np.ndarray:
+                      pocket_circle_eccentricity: float = 0.0, shape: str = "cylindrical") -> np.ndarray:
     """Pack and check the pocket parameters (SI) for `pocket_contact` / `pocket_contacts`.
 
     pitch_radius [m]: radius of the pocket-centre circle (cage mean radius);
     pocket_circle_eccentricity [m]: run-out, the pocket circle's centre off the cage centre
     towards pocket 0 (the cage frame's +x);
-    reference_impact_speed [m/s]: floor and default of v_0; regularisation_speed [m/s].
+    reference_impact_speed [m/s]: floor and default of v_0; regularisation_speed [m/s];
+    shape: "cylindrical" (radial axis) | "spherical".
     """
-    _, k_h = pocket_hertz_constant(ball_diameter, pocket_diameter, effective_modulus)
+    if shape not in SHAPES:
+        raise ValueError(f"pocket contact: shape = {shape!r}; allowed: {', '.join(SHAPES)}")
+    _, k_h = pocket_hertz_constant(ball_diameter, pocket_diameter, effective_modulus, shape)
     for name, value in {"pitch_radius [m]": pitch_radius, "reference_impact_speed [m/s]": reference_impact_speed,
                         "regularisation_speed [m/s]": regularisation_speed}.items():
         if not value > 0.0:
@@ -302,17 +317,20 @@ def pocket_parameters(*, ball_diameter: float, pocket_diameter: float, pitch_rad
     params[P_IMPACT_SPEED_REF], params[P_MU], params[P_V_REG] = (
         reference_impact_speed, friction_coefficient, regularisation_speed)
     params[P_ECCENTRICITY] = pocket_circle_eccentricity
+    params[P_SHAPE] = SHAPES[shape]
     return params
 
 
 def pocket_parameters_for_cage(bearing, cage, ball_material, cage_material, *, restitution: float,
                                friction_coefficient: float, **options) -> np.ndarray:
-    """`pocket_parameters` from dynamics.geometry objects (D, d_p, d_c/2, run-out, E' ball–cage)."""
+    """`pocket_parameters` from dynamics.geometry objects (D, d_p, d_c/2, run-out, shape, E' ball–cage:
+    the cage's own material)."""
     from ..geometry import effective_modulus
 
     return pocket_parameters(
         ball_diameter=bearing.ball_diameter, pocket_diameter=cage.pocket_diameter,
         pitch_radius=0.5 * cage.mean_diameter, pocket_circle_eccentricity=cage.pocket_circle_eccentricity,
+        shape=cage.pocket_form,
         effective_modulus=effective_modulus(ball_material, cage_material),
         restitution=restitution, friction_coefficient=friction_coefficient, **options,
     )

@@ -408,6 +408,8 @@ def journal_parameters_for_cage(bearing, cage, cage_material, race_material, *, 
     """
     from ..geometry import effective_modulus
 
+    if cage.guide_ring is None:
+        raise ValueError("a ball-guided cage (cage.guidance = 'ball') runs on no land: it has no journal")
     geometry = JournalGeometry(radius=0.5 * cage.guide_land_diameter(bearing),
                                length=cage.guide_land_length(bearing), clearance=cage.guide_clearance(bearing),
                                lands=lands, guidance=cage.guidance)

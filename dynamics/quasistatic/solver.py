@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..geometry import BearingGeometry, Material, effective_modulus
+from ..geometry import BearingGeometry, Material, contact_side, effective_modulus
 from ..contact.hertz import (DEFAULT_TABLE_NODES, TAB_DKH, TAB_KH, hertz_table_eval, max_pressure,
                             race_hertz_table)
 from .kernels import (BALL_COLUMNS, B_AI, B_AO, B_DI, B_DO, B_FR, B_FZ, B_QI, B_QO,
@@ -57,8 +57,17 @@ class _Problem:
     g_o: np.ndarray
     xb: np.ndarray
     linear_kinematics: bool = False
-    land_i: float = math.nan  # angle at which the groove meets its land [rad] (NaN: no land)
-    land_o: float = math.nan
+    # angle at which the groove meets its land [rad] for a contact angle >= 0 and < 0 (the land
+    # on the side that contact presses on, dynamics.geometry.contact_side); NaN: no land
+    land_i: tuple[float, float] = (math.nan, math.nan)
+    land_o: tuple[float, float] = (math.nan, math.nan)
+
+    def land_limit(self, ring: str, angles: np.ndarray) -> np.ndarray:
+        """The land angle [rad] each contact of `ring` at `angles` [rad] may reach before its
+        centre rides over the land (pi/2, the groove's edge, where there is no land)."""
+        positive, negative = self.land_i if ring == "inner" else self.land_o
+        limit = np.where(np.asarray(angles) >= 0.0, positive, negative)
+        return np.where(np.isfinite(limit), limit, 0.5 * math.pi)
 
     @property
     def lever(self) -> float:
@@ -288,7 +297,7 @@ def _no_equilibrium(problem: _Problem, q_last, frac, res: float) -> QuasiStaticE
         hit = _past_land(problem, problem.contact(q_last)[2])
         if hit is not None:
             k, side, angle, limit = hit
-            has_land = math.isfinite(problem.land_i if side == "inner" else problem.land_o)
+            has_land = limit < 0.5 * math.pi
             edge = f"the {side} land at {math.degrees(limit):.2f}°" if has_land else "90°, the edge of the groove"
             return QuasiStaticError(
                 f"with {100 * frac:.1f} % of the radial load and moment on top of the axial load, ball {k}: "
@@ -305,12 +314,12 @@ def _no_equilibrium(problem: _Problem, q_last, frac, res: float) -> QuasiStaticE
 def _past_land(problem: _Problem, balls: np.ndarray):
     """(ball, side, |α|, limit) of the first loaded contact at or past its land — 90°, the
     edge of the groove, where there is none — else None."""
-    for side, col_q, col_a, land in (("inner", B_QI, B_AI, problem.land_i), ("outer", B_QO, B_AO, problem.land_o)):
-        limit = land if math.isfinite(land) else 0.5 * math.pi
+    for side, col_q, col_a in (("inner", B_QI, B_AI), ("outer", B_QO, B_AO)):
+        limit = problem.land_limit(side, balls[:, col_a])
         over = np.flatnonzero((balls[:, col_q] > 0.0) & (np.abs(balls[:, col_a]) >= limit))
         if over.size:
             k = int(over[0])
-            return k, side, float(abs(balls[k, col_a])), limit
+            return k, side, float(abs(balls[k, col_a])), float(limit[k])
     return None
 
 
@@ -355,8 +364,8 @@ def _make_problem(geometry: BearingGeometry, ball_material: Material, race_mater
         psi=2.0 * np.pi * np.arange(Z) / Z, R_ci=R_ci, R_co=R_co, gap_i=geometry.inner_groove_radius - 0.5 * D,
         gap_o=geometry.outer_groove_radius - 0.5 * D, tab_i=tab_i, tab_o=tab_o, m_om2=np.zeros(Z),
         g_i=np.zeros(Z), g_o=np.zeros(Z), xb=np.full((Z, 2), np.nan), linear_kinematics=kinematics == "linear",
-        land_i=_shoulder_angle(geometry.inner_shoulder_diameter, R_ci, geometry.inner_groove_radius, outer=False),
-        land_o=_shoulder_angle(geometry.outer_shoulder_diameter, R_co, geometry.outer_groove_radius, outer=True))
+        land_i=_land_angles(geometry, "inner", R_ci, geometry.inner_groove_radius),
+        land_o=_land_angles(geometry, "outer", R_co, geometry.outer_groove_radius))
 
 
 def solve_quasistatic(
@@ -410,6 +419,13 @@ def solve_quasistatic(
     return _build_result(geometry, problem, q, load, kin, iterations, residual, inner_speed, outer_speed)
 
 
+def _land_angles(geometry: BearingGeometry, ring: str, center_radius: float, groove_radius: float):
+    """(land angle for a contact angle >= 0, for one < 0) [rad] of `ring`: each the land on the
+    side that contact presses on (NaN: no land)."""
+    return tuple(_shoulder_angle(geometry.shoulder(ring, contact_side(ring, sign)), center_radius, groove_radius,
+                                 outer=ring == "outer") for sign in (1.0, -1.0))
+
+
 def _shoulder_angle(land_diameter, center_radius, groove_radius, outer: bool) -> float:
     """Angle from the radial plane at which the groove meets the land [rad] (NaN: no land)."""
     if land_diameter is None:
@@ -431,12 +447,15 @@ def _ellipse(tab, loads, angles):
 def _land_error(geometry, problem: _Problem, balls: np.ndarray, k: int, side: str, land_angle: float):
     """QuasiStaticError: ball k's loaded `side` contact has reached the land at land_angle [rad].
     Its azimuth and load say where (e.g. a light contact opposite a radial load)."""
-    land = geometry.inner_shoulder_diameter if side == "inner" else geometry.outer_shoulder_diameter
     col_q, col_a = (B_QI, B_AI) if side == "inner" else (B_QO, B_AO)
+    land_side = contact_side(side, balls[k, col_a])
+    land = geometry.shoulder(side, land_side)
+    pair = geometry.shoulders(side)
+    which = "" if pair is None or pair[0] == pair[1] else f", its side toward {'+z' if land_side > 0 else '-z'}"
     where = f"ball {k} (azimuth {math.degrees(problem.psi[k]):.1f}°, {balls[k, col_q]:.4g} N)"
     return QuasiStaticError(
-        f"{where}: the {side} contact angle {math.degrees(abs(balls[k, col_a])):.2f}° reaches the "
-        f"{side} land at {math.degrees(land_angle):.2f}° ({side}_shoulder_diameter = {land} m): the ball "
+        f"{where}: the {side} contact angle {math.degrees(balls[k, col_a]):.2f}° reaches the "
+        f"{side} land at {math.degrees(land_angle):.2f}° ({side}_shoulder_diameter = {land} m{which}): the ball "
         f"rides over the shoulder and the contact ellipse is cut off by the land, so the groove "
         f"cannot carry this load. Reduce the axial load or moment, or check the shoulder diameter.")
 
@@ -444,17 +463,22 @@ def _land_error(geometry, problem: _Problem, balls: np.ndarray, k: int, side: st
 def _truncation(geometry, problem, balls, a_i, a_o):
     """Margins r(θ_land − |α|) − a [m]; raise if a loaded contact centre passes a land."""
     margins, notes = [], []
-    for side, theta, r, col_q, col_a, a in (
-            ("inner", problem.land_i, geometry.inner_groove_radius, B_QI, B_AI, a_i),
-            ("outer", problem.land_o, geometry.outer_groove_radius, B_QO, B_AO, a_o)):
+    for side, r, col_q, col_a, a in (
+            ("inner", geometry.inner_groove_radius, B_QI, B_AI, a_i),
+            ("outer", geometry.outer_groove_radius, B_QO, B_AO, a_o)):
+        land = problem.land_i if side == "inner" else problem.land_o
+        theta = np.where(balls[:, col_a] >= 0.0, land[0], land[1])  # NaN without a land
         margin = r * (theta - np.abs(balls[:, col_a])) - a
         loaded = balls[:, col_q] > 0.0
         over = np.flatnonzero(loaded & (np.abs(balls[:, col_a]) >= theta))
         if over.size:
             k = int(over[0])
-            raise _land_error(geometry, problem, balls, k, side, theta)
+            raise _land_error(geometry, problem, balls, k, side, float(theta[k]))
+        pair = geometry.shoulders(side)
         for k in np.flatnonzero(loaded & (margin < 0.0)):
-            notes.append(f"ball {int(k)}: {side} contact ellipse truncated by the land by "
+            which = ("" if pair is None or pair[0] == pair[1]
+                     else f" on its side toward {'+z' if contact_side(side, balls[k, col_a]) > 0 else '-z'}")
+            notes.append(f"ball {int(k)}: {side} contact ellipse truncated by the land{which} by "
                          f"{-margin[k] * 1e3:.3f} mm (semi-axis a = {a[k] * 1e3:.3f} mm)")
         margins.append(np.where(loaded, margin, r * (theta - np.abs(balls[:, col_a]))))
     return margins[0], margins[1], tuple(notes)

@@ -22,11 +22,16 @@ def cage_clearances(parts: Parts) -> CageClearances:
 
 
 def land_film(scene: Scene) -> LandFilm:
-    """The guide lands of the operating cage as the screen's short journal bearing."""
+    """The guide lands of the operating cage as the screen's short journal bearing (none for
+    a ball-guided cage: a film of no length, which pushes nothing)."""
     b, c = scene.bearing, scene.cage
+    viscosity = scene.lubricant.eta0 if scene.lubricant is not None else 0.0
+    if c.guide_ring is None:
+        return LandFilm(radius=0.5 * c.mean_diameter, length=0.0, lands=1, eps0=scene.physics.cage_race_boundary,
+                        viscosity=0.0)
     return LandFilm(radius=0.5 * c.guide_land_diameter(b), length=c.guide_land_length(b),
-                    lands=scene.physics.cage_race_lands, eps0=scene.physics.cage_race_boundary,
-                    viscosity=scene.lubricant.eta0 if scene.lubricant is not None else 0.0)
+                    lands=scene.physics.cage_race_lands if c.guide_land_count(b) == 2 else 1,
+                    eps0=scene.physics.cage_race_boundary, viscosity=viscosity)
 
 
 def _operating(scene: Scene) -> Parts:

@@ -58,13 +58,29 @@ def check_number(key: str, value: Any, meta: dict, *, integer: bool = False) -> 
 
 
 def _strip_optional(tp: Any) -> tuple[Any, bool]:
-    """`float | None` -> (float, True)."""
+    """`float | None` -> (float, True); `float | tuple[float, float] | None` ->
+    (float | tuple[float, float], True)."""
     origin = typing.get_origin(tp)
     if origin in (typing.Union, types.UnionType):
         args = [a for a in typing.get_args(tp) if a is not type(None)]
-        if len(args) == 1 and len(typing.get_args(tp)) == 2:
-            return args[0], True
+        optional = len(args) < len(typing.get_args(tp))
+        if len(args) == 1:
+            return args[0], optional
+        return typing.Union[tuple(args)], optional
     return tp, False
+
+
+def _one_or_list(key: str, value: Any, tp: Any, meta: dict) -> Any:
+    """A union of a scalar type and a tuple of it (`float | tuple[float, float]`: one value, or
+    one a side): a list takes the tuple form, anything else the scalar's."""
+    args = typing.get_args(tp)
+    scalar = [a for a in args if typing.get_origin(a) is not tuple]
+    listed = [a for a in args if typing.get_origin(a) is tuple]
+    if len(scalar) != 1 or len(listed) != 1:
+        raise TypeError(f"schema: unsupported field type {tp!r} for {key}")
+    if isinstance(value, (list, tuple)):
+        return _convert_tuple(key, value, listed[0], meta)
+    return convert(key, value, scalar[0], {k: v for k, v in meta.items() if k != "length"})
 
 
 def convert(key: str, value: Any, tp: Any, meta: dict) -> Any:
@@ -92,6 +108,8 @@ def convert(key: str, value: Any, tp: Any, meta: dict) -> Any:
     origin = typing.get_origin(tp)
     if origin is tuple:
         return _convert_tuple(key, value, tp, meta)
+    if origin in (typing.Union, types.UnionType):
+        return _one_or_list(key, value, tp, meta)
     raise TypeError(f"schema: unsupported field type {tp!r} for {key}")
 
 

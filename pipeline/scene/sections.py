@@ -28,8 +28,12 @@ class CatalogueBearing:
     diametral_clearance: float = field(
         default=0.0, metadata={"unit": "m", "doc": "unmounted radial play x 2; negative = preload"}
     )
-    inner_shoulder_diameter: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0, "doc": "inner-ring land diameter"})
-    outer_shoulder_diameter: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0, "doc": "outer-ring land diameter"})
+    inner_shoulder_diameter: float | tuple[float, float] | None = field(default=None, metadata={
+        "unit": "m", "gt": 0.0, "length": 2,
+        "doc": "inner-ring land diameter: one value, or [side toward +z, side toward -z]"})
+    outer_shoulder_diameter: float | tuple[float, float] | None = field(default=None, metadata={
+        "unit": "m", "gt": 0.0, "length": 2,
+        "doc": "outer-ring land diameter: one value, or [side toward +z, side toward -z]"})
     inner_bore_diameter: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0, "doc": "inner-ring bore"})
     outer_outside_diameter: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0, "doc": "outer-ring outside diameter"})
     width: float | None = field(default=None, metadata={"unit": "m", "gt": 0.0, "doc": "ring width B"})

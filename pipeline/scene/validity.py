@@ -28,6 +28,8 @@ import math
 import os
 from dataclasses import dataclass
 
+from ...dynamics.geometry import SIDE_NAMES, SIDES, contact_side
+
 from .schema import SceneError
 
 # ISO 76:2006 "Rolling bearings — Static load ratings", §5.1 / §6.1: the basic static load
@@ -127,30 +129,53 @@ def _form2(scene) -> bool:
     return isinstance(table, dict) and "pitch_diameter" in table
 
 
-def _land_angle(b, side: str) -> float | None:
-    """Angle from the radial plane at which the groove meets the land [rad] (None: no
-    land given); the formula of dynamics/quasistatic/solver.py (_shoulder_angle)."""
-    land = b.inner_shoulder_diameter if side == "inner" else b.outer_shoulder_diameter
+def _land_angle(b, ring: str, side: int) -> float | None:
+    """Angle from the radial plane at which `ring`'s groove meets its land on `side` [rad]
+    (None: no land given); the formula of dynamics/quasistatic/solver.py (_shoulder_angle)."""
+    land = b.shoulder(ring, side)
     if land is None:
         return None
-    if side == "inner":
+    if ring == "inner":
         depth, r = 0.5 * b.inner_groove_center_diameter - 0.5 * land, b.inner_groove_radius
     else:
         depth, r = 0.5 * land - 0.5 * b.outer_groove_center_diameter, b.outer_groove_radius
     return math.acos(max(-1.0, min(1.0, depth / r)))
 
 
+def _side_text(b, ring: str, side: int) -> str:
+    """'' for a ring with one shoulder diameter, else ', its side toward +z' (or -z)."""
+    pair = b.shoulders(ring)
+    if pair is None or pair[0] == pair[1]:
+        return ""
+    return f", {SIDE_NAMES[0 if side > 0 else 1]}"
+
+
+def _loaded_sides(scene, ring: str) -> tuple[int, ...]:
+    """The sides of `ring`'s groove the axial load presses the balls onto (both without one)."""
+    axial = scene.load.axial if getattr(scene, "load", None) is not None else 0.0
+    if axial == 0.0:
+        return SIDES
+    return (contact_side(ring, 1.0 if axial > 0.0 else -1.0),)
+
+
 def _clearance(scene) -> list[Finding]:
     """cos alpha_0 = 1 - P_d / (2 A) (docs/model.md §2): P_d = 2A puts the free contact at
-    90° (the ball no longer held radially); the lands, when given, come earlier."""
+    90° (the ball no longer held radially); the lands, when given, come earlier: for each ring,
+    the land on the side the axial load presses the balls onto (the more permissive side
+    without an axial load)."""
     b = scene.bearing
     A, play = b.curvature_center_distance, b.diametral_clearance
     limit_angle, why = math.pi / 2, "90° (the groove no longer holds the ball radially)"
-    for side in ("inner", "outer"):
-        theta = _land_angle(b, side)
-        if theta is not None and theta < limit_angle:
+    for ring in ("inner", "outer"):
+        angles = [(theta, side) for side in _loaded_sides(scene, ring)
+                  if (theta := _land_angle(b, ring, side)) is not None]
+        if not angles:
+            continue
+        theta, side = max(angles)
+        if theta < limit_angle:
             limit_angle = theta
-            why = f"the {side} land at {math.degrees(theta):.1f}° (bearing.{side}_shoulder_diameter)"
+            why = (f"the {ring} land at {math.degrees(theta):.1f}° (bearing.{ring}_shoulder_diameter"
+                   f"{_side_text(b, ring, side)})")
     limit = 2.0 * A * (1.0 - math.cos(limit_angle))
     if play < limit:
         return []
@@ -167,20 +192,22 @@ def _clearance(scene) -> list[Finding]:
 
 
 def _lands(scene) -> list[Finding]:
-    """A land must lie between its groove's bottom and the pitch circle."""
+    """A land must lie between its groove's bottom and the pitch circle, on either side."""
     b, out = scene.bearing, []
-    if b.inner_shoulder_diameter is not None:
-        lo, hi = b.inner_groove_bottom_diameter, b.pitch_diameter
-        if not lo < b.inner_shoulder_diameter < hi:
-            out.append(error("bearing.inner_shoulder_diameter",
-                             f"{_g(b.inner_shoulder_diameter)} m is not on the inner ring's land: allowed "
-                             f"between the inner groove bottom {_g(lo)} m and the pitch diameter {_g(hi)} m [m]"))
-    if b.outer_shoulder_diameter is not None:
-        lo, hi = b.pitch_diameter, b.outer_groove_bottom_diameter
-        if not lo < b.outer_shoulder_diameter < hi:
-            out.append(error("bearing.outer_shoulder_diameter",
-                             f"{_g(b.outer_shoulder_diameter)} m is not on the outer ring's land: allowed "
-                             f"between the pitch diameter {_g(lo)} m and the outer groove bottom {_g(hi)} m [m]"))
+    ranges = {"inner": (b.inner_groove_bottom_diameter, b.pitch_diameter, "the inner groove bottom",
+                        "the pitch diameter"),
+              "outer": (b.pitch_diameter, b.outer_groove_bottom_diameter, "the pitch diameter",
+                        "the outer groove bottom")}
+    for ring, (lo, hi, lo_name, hi_name) in ranges.items():
+        pair = b.shoulders(ring)
+        if pair is None:
+            continue
+        for side, d in zip(SIDES, pair):
+            if not lo < d < hi:
+                out.append(error(f"bearing.{ring}_shoulder_diameter",
+                                 f"{_g(d)} m{_side_text(b, ring, side)} is not on the {ring} ring's land: allowed "
+                                 f"between {lo_name} {_g(lo)} m and {hi_name} {_g(hi)} m [m]"))
+                break
     return out
 
 
@@ -191,13 +218,14 @@ def _cage_fit(scene) -> list[Finding]:
     if c is None:
         return []
     out = []
-    side = c.guidance
-    land_key = f"bearing.{side}_shoulder_diameter"
-    if getattr(b, f"{side}_shoulder_diameter") is None:
-        out.append(error(land_key, f"required with a cage guided by the {side} race (cage.guidance = "
-                                   f"{side!r}): the diameter of the land the cage runs on [m]"))
-    inner_land = b.inner_shoulder_diameter or b.inner_groove_bottom_diameter
-    outer_land = b.outer_shoulder_diameter or b.outer_groove_bottom_diameter
+    ring = c.guide_ring
+    if ring is not None and b.shoulders(ring) is None:
+        out.append(error(f"bearing.{ring}_shoulder_diameter",
+                         f"required with a cage guided by the {ring} ring (cage.guidance = {ring!r}): the "
+                         f"diameter of the land the cage runs on [m]"))
+    inner, outer = b.shoulders("inner"), b.shoulders("outer")
+    inner_land = max(inner) if inner is not None else b.inner_groove_bottom_diameter
+    outer_land = min(outer) if outer is not None else b.outer_groove_bottom_diameter
     d_m, t = b.pitch_diameter, c.radial_thickness
     lo, hi = max(d_m - t, inner_land + t), min(d_m + t, outer_land - t)
     fits = c.bore_diameter > inner_land and c.outside_diameter < outer_land and abs(c.mean_diameter - d_m) < t
@@ -378,13 +406,7 @@ def run_findings(scene, stages: set[str]) -> list[Finding]:
 
 
 def _dynamics_findings(scene) -> list[Finding]:
-    b, c, out = scene.bearing, scene.cage, []
-    if c is not None and c.guidance == "inner":
-        out.append(error("cage.guidance",
-                         "'inner' is not modelled by the dynamic stage yet: its cage-land journal always runs "
-                         "against the fixed outer race, so an inner-guided cage would be simulated on the wrong "
-                         "land; allowed for simulate and run: 'outer' (quasistatic and its crush screen accept "
-                         "'inner')"))
+    b, out = scene.bearing, []
     missing = [f"bearing.{k}" for k in ("inner_bore_diameter", "inner_shoulder_diameter", "width")
                if getattr(b, k) is None]
     if missing:
@@ -403,21 +425,25 @@ def _dynamics_findings(scene) -> list[Finding]:
 def _land_overlap(scene) -> list[Finding]:
     """The cage-land journal needs a length: the cage must be wider than the guiding groove
     where it meets the land, as drawn and at the operating temperatures."""
-    if scene.cage is None or scene.cage.land_length is not None or scene.physics.cage_race == "none":
+    if (scene.cage is None or scene.cage.guide_ring is None or scene.cage.land_length is not None
+            or scene.physics.cage_race == "none"):
         return []
     drawn = _as_drawn(scene)
-    key = f"bearing.{drawn.cage.guidance}_shoulder_diameter"
+    ring = drawn.cage.guide_ring
+    key = f"bearing.{ring}_shoulder_diameter"
     for parts, when in ((drawn, ""), (scene, " at the operating temperatures ([thermal])")):
         c, b = parts.cage, parts.bearing
-        if getattr(b, key.split(".")[1]) is None:
+        if b.shoulders(ring) is None:
             return []  # the land itself is missing: _cage_fit says so
-        opening = c.groove_opening_at_land(b)
-        if c.width <= opening:
-            return [error("cage.width", f"{_g(drawn.cage.width)} m does not reach the {c.guidance} race's lands"
-                                        f"{when}: the groove is {_g(opening)} m wide where it meets the land "
-                                        f"({key}) and the cage {_g(c.width)} m, so the cage-land journal would "
-                                        f"have no length; allowed: wider than the groove there, or give "
-                                        f"cage.land_length [m]")]
+        if c.guide_land_length(b) > 0.0:
+            continue
+        side = c.guide_sides(b)[0]
+        opening = c.groove_opening_at_land(b, side)
+        return [error("cage.width", f"{_g(drawn.cage.width)} m does not reach the {ring} ring's guiding land"
+                                    f"{when}: the groove is {_g(opening)} m wide where it meets the land "
+                                    f"({key}{_side_text(b, ring, side)}) and the cage {_g(c.width)} m, so the "
+                                    f"cage-land journal would have no length; allowed: wider than the groove "
+                                    f"there, or give cage.land_length [m]")]
     return []
 
 

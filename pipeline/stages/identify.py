@@ -30,7 +30,8 @@ def ring_seat(scene: Scene):
                          f"give {', '.join('bearing.' + m for m in missing)} or set hinge.source = 'given'")
     return RingSeat(
         inner_bore_diameter=b.inner_bore_diameter,
-        inner_outer_diameter=b.inner_shoulder_diameter,  # the ring's outside diameter in the FE model
+        # the ring's outside diameter in the axisymmetric FE model: the mean of its two shoulders
+        inner_outer_diameter=b.mean_shoulder_diameter("inner"),
         outer_outside_diameter=b.outer_outside_diameter,
         width=b.width,
     )

@@ -40,6 +40,7 @@ out_console = make_console()
 err_console = make_console(stderr=True)
 
 EXIT_SCENE, EXIT_UNAVAILABLE, EXIT_FAILED, EXIT_INTERRUPTED = 2, 3, 1, 130
+EXIT_NOT_SIMULABLE = 4  # check: valid for the quasi-static stage, refused by simulate and run
 
 
 def _literal(text: str) -> str:
@@ -251,7 +252,9 @@ def scenes(name: Annotated[Optional[str], typer.Argument(
 
 @app.command()
 def check(scene: SceneArg, set_: SetOpt = None) -> None:
-    """Validate a scene and print it resolved, with units and the derived geometry."""
+    """Validate a scene and print it resolved, with units and the derived geometry. Exit code 4:
+    the scene is valid for the quasi-static stage, but simulate and run would refuse it (the
+    first lines say why)."""
     from .scene_tables import print_scene
 
     from ..stages.session import fe_findings
@@ -263,12 +266,14 @@ def check(scene: SceneArg, set_: SetOpt = None) -> None:
         _check_sweep_table(scene, set_)
     except SceneError as exc:
         _fail(EXIT_SCENE, f"scene: {explain(exc)}")
+    refusals = [f for f in run_findings(resolved, {"simulate"}) if f.level == "error"]
+    if refusals:  # first, before the tables: what a user about to simulate must know
+        err_console.print("simulate and run would refuse this scene (the quasi-static stage runs): "
+                          + escape("; ".join(f.text for f in refusals)), highlight=False, soft_wrap=True)
     print_scene(resolved, out_console)
     _print_findings(notes)
-    refusals = [f for f in run_findings(resolved, {"simulate"}) if f.level == "error"]
     if refusals:
-        err_console.print("note: simulate and run would refuse this scene: "
-                          + escape("; ".join(f.text for f in refusals)), highlight=False, soft_wrap=True)
+        raise typer.Exit(EXIT_NOT_SIMULABLE)
 
 
 def _check_sweep_table(scene: str, overrides) -> None:

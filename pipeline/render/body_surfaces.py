@@ -46,46 +46,63 @@ def revolve(radius: np.ndarray, z: np.ndarray, n_theta: int) -> RevolvedSurface:
     return RevolvedSurface(points, quads, cell_azimuth, cell_z)
 
 
-def _race_profile(center_radius: float, groove_radius: float, shoulder_radius: float | None,
+def _edge_angle(center_radius: float, groove_radius: float, shoulder_radius: float | None, sign: float) -> float:
+    """Angle from the groove plane at which the groove meets a land of `shoulder_radius`."""
+    if shoulder_radius is None:
+        return GROOVE_HALF_ANGLE
+    return math.acos(min(1.0, max(-1.0, sign * (shoulder_radius - center_radius) / groove_radius)))
+
+
+def _race_profile(center_radius: float, groove_radius: float, shoulders: tuple[float, float] | None,
                   half_width: float | None, sign: float) -> tuple[np.ndarray, np.ndarray]:
     """(radius, z) along a race's bore (outer, sign = +1) or outside (inner, sign = -1):
-    groove r = d/2 + sign r_g cos(alpha), then the lands out to the ring's half width."""
-    if shoulder_radius is not None:
-        edge = math.acos(min(1.0, max(-1.0, sign * (shoulder_radius - center_radius) / groove_radius)))
-    else:
-        edge = GROOVE_HALF_ANGLE
-    alpha = np.linspace(-edge, edge, PROFILE_POINTS)
+    groove r = d/2 + sign r_g cos(alpha), then the lands out to the ring's half width.
+    `shoulders`: the land radii on the side toward +z and toward -z (None: no lands)."""
+    up, down = shoulders if shoulders is not None else (None, None)
+    alpha = np.linspace(-_edge_angle(center_radius, groove_radius, down, sign),
+                        _edge_angle(center_radius, groove_radius, up, sign), PROFILE_POINTS)
     radius = center_radius + sign * groove_radius * np.cos(alpha)
     z = groove_radius * np.sin(alpha)
-    if shoulder_radius is not None and half_width is not None and half_width > z[-1]:
-        radius = np.r_[shoulder_radius, radius, shoulder_radius]
+    if shoulders is not None and half_width is not None and half_width > max(z[-1], -z[0]):
+        radius = np.r_[down, radius, up]
         z = np.r_[-half_width, z, half_width]
     return radius, z
+
+
+def _land_radii(bearing, ring: str) -> tuple[float, float] | None:
+    pair = bearing.shoulders(ring)
+    return None if pair is None else (0.5 * pair[0], 0.5 * pair[1])
 
 
 def outer_race_surface(bearing, n_theta: int, cage=None) -> RevolvedSurface:
     """The outer race's bore: groove and lands (the guiding land of an outer-guided cage).
     With a `cage`, the lands are split at the cage's edges (z = ±w_c/2), so that the cells
     of the cage's land overlap are exactly those between the groove edge and w_c/2."""
-    shoulder = 0.5 * bearing.outer_shoulder_diameter if bearing.outer_shoulder_diameter else None
+    shoulders = _land_radii(bearing, "outer")
     half_width = 0.5 * bearing.width if bearing.width else None
     r, z = _race_profile(0.5 * bearing.outer_groove_center_diameter, bearing.outer_groove_radius,
-                         shoulder, half_width, +1.0)
-    if cage is not None and shoulder is not None and half_width is not None:
+                         shoulders, half_width, +1.0)
+    return _split_at_cage(r, z, cage, shoulders, half_width, n_theta)
+
+
+def _split_at_cage(r, z, cage, shoulders, half_width, n_theta) -> RevolvedSurface:
+    """The profile revolved, its lands split at the cage's edges z = ±w_c/2 where they lie on them."""
+    if cage is not None and shoulders is not None and half_width is not None:
         edge = 0.5 * cage.width
-        if z[-2] < edge < z[-1]:  # inside the land
-            r = np.r_[r[0], shoulder, r[1:-1], shoulder, r[-1]]
+        if z[-2] < edge < z[-1] and z[0] < -edge < z[1]:  # inside both lands
+            r = np.r_[r[0], shoulders[1], r[1:-1], shoulders[0], r[-1]]
             z = np.r_[z[0], -edge, z[1:-1], edge, z[-1]]
     return revolve(r, z, n_theta)
 
 
-def inner_race_surface(bearing, n_theta: int) -> RevolvedSurface:
-    """The inner race's outside: groove and lands."""
-    shoulder = 0.5 * bearing.inner_shoulder_diameter if bearing.inner_shoulder_diameter else None
+def inner_race_surface(bearing, n_theta: int, cage=None) -> RevolvedSurface:
+    """The inner race's outside: groove and lands (the guiding land of an inner-guided cage;
+    with a `cage`, split at its edges as `outer_race_surface` does)."""
+    shoulders = _land_radii(bearing, "inner")
     half_width = 0.5 * bearing.width if bearing.width else None
     r, z = _race_profile(0.5 * bearing.inner_groove_center_diameter, bearing.inner_groove_radius,
-                         shoulder, half_width, -1.0)
-    return revolve(r, z, n_theta)
+                         shoulders, half_width, -1.0)
+    return _split_at_cage(r, z, cage, shoulders, half_width, n_theta)
 
 
 def cage_surface(cage, n_theta: int) -> RevolvedSurface:

@@ -1,4 +1,5 @@
-"""Burn-zone renders (docs/model.md §11): the outer race in 3-D and unrolled in 2-D.
+"""Burn-zone renders (docs/model.md §11): the guiding race (the outer ring's bore, or the inner
+ring's outside in the frame turning with it) in 3-D and unrolled in 2-D.
 
 Both images show the same two layers (see `burn_zone_data`), over the settled window of the
 run: on the cage's land overlap the land heat per sector [J] — metal friction plus film
@@ -23,7 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .burn_zone_data import BurnZoneMap, OuterRaceProfile
+from .burn_zone_data import BurnZoneMap, RaceProfile
 from ..figures import new_figure, save_png
 from .offscreen import render_png
 
@@ -55,8 +56,9 @@ def _azimuth_window(first: float, count: int, total: int) -> np.ndarray:
     return (first + np.arange(count)) % total
 
 
-def _race_meshes(pv, bzm: BurnZoneMap, center_deg: float, outside_radius: float) -> list[tuple]:
-    """(mesh, kind) of the half ring centred on `center_deg`: land bands, raceway, grey."""
+def _race_meshes(pv, bzm: BurnZoneMap, center_deg: float, rim_radius: float) -> list[tuple]:
+    """(mesh, kind) of the half ring centred on `center_deg`: land bands, raceway, grey;
+    `rim_radius` the ring's other surface (the outer ring's outside, the inner ring's bore)."""
     p = bzm.profile
     S, A = bzm.sectors, bzm.track_density.shape[0]
     meshes = []
@@ -69,18 +71,19 @@ def _race_meshes(pv, bzm: BurnZoneMap, center_deg: float, outside_radius: float)
         return idx, phi
 
     idx, phi = arc(S)
-    for side in (-1.0, 1.0):
-        z_band = side * np.array([p.z_land, p.cage_half_width])
-        band = _surface_of_revolution(pv, np.full(2, p.land_radius), z_band, phi)
-        band.cell_data["energy"] = bzm.sector_energy[idx]
-        meshes.append((band, "burn"))
-        plain = _surface_of_revolution(pv, np.full(2, p.land_radius),
-                                       side * np.array([p.cage_half_width, p.half_width]), phi)
-        face = _surface_of_revolution(pv, np.array([p.land_radius, outside_radius]),
-                                      np.full(2, side * p.half_width), phi)
+    for side in (-1, 1):
+        r_land, z_land = p.land_radius_at(side), p.z_land(side)
+        start = z_land
+        if side in p.land_sides:
+            band = _surface_of_revolution(pv, np.full(2, r_land), side * np.array([z_land, p.cage_half_width]), phi)
+            band.cell_data["energy"] = bzm.sector_energy[idx]
+            meshes.append((band, "burn"))
+            start = p.cage_half_width
+        plain = _surface_of_revolution(pv, np.full(2, r_land), side * np.array([start, p.half_width]), phi)
+        face = _surface_of_revolution(pv, np.array([r_land, rim_radius]), np.full(2, side * p.half_width), phi)
         meshes += [(plain, "grey"), (face, "grey")]
-    outer = _surface_of_revolution(pv, np.full(2, outside_radius), np.array([-p.half_width, p.half_width]), phi)
-    meshes.append((outer, "grey"))
+    rim = _surface_of_revolution(pv, np.full(2, rim_radius), np.array([-p.half_width, p.half_width]), phi)
+    meshes.append((rim, "grey"))
     idx_t, phi_t = arc(A)
     radius, z = p.groove_point(bzm.track_alpha_edges)
     race = _surface_of_revolution(pv, radius, z, phi_t)
@@ -98,12 +101,12 @@ def _marks(pv, bzm: BurnZoneMap, center_deg: float) -> list:
     """Polylines on the lands of the shown half ring: the peak sector's centre line and
     the outline of the 80 % arc."""
     p = bzm.profile
-    r = 0.999 * p.land_radius  # just inside the land so the lines are not buried in it
+    r = (1.0 - 0.001 * p.sign) * p.land_radius  # just off the land, on the camera's side
     lines = []
     if bzm.peak_sector is not None and _in_view(bzm.sector_center(bzm.peak_sector), center_deg):
         phi = bzm.sector_center(bzm.peak_sector)
-        for side in (-1.0, 1.0):
-            a = [r * math.cos(phi), r * math.sin(phi), side * p.z_land]
+        for side in p.land_sides:
+            a = [r * math.cos(phi), r * math.sin(phi), side * p.z_land(side)]
             b = [r * math.cos(phi), r * math.sin(phi), side * p.cage_half_width]
             lines.append(pv.Line(a, b))
     if bzm.sector is not None:
@@ -112,13 +115,13 @@ def _marks(pv, bzm: BurnZoneMap, center_deg: float) -> list:
         phi = phi[[_in_view(a, center_deg) for a in phi]]
         if phi.size < 2:
             return lines
-        for side in (-1.0, 1.0):
-            for z in (p.z_land, p.cage_half_width):
+        for side in p.land_sides:
+            for z in (p.z_land(side), p.cage_half_width):
                 pts = np.column_stack([r * np.cos(phi), r * np.sin(phi), np.full(phi.size, side * z)])
                 lines.append(pv.lines_from_points(pts))
             for edge in (start, end):
                 if _in_view(edge, center_deg):
-                    lines.append(pv.Line([r * math.cos(edge), r * math.sin(edge), side * p.z_land],
+                    lines.append(pv.Line([r * math.cos(edge), r * math.sin(edge), side * p.z_land(side)],
                                          [r * math.cos(edge), r * math.sin(edge), side * p.cage_half_width]))
     return lines
 
@@ -130,26 +133,30 @@ def camera_side(bzm: BurnZoneMap) -> float:
     hence the same picture for the same results."""
     centres = 0.5 * (bzm.track_alpha_edges[1:] + bzm.track_alpha_edges[:-1])
     weight = bzm.track_density.sum(axis=0)
-    mean_sin = float(np.sum(weight * np.sin(centres)) / weight.sum()) if weight.sum() > 0.0 else 0.0
-    return 1.0 if mean_sin < 0.0 else -1.0
+    _, z = bzm.profile.groove_point(centres)
+    mean_z = float(np.sum(weight * z) / weight.sum()) if weight.sum() > 0.0 else 0.0
+    return 1.0 if mean_z < 0.0 else -1.0
 
 
-def _view(plotter, center_deg: float, profile: OuterRaceProfile, side: float) -> None:
-    """Camera on the far side of the axis, above (side +1) or below (-1) the groove plane,
-    looking at the inside of the race around azimuth `center_deg`."""
+def _view(plotter, center_deg: float, profile: RaceProfile, side: float) -> None:
+    """Camera above (side +1) or below (-1) the groove plane looking at the land around azimuth
+    `center_deg`: for the outer ring's bore from the far side of the axis, for the inner ring's
+    outside from beyond it."""
     c = math.radians(center_deg)
     R = profile.land_radius
+    reach = -2.6 if profile.ring == "outer" else 3.2
     focus = (0.5 * R * math.cos(c), 0.5 * R * math.sin(c), side * 0.1 * R)
-    eye = (-2.6 * R * math.cos(c), -2.6 * R * math.sin(c), side * 1.1 * R)
+    eye = (reach * R * math.cos(c), reach * R * math.sin(c), side * 1.1 * R)
     plotter.camera_position = [eye, focus, (0.0, 0.0, 1.0)]
     plotter.camera.view_angle = 34.0
 
 
-def render_burn_zone_3d(bzm: BurnZoneMap, path: Path, title: str, outside_radius: float | None = None,
+def render_burn_zone_3d(bzm: BurnZoneMap, path: Path, title: str, rim_radius: float | None = None,
                         show: bool = False) -> None:
-    """Four fixed views of the outer race coloured by burn energy and contact tracks."""
+    """Four fixed views of the guiding race coloured by burn energy and contact tracks;
+    `rim_radius` [m] the ring's other surface (outer ring: its outside, inner ring: its bore)."""
     p = bzm.profile
-    R_out = outside_radius or OUTSIDE_RADIUS_FACTOR * p.land_radius
+    R_out = rim_radius or p.land_radius * (OUTSIDE_RADIUS_FACTOR if p.ring == "outer" else 1.0 / OUTSIDE_RADIUS_FACTOR)
     clim_burn, clim_track = _clim(bzm.sector_energy), _clim(bzm.track_density)
     deg = 360.0 / bzm.sectors
     side = camera_side(bzm)
@@ -189,7 +196,7 @@ def render_burn_zone_3d(bzm: BurnZoneMap, path: Path, title: str, outside_radius
     render_png(path, populate, shape=(2, 2), window_size=(1600, 1000), show=show)
 
 
-def _azimuth_labels(plotter, p: OuterRaceProfile, bzm: BurnZoneMap, center_deg: float, side: float) -> None:
+def _azimuth_labels(plotter, p: RaceProfile, bzm: BurnZoneMap, center_deg: float, side: float) -> None:
     """Azimuth ticks every 30° on the face towards the camera, and the peak sector's value."""
     r = p.land_radius
     ticks = np.array([a for a in np.radians(np.arange(0, 360, 30)) if _in_view(a, center_deg)])
@@ -198,7 +205,8 @@ def _azimuth_labels(plotter, p: OuterRaceProfile, bzm: BurnZoneMap, center_deg: 
                              point_size=1, shape_opacity=0.0, always_visible=False)
     if bzm.peak_sector is not None and _in_view(bzm.sector_center(bzm.peak_sector), center_deg):
         phi = bzm.sector_center(bzm.peak_sector)
-        pt = [[0.97 * r * math.cos(phi), 0.97 * r * math.sin(phi), side * p.cage_half_width]]
+        pt = [[(1.0 - 0.03 * p.sign) * r * math.cos(phi), (1.0 - 0.03 * p.sign) * r * math.sin(phi),
+               side * p.cage_half_width]]
         plotter.add_point_labels(pt, [f"peak {math.degrees(phi):.1f}°"], font_size=12,
                                  text_color="black", shape_color=MARK_COLOR, point_size=1)
 
@@ -225,28 +233,33 @@ def render_burn_zone_map(bzm: BurnZoneMap, path: Path, title: str) -> dict:
     ax_e.set_ylim(0.0, _clim(bzm.sector_energy)[1] * 1.1)
     ax_e.grid(alpha=0.3)
     burn = None
-    for side in (-1.0, 1.0):
-        z_edges = np.sort(side * np.array([p.z_land, p.cage_half_width])) * mm
-        burn = ax_m.pcolormesh(sector_edges, z_edges, bzm.sector_energy[None, :], cmap=BURN_CMAP,
-                               vmin=0.0, vmax=_clim(bzm.sector_energy)[1])
-        ax_m.axhspan(*(np.sort(side * np.array([p.cage_half_width, p.half_width])) * mm), color="lightgrey")
+    for side in (-1, 1):
+        start = p.z_land(side)
+        if side in p.land_sides:
+            z_edges = np.sort(side * np.array([p.z_land(side), p.cage_half_width])) * mm
+            burn = ax_m.pcolormesh(sector_edges, z_edges, bzm.sector_energy[None, :], cmap=BURN_CMAP,
+                                   vmin=0.0, vmax=_clim(bzm.sector_energy)[1])
+            start = p.cage_half_width
+        ax_m.axhspan(*(np.sort(side * np.array([start, p.half_width])) * mm), color="lightgrey")
     A = bzm.track_density.shape[0]
     _, z_track = p.groove_point(bzm.track_alpha_edges)
     tracks = ax_m.pcolormesh(np.linspace(0.0, 360.0, A + 1), z_track * mm, bzm.track_density.T,
                              cmap=TRACK_CMAP, vmin=0.0, vmax=_clim(bzm.track_density)[1])
-    for z in (p.z_land, p.cage_half_width):
-        for side in (-1.0, 1.0):
+    for side in (-1, 1):
+        for z in (p.z_land(side), p.cage_half_width):
             ax_m.axhline(side * z * mm, color="k", lw=0.6)
     _mark_sectors(bzm, (ax_e, ax_m), deg)
     ax_m.set_xlim(0.0, 360.0)
     ax_m.set_ylim(-p.half_width * mm, p.half_width * mm)
     ax_m.set_xticks(range(0, 361, 30))
-    ax_m.set_xlabel("azimuth φ [deg] (from +x towards +y)")
+    ax_m.set_xlabel("azimuth φ [deg] (from +x towards +y)" if p.ring == "outer" else
+                    "azimuth φ on the inner ring [deg] (from where +x was at t = 0, turning with the ring)")
     ax_m.set_ylabel("axial position z [mm] (groove plane at 0)")
     fig.colorbar(burn, ax=ax_m, label=f"land: heat per {360 / S:g}° sector [J]", pad=0.01)
     fig.colorbar(tracks, ax=ax_m, label="raceway: load × time per bin [N·s]", pad=0.01)
-    ax_e.set_title(f"{title}\n{heat_caption(bzm)}\neach sector's heat spread uniformly over the land "
-                   f"overlap (both lands, L = {p.land_overlap * mm:.2f} mm)", fontsize=9)
+    lands = "both lands" if len(p.land_sides) == 2 else "the guiding land"
+    ax_e.set_title(f"{title}: the {p.ring} ring's land\n{heat_caption(bzm)}\neach sector's heat spread uniformly "
+                   f"over the land overlap ({lands}, L = {p.land_overlap * mm:.2f} mm)", fontsize=9)
     fig.canvas.draw()  # fix the constrained layout before reading the axes' position
     box = ax_m.get_window_extent()
     height = fig.bbox.height

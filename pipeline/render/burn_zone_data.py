@@ -1,6 +1,7 @@
 """What the burn-zone renders show, as plain arrays (no plotting here).
 
-Two layers on the outer race (docs/model.md §8, §6.1, §11), both over the *settled window*
+Two layers on the race whose land guides the cage — the outer ring, or the inner ring in the
+frame that turns with it — (docs/model.md §8, §6.1, §11), both over the *settled window*
 of the run (t >= end of the start-up, `summary.json` `settled_window`; the start-up's metal
 energy is reported apart, `summary.json` `startup`):
 
@@ -15,13 +16,15 @@ energy is reported apart, `summary.json` `startup`):
   (`burn_zone_sector`, `burn_zone_energy_metal` / `_film` / `_total`) agree by
   construction. Default resolution: 360 sectors (1°). The model gives only the azimuth of
   the heat, not where along the axis it goes, so each sector's energy is spread uniformly
-  over the land overlap of the cage (both lands, axial length L = `guide_land_length`);
-  the areal density is then E_k / (R_land · Δφ · L).
-- **Contact tracks** on the raceway: where the balls run. The ball–outer-race contact
-  lies on the line from the groove curvature centre through the ball centre, at the
-  groove radius r_o from the centre (§6.1): in the ball's azimuth plane it is at radius
-  d_o/2 + r_o cos α_o and axial position r_o sin α_o, α_o the outer contact angle (the
-  outer race is fixed with its groove plane at z = 0, §1). Each contact is spread across
+  over the land overlap of the cage (the guiding lands, axial length L = `guide_land_length`);
+  the areal density is then E_k / (R_land · Δφ · L). The inner ring's land turns with it,
+  so its map is in the ring's frame: the contact azimuth less the angle the ring has turned
+  (`inner_race/angle`).
+- **Contact tracks** on the raceway: where the balls run. A ball–race contact lies on the
+  line from the groove curvature centre through the ball centre, at the groove radius r from
+  the centre (§6.1): in the ball's azimuth plane the outer one is at radius d_o/2 + r_o cos α_o
+  and axial position r_o sin α_o, the inner one at d_i/2 - r_i cos α_i and -r_i sin α_i (the
+  groove planes at z = 0 in each ring's frame, §1). Each contact is spread across
   the groove over its Hertz ellipse (semi-major axis a along the groove, §6.2), so the
   band shows the running track's width and how much of it rides over the land edge.
   The density is load × time [N·s] per (azimuth, groove-angle) bin: unloaded balls leave
@@ -43,67 +46,91 @@ TRACK_ANGLE_BINS = 96  # over the whole raceway profile (≈ 1.3° of contact an
 
 
 @dataclass(frozen=True)
-class OuterRaceProfile:
-    """Axial profile of the outer race's bore surface, SI units (m, rad).
+class RaceProfile:
+    """Axial profile of the guiding race's land surface, SI units (m, rad): the outer ring's
+    bore (`ring` "outer") or the inner ring's outside ("inner").
 
-    The groove (radius r_o about the curvature-centre circle of radius d_o/2) meets the
-    land cylinder (radius R_land) at ±z_land, i.e. at profile angle ±theta_land.
+    The groove (radius r about the curvature-centre circle of radius d/2) meets each land
+    cylinder at axial distance z_land from the groove plane, one value a side (`z_lands`:
+    toward +z, toward -z); `land_sides` are the sides whose land guides the cage (+1, -1).
     """
 
-    land_radius: float  # R_land = outer shoulder diameter / 2
-    groove_center_radius: float  # d_o / 2
-    groove_radius: float  # r_o
+    ring: str  # "outer" | "inner"
+    land_radius: float  # R_land: the guiding land's diameter / 2
+    groove_center_radius: float  # d / 2
+    groove_radius: float  # r
     half_width: float  # B / 2
-    cage_half_width: float  # w_c / 2: the cage overlaps the lands over z_land < |z| < w_c/2
+    cage_half_width: float  # w_c / 2: the cage overlaps a guiding land over z_land < |z| < w_c/2
+    z_lands: tuple[float, float]  # (side toward +z, side toward -z) [m]
+    land_sides: tuple[int, ...] = (1, -1)
+    land_radii: tuple[float, float] | None = None  # (side toward +z, toward -z) [m]; None: land_radius both
 
     @classmethod
-    def from_scene(cls, bearing, cage) -> "OuterRaceProfile":
-        missing = [k for k in ("outer_shoulder_diameter", "width") if getattr(bearing, k) is None]
+    def from_scene(cls, bearing, cage) -> "RaceProfile":
+        ring = cage.guide_ring if cage is not None else "outer"
+        if ring is None:
+            raise ValueError("cage.guidance = 'ball': a ball-guided cage runs on no land, so it has no burn zone")
+        missing = [k for k in (f"{ring}_shoulder_diameter", "width") if getattr(bearing, k) is None]
         if missing:
             raise ValueError(f"the burn-zone render needs bearing.{missing[0]} [m]; give "
                              + " and ".join(f"bearing.{k}" for k in missing) + " in the scene")
-        if cage is not None and cage.guidance != "outer":
-            raise ValueError(f"cage.guidance = {cage.guidance!r}: the burn-zone render maps the "
-                             "outer race's lands only (an inner-race-guided cage rubs a rotating "
-                             "land); set cage.guidance = 'outer' to render it")
-        profile = cls(0.5 * bearing.outer_shoulder_diameter, 0.5 * bearing.outer_groove_center_diameter,
-                      bearing.outer_groove_radius, 0.5 * bearing.width,
-                      0.5 * cage.width if cage is not None else 0.0)
-        if not 0.0 < profile.land_radius - profile.groove_center_radius < profile.groove_radius:
-            raise ValueError(f"bearing.outer_shoulder_diameter = {bearing.outer_shoulder_diameter:g} m "
-                             "does not cut the outer groove: it must lie between d_o and d_o + 2 r_o")
-        return profile
+        centre = 0.5 * getattr(bearing, f"{ring}_groove_center_diameter")
+        r = getattr(bearing, f"{ring}_groove_radius")
+        sign = 1.0 if ring == "outer" else -1.0
+        z = []
+        for side in (1, -1):
+            depth = sign * (0.5 * bearing.shoulder(ring, side) - centre)
+            if not 0.0 < depth < r:
+                raise ValueError(f"bearing.{ring}_shoulder_diameter = {bearing.shoulder(ring, side):g} m "
+                                 f"does not cut the {ring} groove: it must lie between d and d {'+' if sign > 0 else '-'}"
+                                 " 2 r of that groove")
+            z.append(r * math.sin(math.acos(depth / r)))
+        sides = cage.guide_sides(bearing) if cage is not None else (1, -1)
+        return cls(ring, 0.5 * bearing.shoulder(ring, sides[0]), centre, r, 0.5 * bearing.width,
+                   0.5 * cage.width if cage is not None else 0.0, (z[0], z[1]), tuple(sides),
+                   tuple(0.5 * d for d in bearing.shoulders(ring)))
 
     @property
-    def theta_land(self) -> float:
-        """Profile angle where groove and land meet [rad] (cos = (R_land - d_o/2)/r_o)."""
-        return math.acos((self.land_radius - self.groove_center_radius) / self.groove_radius)
+    def sign(self) -> float:
+        """+1: the outer ring's bore (the groove bulges outwards), -1: the inner ring's outside."""
+        return 1.0 if self.ring == "outer" else -1.0
 
-    @property
-    def z_land(self) -> float:
-        """Axial distance of the groove–land edge from the groove plane [m] (≈ 8.90 mm, §2)."""
-        return self.groove_radius * math.sin(self.theta_land)
+    def land_radius_at(self, side: int) -> float:
+        """The land's radius on `side` [m] (the guiding land's where the sides are alike)."""
+        return self.land_radius if self.land_radii is None else self.land_radii[0 if side > 0 else 1]
+
+    def z_land(self, side: int) -> float:
+        """Axial distance of the groove–land edge from the groove plane on `side` [m] (≈ 8.90 mm, §2)."""
+        return self.z_lands[0 if side > 0 else 1]
 
     @property
     def land_overlap(self) -> float:
-        """Axial length L of cage–land overlap, both lands together [m] (≈ 7.6 mm, §2)."""
-        return max(0.0, 2.0 * (self.cage_half_width - self.z_land))
+        """Axial length L of the cage's overlap with the guiding lands together [m] (≈ 7.6 mm, §2)."""
+        return sum(max(0.0, self.cage_half_width - self.z_land(side)) for side in self.land_sides)
+
+    @property
+    def alpha_limits(self) -> tuple[float, float]:
+        """(lowest, highest) contact angle [rad] whose contact point lies on the raceway, between
+        the lands: a positive angle presses the outer ring's +z side and the inner ring's -z side."""
+        up, down = (math.asin(min(1.0, z / self.groove_radius)) for z in self.z_lands)
+        return (-down, up) if self.ring == "outer" else (-up, down)
 
     def groove_point(self, alpha: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(radius, z) [m] of the groove surface at profile (contact) angle alpha [rad]."""
-        return (self.groove_center_radius + self.groove_radius * np.cos(alpha),
-                self.groove_radius * np.sin(alpha))
+        """(radius, z) [m] of the groove surface where a contact of angle alpha [rad] sits."""
+        alpha = np.asarray(alpha, dtype=float)
+        return (self.groove_center_radius + self.sign * self.groove_radius * np.cos(alpha),
+                self.sign * self.groove_radius * np.sin(alpha))
 
 
 @dataclass(frozen=True)
 class BurnZoneMap:
     """Burn-zone energy per land sector and ball-track density on the raceway."""
 
-    profile: OuterRaceProfile
+    profile: RaceProfile
     sector_energy: np.ndarray  # (S,) J per sector, sector k spans [k, k+1) * 2 pi / S
     sector: tuple[float, float] | None  # [start, end] rad of the 80 % arc (summary.json)
     track_density: np.ndarray  # (A, K) N·s per (azimuth, contact-angle) bin
-    track_alpha_edges: np.ndarray  # (K + 1,) rad, spanning [-theta_land, theta_land]
+    track_alpha_edges: np.ndarray  # (K + 1,) rad, spanning the profile's alpha_limits
     track_outside_fraction: float  # share of load × time whose contact lies beyond a land edge
     metal_energy: np.ndarray | None = None  # (S,) J per sector: metal friction layer of sector_energy
     film_energy: np.ndarray | None = None  # (S,) J per sector: film shear layer of sector_energy
@@ -137,28 +164,31 @@ def sector_energy(t: np.ndarray, azimuth: np.ndarray, friction_power: np.ndarray
     return burn_zone_histogram(np.asarray(azimuth, dtype=float), energy, sectors)
 
 
-def outer_contact_points(ball_xyz: np.ndarray, outer_angle: np.ndarray,
-                         profile: OuterRaceProfile) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(azimuth [rad] in [0, 2 pi), radius [m], z [m]) of each ball–outer-race contact.
+def race_contact_points(ball_xyz: np.ndarray, angle: np.ndarray, profile: RaceProfile,
+                        race_turn: np.ndarray | float = 0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(azimuth [rad] in [0, 2 pi), radius [m], z [m]) of each ball's contact with the guiding
+    race, the azimuth in the race's own frame (`race_turn` [rad]: the angle it has turned, per
+    sample, for a race that turns).
 
     The contact lies in the plane through the axis and the ball centre (§6.1, gamma =
-    atan2(Y, X)), at the groove point of profile angle alpha_o.
+    atan2(Y, X)), at the groove point of its contact angle.
     """
     xyz = np.asarray(ball_xyz, dtype=float)
-    phi = np.mod(np.arctan2(xyz[..., 1], xyz[..., 0]), 2.0 * math.pi)
-    radius, z = profile.groove_point(np.asarray(outer_angle, dtype=float))
-    return phi, radius, z
+    turn = np.asarray(race_turn, dtype=float)
+    phi = np.arctan2(xyz[..., 1], xyz[..., 0]) - (turn[..., None] if turn.ndim else turn)
+    radius, z = profile.groove_point(np.asarray(angle, dtype=float))
+    return np.mod(phi, 2.0 * math.pi), radius, z
 
 
-def outer_semi_major_axis(bearing, ball, race, outer_angle: np.ndarray, outer_load: np.ndarray) -> np.ndarray:
-    """Hertz semi-major axis a = c_a(alpha) Q^{1/3} [m] of the ball–outer contacts, along
-    the groove (§6.2, exact constants tabulated in alpha by `dynamics.contact.hertz`)."""
+def race_semi_major_axis(bearing, ball, race, angle: np.ndarray, load: np.ndarray, ring: str = "outer") -> np.ndarray:
+    """Hertz semi-major axis a = c_a(alpha) Q^{1/3} [m] of the ball contacts with `ring`,
+    along the groove (§6.2, exact constants tabulated in alpha by `dynamics.contact.hertz`)."""
     from ...dynamics.geometry import effective_modulus
     from ...dynamics.contact.hertz import race_hertz_table, semi_axis_coefficients
 
-    table = race_hertz_table(bearing, effective_modulus(ball, race), outer=True)
-    c_a, _ = semi_axis_coefficients(table, np.ascontiguousarray(outer_angle, dtype=float))
-    return c_a * np.cbrt(np.clip(np.asarray(outer_load, dtype=float), 0.0, None))
+    table = race_hertz_table(bearing, effective_modulus(ball, race), outer=ring == "outer")
+    c_a, _ = semi_axis_coefficients(table, np.ascontiguousarray(angle, dtype=float))
+    return c_a * np.cbrt(np.clip(np.asarray(load, dtype=float), 0.0, None))
 
 
 def _band_cdf(u: np.ndarray) -> np.ndarray:
@@ -170,30 +200,31 @@ def _band_cdf(u: np.ndarray) -> np.ndarray:
     return 0.25 * (2.0 + 3.0 * u - u * u * u)
 
 
-def contact_track_density(t: np.ndarray, ball_xyz: np.ndarray, outer_angle: np.ndarray,
-                          outer_load: np.ndarray, profile: OuterRaceProfile,
+def contact_track_density(t: np.ndarray, ball_xyz: np.ndarray, angle: np.ndarray,
+                          load: np.ndarray, profile: RaceProfile,
                           semi_axis: np.ndarray | None = None,
                           azimuth_bins: int = TRACK_AZIMUTH_BINS,
                           angle_bins: int = TRACK_ANGLE_BINS,
-                          chunk: int = 65536) -> tuple[np.ndarray, np.ndarray, float]:
-    """Load × time [N·s] of ball–outer contacts per (azimuth, groove-angle) bin.
+                          chunk: int = 65536, race_turn: np.ndarray | float = 0.0) -> tuple[np.ndarray, np.ndarray, float]:
+    """Load × time [N·s] of the ball contacts with the guiding race per (azimuth, groove-angle)
+    bin, the azimuth in the race's frame (`race_turn`, as `race_contact_points`).
 
     Each contact's load × time is spread across the groove over its Hertz ellipse, the
-    profile angles alpha_o ± a/r_o (a = `semi_axis` [m], along the groove), with the
+    profile angles alpha ± a/r (a = `semi_axis` [m], along the groove), with the
     ellipse's line-load share per bin; without `semi_axis` each contact is a point.
     Returns (density (azimuth_bins, angle_bins), angle edges [rad] over the raceway
-    [-theta_land, theta_land], share of load × time lying beyond a land edge: the
+    (the profile's `alpha_limits`), share of load × time lying beyond a land edge: the
     truncated part of the ellipse, not drawn).
     """
-    phi, _, _ = outer_contact_points(ball_xyz, outer_angle, profile)
-    weight = np.clip(np.asarray(outer_load, dtype=float), 0.0, None) * time_weights(t)[:, None]
+    phi, _, _ = race_contact_points(ball_xyz, angle, profile, race_turn)
+    weight = np.clip(np.asarray(load, dtype=float), 0.0, None) * time_weights(t)[:, None]
     loaded = weight > 0.0
     phi, w = phi[loaded], weight[loaded]
-    alpha = np.asarray(outer_angle, dtype=float)[loaded]
+    alpha = np.asarray(angle, dtype=float)[loaded]
     half = (np.zeros_like(alpha) if semi_axis is None
             else np.asarray(semi_axis, dtype=float)[loaded] / profile.groove_radius)
     half = np.maximum(half, 1e-12)  # a point contact: a step of the cumulative share
-    edges = np.linspace(-profile.theta_land, profile.theta_land, angle_bins + 1)
+    edges = np.linspace(*profile.alpha_limits, angle_bins + 1)
     step = edges[1] - edges[0]
     # each contact touches only the W bins its ellipse spans: evaluate the share there
     width = int(math.ceil(2.0 * float(half.max(initial=0.0)) / step)) + 2
@@ -216,7 +247,7 @@ def contact_track_density(t: np.ndarray, ball_xyz: np.ndarray, outer_angle: np.n
     return density.reshape(azimuth_bins, angle_bins), edges, outside
 
 
-def burn_zone_map(series: dict, profile: OuterRaceProfile, sectors: int = BURN_SECTORS,
+def burn_zone_map(series: dict, profile: RaceProfile, sectors: int = BURN_SECTORS,
                   summary_sector: list | None = None, semi_axis: np.ndarray | None = None, *,
                   start: float | None = None, land_boundary: float = 0.05, land_speed: float = 0.0,
                   startup_metal_energy: float | None = None) -> BurnZoneMap:
@@ -231,13 +262,16 @@ def burn_zone_map(series: dict, profile: OuterRaceProfile, sectors: int = BURN_S
     tracks."""
     t = np.asarray(series["time"].data, dtype=float)
     start = float(t[0]) if start is None else float(start)
+    # a land that turns (the inner ring's) is mapped in its own frame: it carries its heat round
+    turn = (np.asarray(series["inner_race/angle"].data, dtype=float)
+            if profile.ring == "inner" and "inner_race/angle" in series else np.zeros_like(t))
     if "cage_race/friction_power" in series:
         eps = (series["cage_race/eccentricity_ratio"].data if "cage_race/eccentricity_ratio" in series
                else np.zeros_like(t))
         film = series["cage_race/film_power"].data if "cage_race/film_power" in series else None
         drag = (np.sign(np.asarray(series["cage/speed"].data, dtype=float) + land_speed)
                 if "cage/speed" in series else 0.0)
-        metal, film_heat = land_heat(t, series["cage_race/contact_azimuth"].data, eps,
+        metal, film_heat = land_heat(t, np.asarray(series["cage_race/contact_azimuth"].data) - turn, eps,
                                      series["cage_race/friction_power"].data, film, land_boundary, start,
                                      sectors, drag=drag)
     else:
@@ -245,10 +279,11 @@ def burn_zone_map(series: dict, profile: OuterRaceProfile, sectors: int = BURN_S
     energy = metal + film_heat
     late = t >= start
     ball_xyz = np.asarray(series["balls/position"].data)[late]
-    angle = np.asarray(series["contacts/outer_contact_angle"].data)[late]
-    load = np.asarray(series["contacts/outer_load"].data)[late]
+    angle = np.asarray(series[f"contacts/{profile.ring}_contact_angle"].data)[late]
+    load = np.asarray(series[f"contacts/{profile.ring}_load"].data)[late]
     axis = None if semi_axis is None else np.asarray(semi_axis)[late]
-    density, edges, outside = contact_track_density(t[late], ball_xyz, angle, load, profile, axis)
+    density, edges, outside = contact_track_density(t[late], ball_xyz, angle, load, profile, axis,
+                                                    race_turn=turn[late])
     sector = tuple(summary_sector) if summary_sector is not None else burn_zone_sector(energy)
     return BurnZoneMap(profile, energy, sector, density, edges, outside, metal, film_heat,
                        (start, float(t[-1])), startup_metal_energy)

@@ -11,6 +11,8 @@ Written into `<run>/report/paraview/` from the saved `timeseries.h5` (nothing is
   `eccentricity_ratio`, `friction_power` [W];
 - `inner_race.pvd` — the inner race's groove and lands, moved and tilted with the race,
   point data `velocity` [m/s];
+- `inner_race_heat.vtp` — with an inner-guided cage, the inner race in its own frame with the
+  land heat as cell data (as `outer_race.vtp` below for an outer-guided one);
 - `outer_race.vtp` — the fixed outer race; with an outer-guided cage its cell data
   `land_heat` [J/m²] is the burn zone of the report (heat of the settled window per 1°
   sector spread over the cage's land overlap, `render.burn_zone_data`), `land_heat_metal`,
@@ -202,16 +204,21 @@ def _write_cage(series: dict, scene, t: np.ndarray, angle: np.ndarray, out_dir: 
     return series_file
 
 
-def write_outer_race(scene, out_dir: Path, burn_map=None) -> str:
-    """`outer_race.vtp`, with the land heat of `burn_map` (render.burn_zone_data.BurnZoneMap)
-    as cell data when there is one: J/m² over the cage's land overlap, 0 elsewhere."""
+def write_race(scene, out_dir: Path, burn_map=None, ring: str = "outer") -> str:
+    """`outer_race.vtp`, or `inner_race_heat.vtp` (`ring` "inner"; the moving inner race is the
+    `inner_race.pvd` series), in the ring's own frame, with the land heat
+    of `burn_map` (render.burn_zone_data.BurnZoneMap) as cell data when there is one: J/m² over
+    the cage's overlap with the guiding lands, 0 elsewhere."""
     sectors = burn_map.sectors if burn_map is not None else MOTION_AZIMUTHS
-    surface = outer_race_surface(scene.bearing, sectors, scene.cage)
+    surface = (outer_race_surface if ring == "outer" else inner_race_surface)(scene.bearing, sectors, scene.cage)
     mesh = _polydata(surface.points, surface.quads)
     units = {}
     if burn_map is not None:
         profile = burn_map.profile
-        on_land = (np.abs(surface.cell_z) > profile.z_land) & (np.abs(surface.cell_z) < profile.cage_half_width)
+        z = surface.cell_z
+        on_land = np.zeros(z.shape, dtype=bool)
+        for side in profile.land_sides:
+            on_land |= (side * z > profile.z_land(side)) & (side * z < profile.cage_half_width)
         index = np.minimum((surface.cell_azimuth / (2 * math.pi) * sectors).astype(int), sectors - 1)
         density = burn_map.areal_density_factor
         layers = {"land_heat": burn_map.sector_energy, "land_heat_metal": burn_map.metal_energy,
@@ -224,8 +231,9 @@ def write_outer_race(scene, out_dir: Path, burn_map=None) -> str:
             mesh.field_data["window"] = np.asarray(burn_map.window, dtype=float)
             units["window"] = "s"
     _units(mesh, units)
-    mesh.save(out_dir / "outer_race.vtp")
-    return "outer_race.vtp"
+    name = "outer_race.vtp" if ring == "outer" else "inner_race_heat.vtp"
+    mesh.save(out_dir / name)
+    return name
 
 
 def write_paraview(timeseries: Path, scene, out_dir: Path, frames: int = DEFAULT_FRAMES, burn_map=None) -> dict:
@@ -237,5 +245,8 @@ def write_paraview(timeseries: Path, scene, out_dir: Path, frames: int = DEFAULT
     if frames > 0:
         series, cage_angle = read_frames(Path(timeseries), max(2, frames))
         files = write_motion(series, scene, out_dir, cage_angle)
-    files["outer_race"] = write_outer_race(scene, out_dir, burn_map)
+    on_inner = burn_map is not None and burn_map.profile.ring == "inner"
+    files["outer_race"] = write_race(scene, out_dir, None if on_inner else burn_map)
+    if on_inner:
+        files["inner_race_heat"] = write_race(scene, out_dir, burn_map, "inner")
     return files

@@ -277,7 +277,7 @@ def operating_line(scene, simulated: bool) -> str:
 
 def burn_section(burn: dict | None, out_dir: Path) -> str:
     if burn is None:
-        return _not_run("No burn-zone map (no dynamic run, or no outer-race-guided cage).")
+        return _not_run("No burn-zone map (no dynamic run, or no land-guided cage: a ball-guided cage touches no land).")
     peak = (f"peak sector centred at {burn['peak_sector_deg']:.1f}° "
             f"({burn['peak_sector_energy_J']:.3g} J, {burn['peak_areal_density_J_m2']:.3g} J/m²)"
             if burn.get("peak_sector_deg") is not None else "no heat on the guide land")
@@ -298,12 +298,14 @@ def burn_section(burn: dict | None, out_dir: Path) -> str:
             f"(summary.json startup).{film} "
             f"{html.escape(peak)}; {html.escape(arc)}. The model gives the azimuth of the heat only: each "
             f"sector's energy is spread uniformly over the cage's land overlap (both lands, "
-            f"L = {burn['land_overlap_mm']:.2f} mm). Raceway: ball–outer-race contact load × time, each "
+            f"L = {burn['land_overlap_mm']:.2f} mm). Raceway: ball–{burn.get('ring', 'outer')}-race contact load × time, each "
             f"contact spread over its Hertz ellipse across the groove; "
             f"{burn['track_outside_fraction'] * 100:.2g} % of it lies beyond the land edges. "
             "Colour scales run from 0 to the data's maximum.</p>")
-    return (text + image(out_dir / burn["map"], "Unrolled outer race: azimuth × axial position.")
-            + image(out_dir / burn["render"], "Outer race in 3-D, four fixed views (half ring each)."))
+    ring = burn.get("ring", "outer")
+    frame = "" if ring == "outer" else " in the frame that turns with the ring"
+    return (text + image(out_dir / burn["map"], f"Unrolled {ring} race{frame}: azimuth × axial position.")
+            + image(out_dir / burn["render"], f"{ring.capitalize()} race in 3-D{frame}, four fixed views (half ring each)."))
 
 
 def paraview_note(out_dir: Path) -> str:

@@ -29,9 +29,14 @@ REPORT_FILE = "report.html"
 BURN_RENDER, BURN_MAP = "burn_zone_3d.png", "burn_zone_map.png"
 ORBIT_FIGURE = "verdict_orbit.png"
 RENDERS_FILE = "renders.json"
-BURN_DATASETS = ("time", "balls/position", "contacts/outer_contact_angle", "contacts/outer_load",
-                 "cage_race/friction_power", "cage_race/contact_azimuth")
+BURN_DATASETS = ("time", "balls/position", "cage_race/friction_power", "cage_race/contact_azimuth")
 OPTIONAL_DATASETS = ("cage_race/eccentricity_ratio", "cage_race/film_power", "cage/position", "cage/speed")
+
+
+def burn_datasets(ring: str) -> tuple[str, ...]:
+    """The series the burn zone of the `ring`'s land needs (the inner ring's: its angle too)."""
+    return BURN_DATASETS + (f"contacts/{ring}_contact_angle", f"contacts/{ring}_load") + (
+        ("inner_race/angle",) if ring == "inner" else ())
 
 
 def read_series(path: Path, names: tuple[str, ...]) -> dict[str, Series]:
@@ -89,27 +94,30 @@ def settled_start(series: dict, summary: dict | None, guide_clearance: float | N
 
 def render_burn_zone(scene, simulate_dir: Path, summary: dict | None, out_dir: Path, show: bool,
                      maps: dict | None = None) -> dict | None:
-    """Both burn-zone images; None when the scene has no outer-race-guided cage. The map
-    drawn (a BurnZoneMap) is put in `maps["burn_zone"]` when `maps` is given."""
+    """Both burn-zone images of the guiding land (the outer ring's, or the inner ring's in its
+    own frame); None when the scene has no land-guided cage. The map drawn (a BurnZoneMap) is
+    put in `maps["burn_zone"]` when `maps` is given."""
     from ..results.simulation_output import guide_land_speed, land_boundary
     from .burn_zone import heat_caption, render_burn_zone_3d, render_burn_zone_map
-    from .burn_zone_data import OuterRaceProfile, burn_zone_map, outer_semi_major_axis
+    from .burn_zone_data import RaceProfile, burn_zone_map, race_semi_major_axis
 
-    if scene.cage is None or scene.cage.guidance != "outer":
+    if scene.cage is None or scene.cage.guide_ring is None:
         return None
-    profile = OuterRaceProfile.from_scene(scene.bearing, scene.cage)
+    ring = scene.cage.guide_ring
+    profile = RaceProfile.from_scene(scene.bearing, scene.cage)
     path = simulate_dir / "timeseries.h5"
-    series = read_series(path, BURN_DATASETS + OPTIONAL_DATASETS)
-    missing = [n for n in BURN_DATASETS if n not in series]
+    needed = burn_datasets(ring)
+    series = read_series(path, needed + OPTIONAL_DATASETS)
+    missing = [n for n in needed if n not in series]
     if missing:
         raise ValueError(f"{path} lacks {', '.join(missing)}; rerun the "
                          "simulate stage (bearingsim simulate SCENE --force)")
     clearance = _h5_attrs(path).get("guide_clearance_m")
     start = settled_start(series, summary, float(clearance) if clearance is not None else None)
     startup = (summary or {}).get("startup") or {}
-    semi_axis = outer_semi_major_axis(scene.bearing, scene.materials.ball, scene.materials.race,
-                                      series["contacts/outer_contact_angle"].data,
-                                      series["contacts/outer_load"].data)
+    semi_axis = race_semi_major_axis(scene.bearing, scene.materials.ball, scene.materials.race,
+                                     series[f"contacts/{ring}_contact_angle"].data,
+                                     series[f"contacts/{ring}_load"].data, ring)
     bzm = burn_zone_map(series, profile, summary_sector=(summary or {}).get("burn_zone_sector"),
                         semi_axis=semi_axis, start=start, land_boundary=land_boundary(scene),
                         land_speed=guide_land_speed(scene),
@@ -117,8 +125,8 @@ def render_burn_zone(scene, simulate_dir: Path, summary: dict | None, out_dir: P
     if maps is not None:
         maps["burn_zone"] = bzm
     render_burn_zone_map(bzm, out_dir / BURN_MAP, scene.name)
-    outside = 0.5 * scene.bearing.outer_outside_diameter if scene.bearing.outer_outside_diameter else None
-    render_burn_zone_3d(bzm, out_dir / BURN_RENDER, scene.name, outside, show=show)
+    rim = scene.bearing.outer_outside_diameter if ring == "outer" else scene.bearing.inner_bore_diameter
+    render_burn_zone_3d(bzm, out_dir / BURN_RENDER, scene.name, 0.5 * rim if rim else None, show=show)
     peak = bzm.peak_sector
     return {
         "render": BURN_RENDER, "map": BURN_MAP, "sectors": bzm.sectors,
@@ -135,6 +143,7 @@ def render_burn_zone(scene, simulate_dir: Path, summary: dict | None, out_dir: P
         "peak_areal_density_J_m2": float(bzm.sector_energy[peak] * bzm.areal_density_factor) if peak is not None else 0.0,
         "sector_deg": [math.degrees(v) for v in bzm.sector] if bzm.sector is not None else None,
         "land_overlap_mm": profile.land_overlap * 1e3,
+        "ring": ring,
         "track_outside_fraction": bzm.track_outside_fraction,
         "track_max_N_s": float(np.max(bzm.track_density, initial=0.0)),
     }

@@ -32,7 +32,8 @@ Conventions:
   for case b at its operating clearance; `land_contact_film`); Lambda says how close the
   film comes to the surfaces' real roughness, which the hybrid law does not see.
 - Azimuths are measured in the global frame from +x towards +y (docs/model.md §1), in rad
-  in `summary.json` (degrees only in the `verdict`).
+  in `summary.json` (degrees only in the `verdict`); the heat maps of a land or rim that
+  turns are in that body's frame, its azimuth at t = 0.
 
 Keys written by `cage_summary` (SI units; time means are trapezoidal over the window):
 
@@ -57,8 +58,13 @@ Keys written by `cage_summary` (SI units; time means are trapezoidal over the wi
 `pocket_impacts`, `_force_p95`  count, N (settled window); `pocket_impact_regions`
                                 [[start, end, share], ...] rad, rad, - (`impact_regions`)
 `burn_zone_energy_metal/_film`  J; `burn_zone_energy_total` their sum
-`burn_zone_sector`              80 % arc of the total heat [rad]; `burn_zone_sector_metal`
-                                of the metal energy only (None without metal contact)
+`burn_zone_sector`              80 % arc of the total heat [rad] on the land, in the land's
+                                own frame (a land that turns, the inner ring's, carries its
+                                heat round); `burn_zone_sector_metal` of the metal energy
+                                only (None without metal contact); `burn_zone_sector_cage`
+                                the 80 % arc on the cage rim, in the cage's frame
+`pocket_force_max_mean`, `_p95` time mean of the largest ball-pocket force; 95th percentile
+                                of every pocket's force over the samples [N]
 `startup`                       {end_time, revolutions, block_length, limited_by,
                                 max_metal_force, metal_energy, film_energy, land_force_peak,
                                 metal_contact_fraction, pocket_impacts, pocket_impact_force_max}
@@ -323,6 +329,22 @@ def impact_regions(orbital_position: np.ndarray, bins: int = 36, factor: float =
     return regions[:max_regions]
 
 
+def _pocket_load_keys(pocket_force, t: np.ndarray, start: float) -> dict:
+    """The balls' steady load on their pockets over the settled window: the time mean of the
+    largest pocket force and the 95th percentile of every ball's force over the samples [N]
+    (what carries a ball-guided cage, and pushes any cage round)."""
+    if pocket_force is None:
+        return {}
+    force = np.asarray(pocket_force, dtype=float)
+    late = t >= start
+    if late.sum() < 2:
+        late = np.ones_like(t, dtype=bool)
+    w = time_weights(t[late])
+    largest = force[late].max(axis=1)
+    return {"pocket_force_max_mean": float(np.sum(w * largest) / max(w.sum(), 1e-300)),
+            "pocket_force_p95": float(np.percentile(force[late], 95))}
+
+
 def _f(value) -> float | None:
     """A JSON number: float, or None for missing / NaN."""
     if value is None:
@@ -364,6 +386,9 @@ class CageSeries:
     min_film: np.ndarray | None = None
     land_force: np.ndarray | None = None
     metal_force: np.ndarray | None = None
+    land_angle: np.ndarray | None = None  # [rad] the guiding land has turned (None: fixed land)
+    cage_angle: np.ndarray | None = None  # [rad] the cage has turned (its rim's heat map)
+    pocket_force: np.ndarray | None = None  # (n, Z) [N] ball-pocket normal forces
 
 
 @dataclass(frozen=True)
@@ -449,10 +474,18 @@ def cage_summary(series: CageSeries, impacts: PocketImpacts, land: GuideLand = G
     if film_power is None and land_film:
         warnings.append("no film-power series (cage_race/film_power): the burn zone holds metal friction only")
 
-    # burn zone: both layers over the settled window; the start-up's share reported apart
-    metal_hist, film_hist = land_heat(t, az_all, eps_all, fric_all, film_power, land_boundary,
-                                      window.start, sectors, drag=np.sign(speed_all + land_speed))
+    # burn zone: both layers over the settled window, on the land in its own frame (a turning
+    # land carries its heat round with it) and on the cage rim; the start-up's share apart
+    drag = np.sign(speed_all + land_speed)
+    land_turn = 0.0 if series.land_angle is None else np.asarray(series.land_angle, dtype=float)
+    metal_hist, film_hist = land_heat(t, az_all - land_turn, eps_all, fric_all, film_power, land_boundary,
+                                      window.start, sectors, drag=drag)
     total_hist = metal_hist + film_hist
+    rim_sector = None
+    if series.cage_angle is not None:
+        rim_metal, rim_film = land_heat(t, az_all - np.asarray(series.cage_angle, dtype=float), eps_all, fric_all,
+                                        film_power, land_boundary, window.start, sectors, drag=drag)
+        rim_sector = burn_zone_sector(rim_metal + rim_film)
     w_early = split_weights(t, window.start)[0]
     early = ~window.mask(t)
     sector = burn_zone_sector(total_hist)
@@ -541,6 +574,8 @@ def cage_summary(series: CageSeries, impacts: PocketImpacts, land: GuideLand = G
         "burn_zone_energy_metal": float(np.sum(metal_hist)),
         "burn_zone_energy_film": float(np.sum(film_hist)),
         "burn_zone_energy_total": float(np.sum(total_hist)),
+        "burn_zone_sector_cage": list(rim_sector) if rim_sector is not None else None,
+        **_pocket_load_keys(series.pocket_force, t, window.start),
         "startup": startup,
         "settled_drift": drift,
         "warnings": warnings,

@@ -66,6 +66,31 @@ def guide_land_speed(scene) -> float:
     return float(scene.speed.inner) if getattr(scene.cage, "guidance", "outer") == "inner" else 0.0
 
 
+def cage_series(t, series: dict[str, Series], scene, guide_clearance: float) -> CageSeries:
+    """The cage's series for `cage_summary`, relative to what guides it: the fixed outer ring's
+    land (the cage centre as saved), the inner ring's land (the cage centre less the inner
+    race's, the land's heat in the frame turning with it), or the ball set (its centre, the
+    mean of the ball centres, with the offset over the pockets' radial play as eccentricity
+    and its direction as the contact azimuth; no land film)."""
+    guidance = scene.cage.guidance
+    xy = series["cage/position"].data[:, :2]
+    eps, azimuth = series["cage_race/eccentricity_ratio"].data, series["cage_race/contact_azimuth"].data
+    land_angle = None
+    if guidance == "inner":
+        xy = xy - series["inner_race/position"].data[:, :2]
+        land_angle = series["inner_race/angle"].data
+    elif guidance == "ball":
+        xy = xy - series["balls/position"].data[:, :, :2].mean(axis=1)
+        eps = np.hypot(xy[:, 0], xy[:, 1]) / guide_clearance
+        azimuth = np.arctan2(xy[:, 1], xy[:, 0])
+    return CageSeries(t, xy, series["cage/speed"].data, eps, azimuth, series["cage_race/friction_power"].data,
+                      series["inner_race/position"].data[:, 2], film_power=series["cage_race/film_power"].data,
+                      min_film=series["cage_race/min_film"].data, land_force=series["cage_race/force"].data,
+                      metal_force=series["cage_race/metal_force"].data, land_angle=land_angle,
+                      cage_angle=series["cage/angle"].data if "cage/angle" in series else None,
+                      pocket_force=series["pocket/force"].data if "pocket/force" in series else None)
+
+
 def write_simulation_results(out_dir: Path, scene, params, start, run, wall_time: float,
                              quasistatic: dict | None = None) -> dict:
     """Write all files of the simulate stage; return the summary dict. `quasistatic`: the
@@ -91,13 +116,20 @@ def _non_guiding(t, series: dict[str, Series], scene) -> dict:
     """The gap to the non-guiding land along the run (pipeline.results.non_guiding)."""
     from .non_guiding import non_guiding_gap, non_guiding_summary
 
-    clearance = scene.cage.non_guiding_clearance(scene.bearing)
+    cage, bearing = scene.cage, scene.bearing
+    clearance = cage.non_guiding_clearance(bearing)
     if clearance is None:
         return {}
-    outer = scene.cage.guidance == "outer"
-    gap = non_guiding_gap(series["cage/position"].data, series["inner_race/position"].data if outer else None,
-                          series["inner_race/axis"].data if outer else None, clearance, 0.5 * scene.cage.width)
-    return non_guiding_summary(t, gap, clearance)
+    gaps = []
+    for ring in cage.non_guiding_rings():
+        pair = bearing.shoulders(ring)
+        if pair is None:
+            continue
+        own = cage.clearance_to(ring, min(pair) if ring == "outer" else max(pair))
+        inner = ring == "inner"
+        gaps.append(non_guiding_gap(series["cage/position"].data, series["inner_race/position"].data if inner else None,
+                                    series["inner_race/axis"].data if inner else None, own, 0.5 * cage.width))
+    return non_guiding_summary(t, np.minimum.reduce(gaps), clearance)
 
 
 def screen_summary(quasistatic: dict | None) -> dict | None:
@@ -144,15 +176,14 @@ def _summary_and_figures(out_dir: Path, scene, params, start, run, series: dict[
                "energy": energy_balance(run.energy, series), "kinematic_cage_speed": float(start["cage_angular_speed"])}
     if params.has_cage:
         impacts = run.impacts if len(run.impacts) else np.zeros((0, 4))
+        on_land = scene.cage.guide_ring is not None
         summary.update(cage_summary(
-            CageSeries(run.t, series["cage/position"].data[:, :2], series["cage/speed"].data,
-                       series["cage_race/eccentricity_ratio"].data, series["cage_race/contact_azimuth"].data,
-                       series["cage_race/friction_power"].data, series["inner_race/position"].data[:, 2],
-                       film_power=series["cage_race/film_power"].data, min_film=series["cage_race/min_film"].data,
-                       land_force=series["cage_race/force"].data, metal_force=series["cage_race/metal_force"].data),
+            cage_series(run.t, series, scene, params.guide_clearance),
             PocketImpacts(impacts[:, 3], times=impacts[:, 0], orbital_positions=impacts[:, 2]),
             GuideLand(params.guide_clearance, land_boundary(scene), land_roughness(scene),
-                      film=scene.physics.cage_race in ("hybrid", "hydrodynamic"), speed=guide_land_speed(scene))))
+                      film=on_land and scene.physics.cage_race in ("hybrid", "hydrodynamic"),
+                      speed=guide_land_speed(scene))))
+        summary["cage_guidance"] = scene.cage.guidance
         summary.update(_non_guiding(run.t, series, scene))
         if summary.get("non_guiding_gap_min", 0.0) < 0.0:
             summary["warnings"].append(

@@ -25,6 +25,8 @@ import math
 from ..scene.cage_classes import CageClassThresholds, classify_cage, risk_level
 
 LAND_NAMES = {"outer": "outer-race land", "inner": "inner-race land"}
+# what the class sentence calls the place the cage is pushed onto, by guidance
+PUSHED_ONTO = {"ball": "the balls"}
 
 
 def _deg(value) -> float | None:
@@ -111,9 +113,36 @@ def cage_verdict(summary: dict, limits: CageClassThresholds = CageClassThreshold
         "non_guiding_gap_min_um": (None if summary.get("non_guiding_gap_min") is None
                                    else 1e6 * summary["non_guiding_gap_min"]),
     }
+    verdict["guidance"] = guidance
+    verdict["heat_sector_cage_deg"] = _arc_deg(summary.get("burn_zone_sector_cage"))
+    verdict["pocket_force_p95_N"] = summary.get("pocket_force_p95")
+    if guidance == "ball":
+        _ball_guided(verdict, summary)
     verdict["text"] = verdict_sentence(verdict, summary.get("warnings") or [],
                                        LAND_NAMES.get(guidance, "guide land"))
     return verdict
+
+
+def _ball_guided(verdict: dict, summary: dict) -> None:
+    """A ball-guided cage touches no land: no land film, no metal contact, no burn zone; its
+    risk is what the balls do to its pockets (the crush screen's regime: balls whose excursion
+    the pockets and the cage's play cannot take squeeze the cage between them)."""
+    for key in ("sector_deg", "heat_sector_deg", "heat_sector_cage_deg", "land_film_min_um", "land_film_ratio_min",
+                "land_contact_film_um", "land_film_min_time_s", "land_film_min_azimuth_deg"):
+        verdict[key] = None
+    if verdict["class"] == "pressed":
+        verdict["sector_deg"] = _arc_deg(summary.get("cage_offset_sector"))
+        verdict["sector_source"] = "cage offset direction over the ball set, 80 % of the settled time"
+    else:
+        verdict["sector_source"] = None
+    regime = (summary.get("crush_screen") or {}).get("regime")
+    if regime == "crushed":
+        verdict["risk"] = "high"
+        verdict["risk_reasons"] = ["crush screen: the balls lead and lag by more than the pockets and the cage's "
+                                   "play on the balls can take; they squeeze the cage between them"]
+    elif regime == "pressed" and verdict["risk"] == "low":
+        verdict["risk"] = "elevated"
+        verdict["risk_reasons"] = ["crush screen: the balls push the cage off centre over its pockets' play"]
 
 
 def verdict_sentence(v: dict, warnings: list[str] = (), land: str = "outer-race land") -> str:
@@ -125,20 +154,33 @@ def verdict_sentence(v: dict, warnings: list[str] = (), land: str = "outer-race 
     thinnest = f", thinnest land film {film}" + (f" ({ratio})" if ratio else "") if film else ""
     sector = format_arc(v.get("sector_deg"))
     eps = v.get("eps_mean")
+    ball = v.get("guidance") == "ball"
+    if ball:
+        thinnest = ""
     if cls == "crushed":
         head = f"Cage crushed against the {land} at {sector}{thinnest}"
+    elif cls == "pressed" and ball:
+        head = (f"Cage pushed onto the balls at {sector}" + (f" (mean ε {eps:.2g} of its pockets' play)"
+                                                              if eps is not None else ""))
     elif cls == "pressed":
         head = f"Cage pressed onto the {land} at {sector}" + (f" through a {film_text}" if film_text else "")
+        if v.get("guidance") == "inner":
+            head += (" (fixed frame; the land turns under it, its heat over "
+                     f"{format_arc(v.get('heat_sector_deg'))} of its circumference)")
     elif cls == "whirling":
         whirl = v.get("whirl_ratio")
         head = "Cage whirling" + (f" at {abs(whirl):.2g}× the cage speed" if whirl is not None else "") + thinnest
     elif cls == "centred":
-        head = "Cage centred on its film" + (f" (mean ε {eps:.2g})" if eps is not None else "") + thinnest
+        head = ("Cage centred on the balls" if ball else "Cage centred on its film") + (
+            f" (mean ε {eps:.2g})" if eps is not None else "") + thinnest
     else:
         head = "Cage motion chaotic" + (f" (mean ε {eps:.2g})" if eps is not None else "") + thinnest
     metal = v.get("metal_contact_fraction") or 0.0
     contact = ("no metal contact in the settled run" if metal <= 0.0
                else f"metal contact {format_percent(metal)} % of the settled run")
+    if ball:
+        p95 = v.get("pocket_force_p95_N")
+        contact = "no land" + (f"; pocket loads p95 {p95:.3g} N" if p95 is not None else "")
     if metal > 0.0 and film and v.get("land_contact_film_um") is not None:
         # the land law counts metal contact from a film of eps0 C, far above the roughness
         # that Lambda measures: say so where both are printed
@@ -200,7 +242,9 @@ def verdict_rows(v: dict) -> list[tuple[str, str, str]]:
         ("risk", v["risk"] + (f" — {'; '.join(v['risk_reasons'])}" if v.get("risk_reasons") else ""), ""),
         ("loaded sector (azimuth from +x towards +y)",
          format_arc(v.get("sector_deg")) + (f" ({v['sector_source']})" if v.get("sector_source") else ""), "deg"),
-        ("land heat, 80 % arc (metal + film)", format_arc(v.get("heat_sector_deg")), "deg"),
+        ("land heat, 80 % arc (metal + film; on the land, in its own frame)", format_arc(v.get("heat_sector_deg")),
+         "deg"),
+        ("  on the cage rim, in the cage's frame", format_arc(v.get("heat_sector_cage_deg")), "deg"),
         ("thinnest land film", format_film_um(v.get("land_film_min_um")), "µm"),
         ("  when", num(v.get("land_film_min_time_s"), "{:.4g}"), "s"),
         ("  where (azimuth)", num(v.get("land_film_min_azimuth_deg"), "{:.0f}"), "deg"),
@@ -212,6 +256,7 @@ def verdict_rows(v: dict) -> list[tuple[str, str, str]]:
         ("whirl ratio (whirl speed / cage speed)", num(v.get("whirl_ratio"), "{:.2g}"), "-"),
         ("pocket impacts", num(v.get("pocket_impacts"), "{:d}"), "count"),
         ("pocket impact force, 95th percentile", num(v.get("pocket_impact_force_p95_N")), "N"),
+        ("pocket force over the settled run, 95th percentile (all balls)", num(v.get("pocket_force_p95_N")), "N"),
         ("where the impacts concentrate (share, orbital position)", region_text, "deg"),
         ("settled window from", num(v.get("settled_from_s"), "{:.4g}"), "s"),
         ("  cage revolutions in it", num(v.get("settled_revolutions"), "{:.1f}"), "rev"),

@@ -81,7 +81,8 @@ def _type_name(tp) -> str:
     origin = typing.get_origin(tp)
     args = [a for a in typing.get_args(tp) if a is not type(None)]
     if origin in (typing.Union, getattr(__import__("types"), "UnionType", None)) and args:
-        return _type_name(args[0]) + " (optional)"
+        optional = " (optional)" if type(None) in typing.get_args(tp) else ""
+        return " or ".join(_type_name(a) for a in args) + optional
     if origin is tuple:
         return "list of " + _type_name(args[0]) if args else "list"
     return getattr(tp, "__name__", str(tp)).replace("float", "number").replace("int", "integer").replace("str", "text").replace("bool", "true/false")

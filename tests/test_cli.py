@@ -48,7 +48,7 @@ def test_scenes_prints_a_builtin_scene_to_start_from(tmp_path):
     mine.write_text(result.stdout)
     assert load_scene(str(mine)).raw == load_scene("helicopter-b-given-hinge").raw
     missing = runner.invoke(app, ["scenes", "helicopter-c"])
-    assert missing.exit_code == 2 and "built-in scenes: deep-groove-209, helicopter-a" in missing.stderr
+    assert missing.exit_code == 2 and "built-in scenes: acbb-7210-inner-guided, deep-groove-209" in missing.stderr
 
 
 def test_bad_scene_exits_2_naming_the_key():

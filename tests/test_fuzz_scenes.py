@@ -152,8 +152,9 @@ def cases(n: int, directory: Path):
 
 
 def assert_clean(result, args) -> None:
-    """Exit 0 or 2, and on 2 a message rather than a traceback."""
-    assert result.exit_code in (0, 2), (args, result.exit_code, result.output, result.exception)
+    """Exit 0, 2, or 4 (check: valid for the quasi-static stage, refused by simulate), and on 2 a
+    message rather than a traceback."""
+    assert result.exit_code in (0, 2, 4), (args, result.exit_code, result.output, result.exception)
     assert result.exception is None or isinstance(result.exception, SystemExit), (args, repr(result.exception))
     assert "Traceback" not in result.output, (args, result.output)
     if result.exit_code == 2:

@@ -10,7 +10,7 @@ import math
 import numpy as np
 import pytest
 
-from bearingsim.pipeline.render.burn_zone_data import BurnZoneMap, OuterRaceProfile
+from bearingsim.pipeline.render.burn_zone_data import BurnZoneMap, RaceProfile
 from bearingsim.pipeline.render.paraview_series import frame_indices, write_paraview
 from bearingsim.pipeline.results.timeseries import Series, write_timeseries
 from bearingsim.pipeline.scene.load import load_scene
@@ -60,7 +60,7 @@ def burn_map(scene) -> BurnZoneMap:
     energy = np.zeros(360)
     for sector, joules in HEAT.items():
         energy[sector] = joules
-    return BurnZoneMap(OuterRaceProfile.from_scene(scene.bearing, scene.cage), energy, None,
+    return BurnZoneMap(RaceProfile.from_scene(scene.bearing, scene.cage), energy, None,
                        np.zeros((360, 8)), np.linspace(-0.5, 0.5, 9), 0.0, metal_energy=energy,
                        film_energy=np.zeros(360), window=(0.005, 0.01))
 
@@ -134,8 +134,8 @@ def test_land_heat_on_the_outer_race_integrates_to_the_burn_zone_energy(written)
     hot = heat > 0.0
     sectors = np.floor(np.degrees(np.arctan2(centres[hot, 1], centres[hot, 0])) % 360.0).astype(int)
     assert set(sectors) == set(HEAT)
-    profile = OuterRaceProfile.from_scene(scene.bearing, scene.cage)
+    profile = RaceProfile.from_scene(scene.bearing, scene.cage)
     z = np.abs(centres[hot, 2])
-    assert z.min() > profile.z_land and z.max() < profile.cage_half_width
+    assert z.min() > profile.z_land(1) and z.max() < profile.cage_half_width
     assert "land_heat=J/m2" in list(race.field_data["units"])
     np.testing.assert_allclose(race.cell_data["land_heat_metal"], heat)

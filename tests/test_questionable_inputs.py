@@ -23,7 +23,7 @@ SCENE_TEXT = (Path(__file__).parents[1] / "pipeline" / "scenes" / "deep-groove-2
 def test_a_byte_order_mark_is_read(tmp_path):
     scene = tmp_path / "bom.toml"
     scene.write_bytes(b"\xef\xbb\xbf" + SCENE_TEXT.encode())
-    assert runner.invoke(app, ["check", str(scene)]).exit_code == 0
+    assert runner.invoke(app, ["check", str(scene)]).exit_code == 4  # read: valid, quasi-static only
 
 
 def test_a_set_value_with_a_line_break_is_refused():

@@ -9,11 +9,11 @@ import pytest
 
 from bearingsim.pipeline.render.burn_zone_data import (
     BurnZoneMap,
-    OuterRaceProfile,
+    RaceProfile,
     _band_cdf,
     contact_track_density,
-    outer_contact_points,
-    outer_semi_major_axis,
+    race_contact_points,
+    race_semi_major_axis,
     sector_energy,
 )
 from bearingsim.pipeline.scene.load import load_scene
@@ -22,14 +22,14 @@ SCENE = load_scene("helicopter-b-given-hinge", ["thermal.parts_degC=20"])  # Tab
 
 
 @pytest.fixture(scope="module")
-def profile() -> OuterRaceProfile:
-    return OuterRaceProfile.from_scene(SCENE.bearing, SCENE.cage)
+def profile() -> RaceProfile:
+    return RaceProfile.from_scene(SCENE.bearing, SCENE.cage)
 
 
 def test_land_geometry_of_reference_bearing(profile):
     # docs/model.md §2: the outer groove meets the land diameter 166 mm at ±8.90 mm from the
     # groove plane; the cage (25.4 mm wide) overlaps each land by ≈ 3.80 mm, L ≈ 7.6 mm.
-    assert profile.z_land == pytest.approx(8.90e-3, abs=5e-6)
+    assert profile.z_land(1) == pytest.approx(8.90e-3, abs=5e-6) and profile.z_land(-1) == profile.z_land(1)
     assert profile.land_overlap == pytest.approx(7.6e-3, abs=5e-6)
     # second method: the journal length the dynamics uses
     assert profile.land_overlap == pytest.approx(SCENE.cage.guide_land_length(SCENE.bearing), rel=1e-12)
@@ -44,7 +44,7 @@ def test_contact_point_lies_on_groove_normal_through_ball_centre(profile):
     z_b = rng.uniform(-0.3e-3, 0.3e-3, 50)
     xyz = np.column_stack([rho_b * np.cos(phi_b), rho_b * np.sin(phi_b), z_b])
     alpha = np.arctan2(z_b, rho_b - profile.groove_center_radius)  # tan α = Ẑ/(ρ − d_o/2)
-    phi, radius, z = outer_contact_points(xyz, alpha, profile)
+    phi, radius, z = race_contact_points(xyz, alpha, profile)
     assert np.allclose(phi, np.mod(phi_b, 2 * math.pi))
     to_contact = np.column_stack([radius - profile.groove_center_radius, z])
     to_ball = np.column_stack([rho_b - profile.groove_center_radius, z_b])
@@ -129,13 +129,13 @@ def test_track_density_conserves_load_time_and_truncates_at_land_edge(profile):
     width = edges[1] - edges[0]
     assert abs(bins - 2 * a / profile.groove_radius / width) <= 2
     # ellipse centred on the land edge: by symmetry half of it rides over the land
-    _, _, half_out = _one_contact(profile, profile.theta_land, semi_axis=a)
+    _, _, half_out = _one_contact(profile, profile.alpha_limits[1], semi_axis=a)
     assert half_out == pytest.approx(0.5, abs=1e-9)
     # centre a/2 inside the edge: outside share 1 - F(1/2), F(u) = (2 + 3u - u^3)/4 is the
     # integral of the Hertz line load across the ellipse, (3/4)(1 - u^2) (pressure
     # p0 sqrt(1 - x²/b² - y²/a²), Harris & Kotzalas, Rolling Bearing Analysis, 5th ed.,
     # vol. 1, ch. 6, integrated over x): 1 - 27/32 = 5/32
-    _, _, part = _one_contact(profile, profile.theta_land - 0.5 * a / profile.groove_radius, semi_axis=a)
+    _, _, part = _one_contact(profile, profile.alpha_limits[1] - 0.5 * a / profile.groove_radius, semi_axis=a)
     assert part == pytest.approx(5.0 / 32.0, rel=1e-9)
     assert _band_cdf(np.array([-1.0, 0.0, 1.0])).tolist() == [0.0, 0.5, 1.0]
 
@@ -156,7 +156,7 @@ def test_semi_axis_table_matches_direct_hertz_solution():
     b, m = SCENE.bearing, SCENE.materials
     alpha = np.radians([12.0, 25.43, 31.7, 40.0])
     load = np.array([500.0, 1500.0, 3000.0, 6000.0])
-    a = outer_semi_major_axis(b, m.ball, m.race, alpha, load)
+    a = race_semi_major_axis(b, m.ball, m.race, alpha, load)
     e_eff = effective_modulus(m.ball, m.race)
     for k in range(alpha.size):
         sum_rho, f_rho = race_curvature(alpha[k], b.ball_diameter, b.pitch_diameter, b.outer_groove_radius, True)
@@ -174,7 +174,7 @@ def _map(profile, peak_deg: float, side_deg: int | None = None) -> BurnZoneMap:
         energy[side_deg] = 1.5
     tracks = np.zeros((360, 96))
     tracks[:, 60:64] = 5.0
-    edges = np.linspace(-profile.theta_land, profile.theta_land, 97)
+    edges = np.linspace(*profile.alpha_limits, 97)
     start = math.radians(int(peak_deg))
     return BurnZoneMap(profile, energy, (start, start + math.radians(2)), tracks, edges, 0.0)
 
@@ -207,7 +207,7 @@ def test_unrolled_map_differs_where_the_data_differ(profile, tmp_path):
         row = int(bottom - (z + profile.half_width) / (2 * profile.half_width) * (bottom - top))
         return img[row, col]
 
-    z_land = 0.5 * (profile.z_land + profile.cage_half_width)  # middle of a land overlap band
+    z_land = 0.5 * (profile.z_land(1) + profile.cage_half_width)  # middle of a land overlap band
     black = np.zeros(3)  # inferno at 0
     for az, img in ((90.5, a), (250.5, b)):  # the secondary rub: coloured on both lands
         for z in (z_land, -z_land):

@@ -40,76 +40,33 @@ ProgressCallback = Callable[[str, str, float], None]  # (stage, text, fraction d
 
 # --- scenes --------------------------------------------------------------------------------
 def load_scene(scene, overrides: Mapping[str, Any] | Iterable[str] | None = None):
-    """A validated `Scene` from a built-in scene name, a
-    TOML path or another Scene, with `overrides` applied.
+    """A validated `Scene` from a scene file path, a built-in scene name, a scene's TOML text
+    (``"name = 'x'\n[bearing]\n..."``), a dict (as `Scene.to_dict` gives it) or another Scene,
+    with `overrides` applied.
 
     `overrides`: ``{"load.moment": 300, "solver.duration": 0.02}`` (dotted keys, Python
     values) or ``["load.moment=300"]`` (the command line's ``--set`` strings). Either way the
     value goes through the same TOML parsing and validation as the file, so a bad one raises
-    `SceneError` naming the key, the value, what is allowed and the unit.
+    `SceneError` naming the key, the value, what is allowed and the unit. Change a scene later
+    with `Scene.replace`, which validates the same way.
     """
     from .machine.numba_cache import configure_numba_cache
-    from .scene.load import Scene, apply_overrides, read_scene_table, resolve
+    from .scene.load import load_scene as load
 
     configure_numba_cache()  # scene validation loads a few kernels' modules
-    if isinstance(scene, Scene):
-        table, origin = scene.raw, scene_origin(scene)
-    else:
-        table, origin = read_scene_table(scene)
-    resolved = resolve(apply_overrides(table, override_strings(overrides)), origin)
-    # provenance for scene.toml's header; a frozen dataclass, so set past its __setattr__
-    object.__setattr__(resolved, "_origin", origin)
-    return resolved
+    return load(scene, overrides)
+
+
+def override_strings(overrides: Mapping[str, Any] | Iterable[str] | None) -> list[str]:
+    """`{"load.moment": 300}` -> `["load.moment=300"]` (pipeline.scene.load.override_strings)."""
+    from .scene.load import override_strings as strings
+
+    return strings(overrides)
 
 
 def scene_origin(scene) -> str:
     """Where a scene came from (a path or `built-in:<name>`), for the run directory's scene.toml."""
     return getattr(scene, "_origin", "a Scene object of the Python API")
-
-
-def override_strings(overrides: Mapping[str, Any] | Iterable[str] | None) -> list[str]:
-    """`{"load.moment": 300}` -> `["load.moment=300"]`; strings pass through. A nested
-    mapping is flattened to dotted keys (`{"materials.ball": {"density": 7800}}`)."""
-    if overrides is None:
-        return []
-    if isinstance(overrides, str):
-        return [overrides]
-    if not isinstance(overrides, Mapping):
-        return [str(o) for o in overrides]
-    out = []
-    for key, value in _flatten(overrides, ""):
-        out.append(f"{key}={_toml_literal(key, value)}")
-    return out
-
-
-def _flatten(mapping: Mapping, prefix: str) -> Iterator[tuple[str, Any]]:
-    for key, value in mapping.items():
-        dotted = f"{prefix}{key}"
-        if isinstance(value, Mapping):
-            yield from _flatten(value, dotted + ".")
-        else:
-            yield dotted, value
-
-
-def _toml_literal(key: str, value: Any) -> str:
-    import tomli_w
-
-    from .scene.schema import SceneError
-
-    if isinstance(value, np.ndarray):
-        value = value.tolist()
-    elif isinstance(value, np.generic):
-        value = value.item()
-    elif isinstance(value, tuple):
-        value = list(value)
-    elif isinstance(value, Path):
-        value = str(value)
-    if isinstance(value, list):  # one line, as typed after --set
-        return "[" + ", ".join(_toml_literal(key, v) for v in value) + "]"
-    try:
-        return tomli_w.dumps({"v": value})[len("v = "):].strip()
-    except (TypeError, ValueError) as exc:
-        raise SceneError(key, f"{value!r} cannot be written as a TOML value: {exc}") from None
 
 
 # --- running -------------------------------------------------------------------------------

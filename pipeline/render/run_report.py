@@ -97,7 +97,8 @@ def render_burn_zone(scene, simulate_dir: Path, summary: dict | None, out_dir: P
 
     if scene.cage is None or scene.cage.guidance != "outer":
         return None
-    profile = OuterRaceProfile.from_scene(scene.bearing, scene.cage)
+    parts = scene.operating
+    profile = OuterRaceProfile.from_scene(parts.bearing, parts.cage)
     path = simulate_dir / "timeseries.h5"
     series = read_series(path, BURN_DATASETS + OPTIONAL_DATASETS)
     missing = [n for n in BURN_DATASETS if n not in series]
@@ -107,7 +108,7 @@ def render_burn_zone(scene, simulate_dir: Path, summary: dict | None, out_dir: P
     clearance = _h5_attrs(path).get("guide_clearance_m")
     start = settled_start(series, summary, float(clearance) if clearance is not None else None)
     startup = (summary or {}).get("startup") or {}
-    semi_axis = outer_semi_major_axis(scene.bearing, scene.materials.ball, scene.materials.race,
+    semi_axis = outer_semi_major_axis(parts.bearing, parts.materials.ball, parts.materials.race,
                                       series["contacts/outer_contact_angle"].data,
                                       series["contacts/outer_load"].data)
     bzm = burn_zone_map(series, profile, summary_sector=(summary or {}).get("burn_zone_sector"),
@@ -117,7 +118,7 @@ def render_burn_zone(scene, simulate_dir: Path, summary: dict | None, out_dir: P
     if maps is not None:
         maps["burn_zone"] = bzm
     render_burn_zone_map(bzm, out_dir / BURN_MAP, scene.name)
-    outside = 0.5 * scene.bearing.outer_outside_diameter if scene.bearing.outer_outside_diameter else None
+    outside = 0.5 * parts.bearing.outer_outside_diameter if parts.bearing.outer_outside_diameter else None
     render_burn_zone_3d(bzm, out_dir / BURN_RENDER, scene.name, outside, show=show)
     peak = bzm.peak_sector
     return {

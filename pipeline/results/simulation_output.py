@@ -56,7 +56,7 @@ def land_boundary(scene) -> float:
 def land_roughness(scene) -> float:
     """Composite RMS roughness sigma of cage rim and land [m]: the scene's
     `cage.land_roughness` when it has one, else DEFAULT_LAND_ROUGHNESS (cage_metrics)."""
-    value = getattr(scene.cage, "land_roughness", None) if scene.cage is not None else None
+    value = getattr(scene.operating.cage, "land_roughness", None) if scene.cage is not None else None
     return float(value) if value is not None else DEFAULT_LAND_ROUGHNESS
 
 
@@ -91,12 +91,12 @@ def _non_guiding(t, series: dict[str, Series], scene) -> dict:
     """The gap to the non-guiding land along the run (pipeline.results.non_guiding)."""
     from .non_guiding import non_guiding_gap, non_guiding_summary
 
-    clearance = scene.cage.non_guiding_clearance(scene.bearing)
+    clearance = scene.operating.cage.non_guiding_clearance(scene.operating.bearing)
     if clearance is None:
         return {}
     outer = scene.cage.guidance == "outer"
     gap = non_guiding_gap(series["cage/position"].data, series["inner_race/position"].data if outer else None,
-                          series["inner_race/axis"].data if outer else None, clearance, 0.5 * scene.cage.width)
+                          series["inner_race/axis"].data if outer else None, clearance, 0.5 * scene.operating.cage.width)
     return non_guiding_summary(t, gap, clearance)
 
 

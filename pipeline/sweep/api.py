@@ -79,7 +79,7 @@ def _cell(value) -> str:
 def vary_strings(vary: Mapping[str, Any] | Iterable[str] | str) -> list[str]:
     """`{"load.moment": [0, 300]}` -> `["load.moment=0,300"]`; `{"k": "0:600:4"}` keeps the
     range; strings (the command line's `--vary`) pass through."""
-    from ..api import _toml_literal
+    from ..scene.load import _toml_literal
 
     if isinstance(vary, str):
         return [vary]
@@ -117,7 +117,7 @@ def sweep(scene, vary: Mapping[str, Any] | Iterable[str] | str, *,
                `distributed.Client` as `client`.
     Finished points of an earlier call are reused (`retry_failed` reruns failed ones).
     """
-    from ..api import override_strings
+    from ..scene.load import override_strings
     from ..staging.no_follow import named_in_python
     from .driver import dask_client, gather, plan_sweep, replaced_sweep, run_in_process, run_sweep, unfinished
     from .table import read_table

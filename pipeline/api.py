@@ -205,6 +205,13 @@ class Run:
         return run_html(self)
 
     @property
+    def plot(self) -> "RunPlots":
+        """The run's figures as matplotlib Figures: `run.plot.orbit()`, `.speed()`,
+        `.impacts()`, `.burn_zone()`, `.load_distribution()`, `.animate(path)`; the report
+        draws the same ones."""
+        return RunPlots(self)
+
+    @property
     def stages(self) -> dict[str, str]:
         """Stage name -> "done" for every finished stage in the directory, plus the status of
         this call's outcomes ("computed", "cached", "not needed", ...)."""
@@ -315,6 +322,69 @@ class Run:
         if write:
             return export_stiffness(self.scene, self.run_dir, speeds_rpm)
         return stiffness_table(self.scene, speeds_rpm, identify_dir=self.stage_dir("identify"))
+
+
+class RunPlots:
+    """The figures of one run (pipeline.render.run_plots), each a matplotlib Figure that
+    Jupyter shows inline and `fig.savefig(...)` writes; FileNotFoundError naming the stage to
+    run when the run lacks what a figure needs."""
+
+    def __init__(self, run: Run):
+        self._run = run
+
+    def __repr__(self) -> str:
+        return "RunPlots: orbit(), speed(), impacts(), burn_zone(), load_distribution(polar=True), animate(path)"
+
+    def _dir(self, stage: str, filename: str) -> Path:
+        return self._run._file(stage, filename).parent
+
+    def orbit(self):
+        """The cage-centre orbit behind the verdict (start-up grey, settled window coloured,
+        guide and film clearance, loaded sector, thinnest film)."""
+        from .render.run_plots import orbit_figure
+
+        return _drawn(orbit_figure(self._run.scene, self._dir("simulate", "timeseries.h5")), "the cage orbit")
+
+    def speed(self):
+        """Cage speed against time, its settled mean and the epicyclic speed."""
+        from .render.run_plots import speed_figure
+
+        qs = self._run.stage_dir("quasistatic")
+        return _drawn(speed_figure(self._run.scene, self._dir("simulate", "timeseries.h5"),
+                                   qs if qs.is_dir() else None), "the cage speed")
+
+    def impacts(self):
+        """Ball–pocket impacts: peak force against time and against orbital position."""
+        from .render.run_plots import impacts_figure
+
+        return impacts_figure(self._run.scene, self._dir("simulate", "impacts.csv"))
+
+    def burn_zone(self):
+        """The polar burn map of the guiding land, centred on its hot sector."""
+        from .render.run_plots import burn_zone_figure
+
+        sim = self._dir("simulate", "timeseries.h5")
+        return burn_zone_figure(self._run.scene, simulate_dir=sim)
+
+    def load_distribution(self, polar: bool = True):
+        """The quasi-static ball loads round the bearing (`polar=False`: loads, contact angles
+        and the crush screen against azimuth)."""
+        from .render.run_plots import load_distribution_figure
+
+        return load_distribution_figure(self._run.scene, self._dir("quasistatic", "quasistatic.json"), polar)
+
+    def animate(self, path: str | Path, frames: int = 120, fps: int = 15) -> Path:
+        """The cage orbit with the balls in their pockets as an animation: `.gif` (Pillow) or
+        `.mp4` (needs ffmpeg). Returns the path written."""
+        from .render.animation import write_cage_animation
+
+        return write_cage_animation(self._run.scene, self._dir("simulate", "timeseries.h5"), Path(path), frames, fps)
+
+
+def _drawn(fig, what: str):
+    if fig is None:
+        raise ValueError(f"no {what}: the run has no cage series (the scene has no [cage])")
+    return fig
 
 
 def open_run(run_dir: str | Path) -> Run:

@@ -1,8 +1,9 @@
 """Everything the `report` stage writes, from the saved results of the upstream stages.
 
-Files in the output directory: `report.html` (self-contained), `burn_zone_3d.png`,
+Files in the output directory: `report.html` (self-contained), `burn_zone_polar.png` (the
+land's heat round the bearing, centred on the hot sector), `burn_zone_3d.png`,
 `burn_zone_map.png`, `verdict_orbit.png` (the cage orbit behind the verdict: start-up and
-settled window), `fe_<axis>.png` + `fe_<axis>.vtu` per FE load case, and `renders.json`
+settled window), `ball_loads_polar.png` (the quasi-static ball loads round the bearing), `fe_<axis>.png` + `fe_<axis>.vtu` per FE load case, and `renders.json`
 (what was drawn, warp scales, burn-zone peak and heat). Nothing is solved here.
 
 Everything drawn from the time series covers the settled window of `summary.json`
@@ -26,7 +27,7 @@ from ..staging.artefacts import atomic_write_json
 from ..results.timeseries import Series
 
 REPORT_FILE = "report.html"
-BURN_RENDER, BURN_MAP = "burn_zone_3d.png", "burn_zone_map.png"
+BURN_RENDER, BURN_MAP, BURN_POLAR = "burn_zone_3d.png", "burn_zone_map.png", "burn_zone_polar.png"
 ORBIT_FIGURE = "verdict_orbit.png"
 RENDERS_FILE = "renders.json"
 BURN_DATASETS = ("time", "balls/position", "contacts/outer_contact_angle", "contacts/outer_load",
@@ -87,12 +88,12 @@ def settled_start(series: dict, summary: dict | None, guide_clearance: float | N
     return None
 
 
-def render_burn_zone(scene, simulate_dir: Path, summary: dict | None, out_dir: Path, show: bool,
-                     maps: dict | None = None) -> dict | None:
-    """Both burn-zone images; None when the scene has no outer-race-guided cage. The map
-    drawn (a BurnZoneMap) is put in `maps["burn_zone"]` when `maps` is given."""
+def burn_zone_of(scene, simulate_dir: Path, summary: dict | None):
+    """(BurnZoneMap, its OuterRaceProfile, whether the window is the settled one, whether the
+    series hold the film power) from the
+    saved series; None when the scene's cage is not guided by the outer race's land (the map
+    of the land that guides it: pipeline.render.burn_zone_data)."""
     from ..results.simulation_output import guide_land_speed, land_boundary
-    from .burn_zone import heat_caption, render_burn_zone_3d, render_burn_zone_map
     from .burn_zone_data import OuterRaceProfile, burn_zone_map, outer_semi_major_axis
 
     if scene.cage is None or scene.cage.guidance != "outer":
@@ -115,20 +116,37 @@ def render_burn_zone(scene, simulate_dir: Path, summary: dict | None, out_dir: P
                         semi_axis=semi_axis, start=start, land_boundary=land_boundary(scene),
                         land_speed=guide_land_speed(scene),
                         startup_metal_energy=_startup_metal(series, start, startup))
+    return bzm, profile, start is not None, "cage_race/film_power" in series
+
+
+def render_burn_zone(scene, simulate_dir: Path, summary: dict | None, out_dir: Path, show: bool,
+                     maps: dict | None = None) -> dict | None:
+    """The burn-zone images (polar map, unrolled map, 3-D render); None when the scene has no
+    outer-race-guided cage. The map drawn (a BurnZoneMap) is put in `maps["burn_zone"]` when
+    `maps` is given."""
+    from ..figures import save_png
+    from .burn_zone import heat_caption, render_burn_zone_3d, render_burn_zone_map
+    from .run_plots import burn_zone_figure
+
+    found = burn_zone_of(scene, simulate_dir, summary)
+    if found is None:
+        return None
+    bzm, profile, settled, film_layer = found
     if maps is not None:
         maps["burn_zone"] = bzm
+    save_png(burn_zone_figure(scene, bzm), out_dir / BURN_POLAR)
     render_burn_zone_map(bzm, out_dir / BURN_MAP, scene.name)
-    outside = 0.5 * parts.bearing.outer_outside_diameter if parts.bearing.outer_outside_diameter else None
+    outside = 0.5 * scene.operating.bearing.outer_outside_diameter if scene.operating.bearing.outer_outside_diameter else None
     render_burn_zone_3d(bzm, out_dir / BURN_RENDER, scene.name, outside, show=show)
     peak = bzm.peak_sector
     return {
-        "render": BURN_RENDER, "map": BURN_MAP, "sectors": bzm.sectors,
+        "render": BURN_RENDER, "map": BURN_MAP, "polar": BURN_POLAR, "sectors": bzm.sectors,
         "window_s": list(bzm.window),
-        "settled": start is not None,
+        "settled": settled,
         "energy_total_J": float(bzm.sector_energy.sum()),
         "energy_metal_J": float(bzm.metal_energy.sum()),
         "energy_film_J": float(bzm.film_energy.sum()),
-        "film_layer": "cage_race/film_power" in series,
+        "film_layer": film_layer,
         "startup_metal_energy_J": bzm.startup_metal_energy,
         "caption": heat_caption(bzm),
         "peak_sector_deg": math.degrees(bzm.sector_center(peak)) if peak is not None else None,
@@ -154,62 +172,14 @@ def _startup_metal(series: dict, start: float | None, startup: dict) -> float:
 
 
 def render_verdict_orbit(scene, simulate_dir: Path, summary: dict | None, out_dir: Path) -> str | None:
-    """`verdict_orbit.png`: the cage-centre orbit, start-up grey and settled window coloured,
-    inside the guide clearance (eps = 1, where metal contact begins) and the film clearance
-    C (1 + eps0); the loaded sector of the verdict as a wedge and the cage centre at the
-    thinnest film as a star. None when the run has no cage series."""
-    from ..figures import new_figure, save_png
-    from ..results.simulation_output import land_boundary
+    """`verdict_orbit.png`: the orbit behind the verdict (`run_plots.orbit_figure`); None when
+    the run has no cage series."""
+    from ..figures import save_png
+    from .run_plots import orbit_figure
 
-    path = simulate_dir / "timeseries.h5"
-    series = read_series(path, ("time", "cage/position", "cage_race/eccentricity_ratio", "cage/speed"))
-    if "cage/position" not in series:
+    fig = orbit_figure(scene, simulate_dir, summary)
+    if fig is None:
         return None
-    clearance = _h5_attrs(path).get("guide_clearance_m")
-    clearance = float(clearance) if clearance is not None else None
-    t = np.asarray(series["time"].data, dtype=float)
-    xy = np.asarray(series["cage/position"].data, dtype=float)[:, :2] * 1e6
-    start = settled_start(series, summary, clearance)
-    late = t >= (start if start is not None else t[0])
-    verdict = (summary or {}).get("verdict") or {}
-    fig = new_figure(figsize=(6.4, 6.2))
-    ax = fig.subplots()
-    th = np.linspace(0.0, 2.0 * math.pi, 361)
-    lim = 1.05 * float(np.abs(xy).max(initial=1.0))
-    if clearance:
-        c = clearance * 1e6
-        eps0 = land_boundary(scene)
-        ax.plot(c * np.cos(th), c * np.sin(th), "k--", lw=1, label=f"guide clearance C = {c:.0f} µm (ε = 1)")
-        ax.plot(c * (1 + eps0) * np.cos(th), c * (1 + eps0) * np.sin(th), "k:", lw=0.8,
-                label=f"film clearance C(1 + ε0), ε0 = {eps0:g}")
-        lim = max(lim, 1.15 * c * (1 + eps0))
-        sector = verdict.get("sector_deg")
-        if sector:
-            a = np.radians(np.linspace(sector[0], sector[1], 60))
-            ax.fill(np.r_[0.0, c * np.cos(a), 0.0], np.r_[0.0, c * np.sin(a), 0.0], color="tab:red", alpha=0.15,
-                    label=f"loaded sector {sector[0] % 360:.0f}–{sector[1] % 360:.0f}°")
-    if (~late).any():
-        ax.plot(xy[~late, 0], xy[~late, 1], color="0.65", lw=0.5,
-                label=f"start-up (t < {start:.3g} s)" if start is not None else "start-up")
-    ax.plot(xy[late, 0], xy[late, 1], color="C0", lw=0.6,
-            label="settled window" if start is not None else "whole run")
-    when = (summary or {}).get("land_film_min_time")
-    if when is not None:
-        i = int(np.argmin(np.abs(t - when)))
-        h = verdict.get("land_film_min_um")
-        ax.plot(xy[i, 0], xy[i, 1], "*", color="tab:red", ms=12,
-                label=(f"thinnest film {h:.3g} µm" if h is not None else "thinnest film") + f" at t = {when:.4g} s")
-    ax.set_aspect("equal")
-    ax.set_xlim(-lim, lim)
-    ax.set_ylim(-lim, lim)
-    ax.set_xlabel("cage centre x [µm]")
-    ax.set_ylabel("cage centre y [µm]")
-    ax.grid(alpha=0.3)
-    ax.legend(loc="upper right", fontsize=7)
-    title = f"Cage centre orbit — {scene.name}"
-    if verdict:
-        title += f"\n{verdict.get('class')}, {verdict.get('risk')} risk"
-    ax.set_title(title, fontsize=10)
     save_png(fig, out_dir / ORBIT_FIGURE)
     return ORBIT_FIGURE
 
@@ -300,6 +270,13 @@ def write_run_report(scene, run_dir: Path, upstream: dict[str, Path], out_dir: P
         progress("FE deflections", 0.8)
         fe_records = draw_fe()
     progress("report", 0.9)
+    qs = upstream.get("quasistatic")
+    if qs is not None and (qs / "quasistatic.json").is_file():
+        from ..figures import save_png
+        from .report import BALL_LOAD_FIGURE
+        from .run_plots import load_distribution_figure
+
+        save_png(load_distribution_figure(scene, qs, polar=True), out_dir / BALL_LOAD_FIGURE)
     write_report_html(out_dir / REPORT_FILE, scene, run_dir, upstream, out_dir, fe_records, burn,
                       evidence={"orbit": orbit})
     info = {"report": REPORT_FILE, "fe_cases": [r["file"] for r in fe_records],

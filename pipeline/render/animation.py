@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
+ANIMATION_DIR = "animation"  # <run>/animation/, apart from the report stage's folder
 LEAD_GAIN = 10.0  # a ball's lead or lag in its pocket, drawn this many times its size
 REVOLUTIONS = 2.0  # cage revolutions the animation covers, at the end of the run
 
@@ -123,3 +124,13 @@ def _circle(radius: float, face, edge):
     from matplotlib.patches import Circle
 
     return Circle((0.0, 0.0), radius, facecolor=face, edgecolor=edge, lw=0.6)
+
+
+def write_cage_animations(scene, simulate_dir: Path, out_dir: Path) -> list[Path]:
+    """`bearingsim render --animate`: cage_orbit.gif, and cage_orbit.mp4 when ffmpeg is installed."""
+    from matplotlib import animation
+
+    paths = [write_cage_animation(scene, simulate_dir, Path(out_dir) / "cage_orbit.gif")]
+    if animation.writers.is_available("ffmpeg"):
+        paths.append(write_cage_animation(scene, simulate_dir, Path(out_dir) / "cage_orbit.mp4"))
+    return paths

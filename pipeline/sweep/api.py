@@ -50,15 +50,25 @@ class SweepResult:
             raise ImportError("to_pandas() needs pandas: pip install pandas (the rows are in .rows)") from None
         return pandas.DataFrame(self.rows)
 
+    @property
+    def plot(self) -> "SweepPlots":
+        """`sweep.plot.map()`: the stability map as a matplotlib Figure (a line plot for one
+        varied key)."""
+        return SweepPlots(self)
+
     def __repr__(self) -> str:
         from collections import Counter
 
         classes = Counter(r.get("cage_class") for r in self.rows)
         counts = ", ".join(f"{n} {c}" for c, n in classes.most_common())
+        short = sum(1 for r in self.rows if r.get("too_short_to_settle") in (True, "True"))
+        if short:
+            counts += f"; {short} too short to settle"
         return f"SweepResult({len(self.rows)} points over {', '.join(self.varied)}: {counts}; {self.sweep_dir})"
 
     def _repr_html_(self) -> str:
-        columns = ["status", *self.varied, "cage_class", "risk", "cage_metal_contact_fraction", "warnings"]
+        columns = ["status", *self.varied, "cage_class", "risk", "too_short_to_settle", "cage_metal_contact_fraction",
+                   "warnings"]
         head = "".join(f"<th>{html.escape(c)}</th>" for c in columns)
         body = "".join("<tr>" + "".join(f"<td>{html.escape(_cell(r.get(c)))}</td>" for c in columns) + "</tr>"
                        for r in self.rows)
@@ -68,6 +78,20 @@ class SweepResult:
             figure = f'<img style="max-width:520px" alt="stability map" src="data:image/png;base64,{data}">'
         return (f"<div><b>sweep</b> <code>{html.escape(str(self.sweep_dir))}</code>"
                 f"<table><tr>{head}</tr>{body}</table>{figure}</div>")
+
+
+class SweepPlots:
+    """The figures of a sweep, each a matplotlib Figure."""
+
+    def __init__(self, result: SweepResult):
+        self._result = result
+
+    def map(self, x: str | None = None, y: str | None = None):
+        """The cage-stability map: a line plot of the metal-contact fraction and the mean
+        eccentricity over the one varied key, else the class map over two (`x`, `y`)."""
+        from .stability_map import stability_map_figure
+
+        return stability_map_figure(self._result.rows, self._result.varied, map_x=x, map_y=y)
 
 
 def _cell(value) -> str:

@@ -82,8 +82,8 @@ def run(scene, run_dir: str | Path | None = None, stages: str | Iterable[str] = 
               "report", i.e. everything, as `bearingsim run`]. Up-to-date stages are skipped.
     force:    True recomputes the stages named in `stages` (as `bearingsim simulate --force`);
               "all" every stage they need (as `bearingsim run --force`); or an iterable of names.
-    progress: None/False silent; True prints stage progress to stderr; or a callable
-              (stage, text, fraction).
+    progress: None/False silent; True shows a progress bar with ETA per stage (tqdm: a widget in a
+              notebook, stderr in a terminal); or a callable (stage, text, fraction).
     store:    a stage store shared between run directories (as sweeps use; see pipeline.staging.runner).
     """
     from .staging.no_follow import named_in_python
@@ -93,9 +93,14 @@ def run(scene, run_dir: str | Path | None = None, stages: str | Iterable[str] = 
         scene = load_scene(scene, overrides)
     run_dir = Path(run_dir) if run_dir is not None else Path("runs") / scene.name
     targets = check_stage_names(stages, "stages")
-    with named_in_python("run_dir"):
-        outcomes = run_pipeline(scene, run_dir, targets, forced_stages(force, targets),
-                                progress=_progress_callback(progress), store=store)
+    callback = _progress_callback(progress)
+    try:
+        with named_in_python("run_dir"):
+            outcomes = run_pipeline(scene, run_dir, targets, forced_stages(force, targets),
+                                    progress=callback, store=store)
+    finally:
+        if isinstance(callback, StageBars):
+            callback.close()
     return Run(scene, run_dir.absolute(), tuple(outcomes))  # absolute: valid after a chdir
 
 
@@ -159,21 +164,36 @@ def _progress_callback(progress) -> ProgressCallback | None:
     if progress is None or progress is False:
         return None
     if progress is True:
-        return _StderrProgress()
+        return StageBars()
     return progress
 
 
-class _StderrProgress:
-    """One line per stage change, and at most one every 2 s while a stage runs."""
+class StageBars:
+    """`progress=True`: one progress bar per stage with its ETA (tqdm.auto: a widget in a
+    notebook, a bar on stderr in a terminal). It is fed by the stages' own progress callback,
+    which the time loop calls about four times a second, so it costs the integration nothing."""
 
-    def __init__(self, interval: float = 2.0):
-        self.interval, self.last, self.stage = interval, 0.0, None
+    def __init__(self):
+        self.bars: dict[str, Any] = {}
 
     def __call__(self, stage: str, text: str, fraction: float) -> None:
-        now = time.monotonic()
-        if stage != self.stage or now - self.last >= self.interval or fraction >= 1.0:
-            print(f"{stage:<12} {100 * fraction:5.1f} %  {text}", file=sys.stderr, flush=True)
-            self.stage, self.last = stage, now
+        from tqdm.auto import tqdm
+
+        bar = self.bars.get(stage)
+        if bar is None:
+            for other in self.bars.values():
+                other.close()
+            bar = self.bars[stage] = tqdm(total=100, desc=f"{stage:<11}", unit="%", leave=True,
+                                          bar_format="{desc} {percentage:3.0f}%|{bar}| {elapsed}<{remaining} {postfix}")
+        bar.n = round(100.0 * max(0.0, min(1.0, fraction)), 1)
+        bar.set_postfix_str(text, refresh=False)
+        bar.refresh()
+        if fraction >= 1.0:
+            bar.close()
+
+    def close(self) -> None:
+        for bar in self.bars.values():
+            bar.close()
 
 
 # --- results -------------------------------------------------------------------------------

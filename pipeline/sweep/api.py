@@ -167,17 +167,23 @@ def sweep(scene, vary: Mapping[str, Any] | Iterable[str] | str, *,
 
 
 class _StatusPrinter:
-    """One stderr line whenever the counts change (the command line's plain-text progress)."""
+    """`progress=True`: a bar of the points done (tqdm.auto: a notebook widget, or stderr), with
+    the ETA, the failed and running points and the workers running them."""
 
     def __init__(self):
-        self.last = None
+        self.bar = None
 
     def __call__(self, status) -> None:
-        from .console import status_line
+        from tqdm.auto import tqdm
 
-        line = status_line(status)
-        counts = (status.done, status.failed, status.running, status.lost_workers, status.retried)
-        if counts != self.last:
-            self.last = counts
-            print(f"sweep: {line}", file=sys.stderr, flush=True)
-
+        if self.bar is None:
+            self.bar = tqdm(total=status.total, desc="sweep", unit="point")
+        self.bar.n = status.done + status.failed
+        workers = ", ".join(f"{w.rsplit('/', 1)[-1]}: {n}" for w, n in sorted(status.running_on.items()))
+        self.bar.set_postfix_str(f"{status.failed} failed, {status.running} running"
+                                 + (f" on {workers}" if workers else "")
+                                 + (f", {status.resumed} from an earlier run" if status.resumed else "")
+                                 + (f"; last {status.last}" if status.last else ""), refresh=False)
+        self.bar.refresh()
+        if status.done + status.failed >= status.total:
+            self.bar.close()

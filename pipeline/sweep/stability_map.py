@@ -124,7 +124,7 @@ def line_figure(rows: list[dict], key: str, title: str = ""):
                       mfc="white" if short else colour, mec=colour, mew=1.5, zorder=2)
         axis.set_ylabel(label)
     ax.set_ylim(-0.05, 1.05)
-    eps_ax.set_ylim(0.0, max(1.2, *(float(r["cage_eps_mean"]) * 1.1 for r in rows if r.get("cage_eps_mean") is not None)))
+    eps_ax.set_ylim(0.0, max([1.2, *(float(r["cage_eps_mean"]) * 1.1 for r in rows if r.get("cage_eps_mean") is not None)]))
     ax.set_xlabel(axis_label(key))
     if xticks is not None:
         ax.set_xticks(xticks, xlabels)

@@ -40,7 +40,7 @@ def orbit_figure(scene, simulate_dir: Path, summary: dict | None = None):
     a wedge and the cage centre at the thinnest film as a star. None without cage series."""
     from ..figures.dynamics import cage_orbit_figure
     from ..results.simulation_output import land_boundary
-    from .run_report import _h5_attrs, read_series, settled_start
+    from .run_series import _h5_attrs, read_series, settled_start
 
     path = Path(simulate_dir) / "timeseries.h5"
     summary = summary if summary is not None else _summary(simulate_dir)
@@ -77,7 +77,7 @@ def speed_figure(scene, simulate_dir: Path, quasistatic_dir: Path | None = None,
     """Cage speed against time with its settled mean and the epicyclic (pure rolling) speed of
     the quasi-static solution. None without a cage."""
     from ..figures.dynamics import cage_speed_figure
-    from .run_report import read_series
+    from .run_series import read_series
 
     series = read_series(Path(simulate_dir) / "timeseries.h5", ("time", "cage/speed"))
     if "cage/speed" not in series:
@@ -117,7 +117,7 @@ def burn_zone_figure(scene, burn_map=None, simulate_dir: Path | None = None, sum
 
     land = land_name(scene)
     if burn_map is None and land is not None and simulate_dir is not None:
-        from .run_report import burn_zone_of
+        from .run_series import burn_zone_of
 
         found = burn_zone_of(scene, Path(simulate_dir), summary if summary is not None else _summary(simulate_dir))
         burn_map = found[0] if found is not None else None

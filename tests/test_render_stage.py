@@ -160,7 +160,7 @@ def test_render_command_regenerates_the_report_without_solving(run_dir, monkeypa
     page = (out / "report.html").read_text()
     assert len(re.findall(r'src="data:image/png;base64,', page)) >= 5  # orbit, map twice, burn 3-D, FE
     assert not re.search(r'src="(?!data:)', page)  # self-contained: no external files
-    for text in ("The verdict's numbers", "Summary metrics", "Burn zone", "Quasi-static", "Hinge", "FE deflections",
+    for text in ("The verdict&#39;s numbers", "Summary metrics", "Burn zone", "Quasi-static", "Hinge", "FE deflections",
                  "Solver counters", "Scene", "Versions", "6.5e+08", "1234", "load case fx = -1000 N",
                  "thinnest land film", "µm", "run too short to settle",
                  "How far to trust this verdict", "docs/validation.md"):

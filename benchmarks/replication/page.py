@@ -13,7 +13,7 @@ import math
 # row, scene key, where the reference paper states the value (tests/test_paper_preset.py checks
 # the preset scenes against the paper's values row by row)
 PAPER_ROWS = (
-    ("P1", "thermal.parts_degC", "Table 1 gives drawing dimensions; no part grows with temperature (§5)"),
+    ("P1", "thermal.parts_degC", "Table 1, whose dimensions the paper uses as they are (no part grows with temperature)"),
     ("P2", "load.axial", "Table 2"),
     ("P3", "load.moment", "Table 2 (case a 100 N·m, case b 430 N·m)"),
     ("P4", "speed.inner_rpm", "Table 2, §5"),
@@ -28,7 +28,7 @@ PAPER_ROWS = (
     ("P13", "physics.cage_race_lands", "§4.2, eq. 25 and Fig. 9: one journal of length L"),
     ("P14", "physics.cage_race_boundary", "§4.2: ε0 = 5 %"),
     ("P15", "physics.contact_damping_ratio", "§4.1, eqs. 24 and 32: F_n = k_h δ^3/2, no damping"),
-    ("P16", "physics.pocket_restitution", "§4.1: the ball–pocket law is not given; no damping is stated"),
+    ("P16", "physics.pocket_restitution", "§4.1: the ball–pocket law is not given and no damping is stated (read as none)"),
     ("P17", "physics.traction", "§4.1: Eyring, isothermal (Jacod)"),
     ("P18", "physics.film_formula", "§4.1: Nijenbanning, Venner & Moes"),
     ("P19", "solver.alpha", "§5: α_f = 0.1"),
@@ -534,6 +534,8 @@ def _settle(data):
 
 def _regenerate(data):
     g = data["generated"]
+    times = [r["wall_time_s"] for r in data["runs"].values()]
+    fastest, slowest = min(times), max(times)
     return "\n".join([
         "## 7. Regenerating this page", "",
         "```bash",
@@ -542,8 +544,10 @@ def _regenerate(data):
         "python -m benchmarks.replication --page-only # the page from the JSON",
         "```", "",
         f"From the repository root with the package installed; {g['runs']} runs of 0.8 s, one after another on "
-        f"one core, {g['total_wall_time_s'] / 60:.0f} min here (the runs of the 2e-6 s step bound take about twice "
-        f"as long as the others), plus a first compile of the kernels on a new machine. The run directories go to "
+        f"one core: {g['total_wall_time_s'] / 60:.0f} min on a shared {g['cpu_count']}-core machine (load average "
+        f"{g['load_average_before']:.1f} at the start, {g['load_average_after']:.1f} at the end), {fastest:.0f}–"
+        f"{slowest:.0f} s a run (the paper's 2e-6 s step bound and the rubbing case a take longest; a quiet core is "
+        f"faster, docs/performance.md), plus a first compile of the kernels on a new machine. The run directories go to "
         f"`runs/replication/` (a run whose scene and code are unchanged is not repeated); the numbers to "
         f"[docs/validation/replication.json](validation/replication.json).", ""])
 

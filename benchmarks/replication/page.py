@@ -548,7 +548,7 @@ def _regenerate(data):
         f"{g['load_average_before']:.1f} at the start, {g['load_average_after']:.1f} at the end), {fastest:.0f}–"
         f"{slowest:.0f} s a run (the paper's 2e-6 s step bound and the rubbing case a take longest; a quiet core is "
         f"faster, docs/performance.md), plus a first compile of the kernels on a new machine. The run directories go to "
-        f"`runs/replication/` (a run whose scene and code are unchanged is not repeated); the numbers to "
+        f"`runs/replication/`, about 100 MB each (a run whose scene and code are unchanged is not repeated); the numbers to "
         f"[docs/validation/replication.json](validation/replication.json).", ""])
 
 

@@ -11,6 +11,7 @@ The Python API (README "Python API"; `bearingsim.pipeline.api`)::
     scene = bearingsim.load_scene("helicopter-b-given-hinge", {"load.moment": 300})
     run = bearingsim.run(scene, "runs/demo", stages=["simulate"])
     run.summary["cage_speed_mean"], run.timeseries()["cage/position"].values
+    run.plot.orbit()  # a matplotlib Figure; the report draws the same
     table = bearingsim.sweep(scene, vary={"load.moment": [200, 430, 600]})
 
 Its names load on first use: `import bearingsim` imports no numba, matplotlib or gmsh.
@@ -21,7 +22,7 @@ from typing import TYPE_CHECKING
 __version__ = "0.1.0"
 
 if TYPE_CHECKING:  # what static tools see; at run time each name loads on first use (_API)
-    from .pipeline.api import Run, export_stiffness, load_scene, open_run, run, stage_names
+    from .pipeline.api import Run, RunPlots, export_stiffness, load_scene, open_run, run, stage_names
     from .pipeline.results.named_arrays import NamedArray, TimeSeries
     from .pipeline.scene.load import Scene
     from .pipeline.scene.schema import SceneError
@@ -38,6 +39,7 @@ _API = {
     "open_run": "bearingsim.pipeline.api",
     "stage_names": "bearingsim.pipeline.api",
     "Run": "bearingsim.pipeline.api",
+    "RunPlots": "bearingsim.pipeline.api",
     "NamedArray": "bearingsim.pipeline.results.named_arrays",
     "TimeSeries": "bearingsim.pipeline.results.named_arrays",
     "export_stiffness": "bearingsim.pipeline.api",

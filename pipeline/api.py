@@ -40,76 +40,33 @@ ProgressCallback = Callable[[str, str, float], None]  # (stage, text, fraction d
 
 # --- scenes --------------------------------------------------------------------------------
 def load_scene(scene, overrides: Mapping[str, Any] | Iterable[str] | None = None):
-    """A validated `Scene` from a built-in scene name, a
-    TOML path or another Scene, with `overrides` applied.
+    """A validated `Scene` from a scene file path, a built-in scene name, a scene's TOML text
+    (``"name = 'x'\n[bearing]\n..."``), a dict (as `Scene.to_dict` gives it) or another Scene,
+    with `overrides` applied.
 
     `overrides`: ``{"load.moment": 300, "solver.duration": 0.02}`` (dotted keys, Python
     values) or ``["load.moment=300"]`` (the command line's ``--set`` strings). Either way the
     value goes through the same TOML parsing and validation as the file, so a bad one raises
-    `SceneError` naming the key, the value, what is allowed and the unit.
+    `SceneError` naming the key, the value, what is allowed and the unit. Change a scene later
+    with `Scene.replace`, which validates the same way.
     """
     from .machine.numba_cache import configure_numba_cache
-    from .scene.load import Scene, apply_overrides, read_scene_table, resolve
+    from .scene.load import load_scene as load
 
     configure_numba_cache()  # scene validation loads a few kernels' modules
-    if isinstance(scene, Scene):
-        table, origin = scene.raw, scene_origin(scene)
-    else:
-        table, origin = read_scene_table(scene)
-    resolved = resolve(apply_overrides(table, override_strings(overrides)), origin)
-    # provenance for scene.toml's header; a frozen dataclass, so set past its __setattr__
-    object.__setattr__(resolved, "_origin", origin)
-    return resolved
+    return load(scene, overrides)
+
+
+def override_strings(overrides: Mapping[str, Any] | Iterable[str] | None) -> list[str]:
+    """`{"load.moment": 300}` -> `["load.moment=300"]` (pipeline.scene.load.override_strings)."""
+    from .scene.load import override_strings as strings
+
+    return strings(overrides)
 
 
 def scene_origin(scene) -> str:
     """Where a scene came from (a path or `built-in:<name>`), for the run directory's scene.toml."""
     return getattr(scene, "_origin", "a Scene object of the Python API")
-
-
-def override_strings(overrides: Mapping[str, Any] | Iterable[str] | None) -> list[str]:
-    """`{"load.moment": 300}` -> `["load.moment=300"]`; strings pass through. A nested
-    mapping is flattened to dotted keys (`{"materials.ball": {"density": 7800}}`)."""
-    if overrides is None:
-        return []
-    if isinstance(overrides, str):
-        return [overrides]
-    if not isinstance(overrides, Mapping):
-        return [str(o) for o in overrides]
-    out = []
-    for key, value in _flatten(overrides, ""):
-        out.append(f"{key}={_toml_literal(key, value)}")
-    return out
-
-
-def _flatten(mapping: Mapping, prefix: str) -> Iterator[tuple[str, Any]]:
-    for key, value in mapping.items():
-        dotted = f"{prefix}{key}"
-        if isinstance(value, Mapping):
-            yield from _flatten(value, dotted + ".")
-        else:
-            yield dotted, value
-
-
-def _toml_literal(key: str, value: Any) -> str:
-    import tomli_w
-
-    from .scene.schema import SceneError
-
-    if isinstance(value, np.ndarray):
-        value = value.tolist()
-    elif isinstance(value, np.generic):
-        value = value.item()
-    elif isinstance(value, tuple):
-        value = list(value)
-    elif isinstance(value, Path):
-        value = str(value)
-    if isinstance(value, list):  # one line, as typed after --set
-        return "[" + ", ".join(_toml_literal(key, v) for v in value) + "]"
-    try:
-        return tomli_w.dumps({"v": value})[len("v = "):].strip()
-    except (TypeError, ValueError) as exc:
-        raise SceneError(key, f"{value!r} cannot be written as a TOML value: {exc}") from None
 
 
 # --- running -------------------------------------------------------------------------------
@@ -125,8 +82,8 @@ def run(scene, run_dir: str | Path | None = None, stages: str | Iterable[str] = 
               "report", i.e. everything, as `bearingsim run`]. Up-to-date stages are skipped.
     force:    True recomputes the stages named in `stages` (as `bearingsim simulate --force`);
               "all" every stage they need (as `bearingsim run --force`); or an iterable of names.
-    progress: None/False silent; True prints stage progress to stderr; or a callable
-              (stage, text, fraction).
+    progress: None/False silent; True shows a progress bar with ETA per stage (tqdm: a widget in a
+              notebook, stderr in a terminal); or a callable (stage, text, fraction).
     store:    a stage store shared between run directories (as sweeps use; see pipeline.staging.runner).
     """
     from .staging.no_follow import named_in_python
@@ -136,9 +93,14 @@ def run(scene, run_dir: str | Path | None = None, stages: str | Iterable[str] = 
         scene = load_scene(scene, overrides)
     run_dir = Path(run_dir) if run_dir is not None else Path("runs") / scene.name
     targets = check_stage_names(stages, "stages")
-    with named_in_python("run_dir"):
-        outcomes = run_pipeline(scene, run_dir, targets, forced_stages(force, targets),
-                                progress=_progress_callback(progress), store=store)
+    callback = _progress_callback(progress)
+    try:
+        with named_in_python("run_dir"):
+            outcomes = run_pipeline(scene, run_dir, targets, forced_stages(force, targets),
+                                    progress=callback, store=store)
+    finally:
+        if isinstance(callback, StageBars):
+            callback.close()
     return Run(scene, run_dir.absolute(), tuple(outcomes))  # absolute: valid after a chdir
 
 
@@ -202,21 +164,36 @@ def _progress_callback(progress) -> ProgressCallback | None:
     if progress is None or progress is False:
         return None
     if progress is True:
-        return _StderrProgress()
+        return StageBars()
     return progress
 
 
-class _StderrProgress:
-    """One line per stage change, and at most one every 2 s while a stage runs."""
+class StageBars:
+    """`progress=True`: one progress bar per stage with its ETA (tqdm.auto: a widget in a
+    notebook, a bar on stderr in a terminal). It is fed by the stages' own progress callback,
+    which the time loop calls about four times a second, so it costs the integration nothing."""
 
-    def __init__(self, interval: float = 2.0):
-        self.interval, self.last, self.stage = interval, 0.0, None
+    def __init__(self):
+        self.bars: dict[str, Any] = {}
 
     def __call__(self, stage: str, text: str, fraction: float) -> None:
-        now = time.monotonic()
-        if stage != self.stage or now - self.last >= self.interval or fraction >= 1.0:
-            print(f"{stage:<12} {100 * fraction:5.1f} %  {text}", file=sys.stderr, flush=True)
-            self.stage, self.last = stage, now
+        from tqdm.auto import tqdm
+
+        bar = self.bars.get(stage)
+        if bar is None:
+            for other in self.bars.values():
+                other.close()
+            bar = self.bars[stage] = tqdm(total=100, desc=f"{stage:<11}", unit="%", leave=True,
+                                          bar_format="{desc} {percentage:3.0f}%|{bar}| {elapsed}<{remaining} {postfix}")
+        bar.n = round(100.0 * max(0.0, min(1.0, fraction)), 1)
+        bar.set_postfix_str(text, refresh=False)
+        bar.refresh()
+        if fraction >= 1.0:
+            bar.close()
+
+    def close(self) -> None:
+        for bar in self.bars.values():
+            bar.close()
 
 
 # --- results -------------------------------------------------------------------------------
@@ -246,6 +223,13 @@ class Run:
         from .results.run_display import run_html
 
         return run_html(self)
+
+    @property
+    def plot(self) -> "RunPlots":
+        """The run's figures as matplotlib Figures: `run.plot.orbit()`, `.speed()`,
+        `.impacts()`, `.burn_zone()`, `.load_distribution()`, `.animate(path)`; the report
+        draws the same ones."""
+        return RunPlots(self)
 
     @property
     def stages(self) -> dict[str, str]:
@@ -358,6 +342,69 @@ class Run:
         if write:
             return export_stiffness(self.scene, self.run_dir, speeds_rpm)
         return stiffness_table(self.scene, speeds_rpm, identify_dir=self.stage_dir("identify"))
+
+
+class RunPlots:
+    """The figures of one run (pipeline.render.run_plots), each a matplotlib Figure that
+    Jupyter shows inline and `fig.savefig(...)` writes; FileNotFoundError naming the stage to
+    run when the run lacks what a figure needs."""
+
+    def __init__(self, run: Run):
+        self._run = run
+
+    def __repr__(self) -> str:
+        return "RunPlots: orbit(), speed(), impacts(), burn_zone(), load_distribution(polar=True), animate(path)"
+
+    def _dir(self, stage: str, filename: str) -> Path:
+        return self._run._file(stage, filename).parent
+
+    def orbit(self):
+        """The cage-centre orbit behind the verdict (start-up grey, settled window coloured,
+        guide and film clearance, loaded sector, thinnest film)."""
+        from .render.run_plots import orbit_figure
+
+        return _drawn(orbit_figure(self._run.scene, self._dir("simulate", "timeseries.h5")), "the cage orbit")
+
+    def speed(self):
+        """Cage speed against time, its settled mean and the epicyclic speed."""
+        from .render.run_plots import speed_figure
+
+        qs = self._run.stage_dir("quasistatic")
+        return _drawn(speed_figure(self._run.scene, self._dir("simulate", "timeseries.h5"),
+                                   qs if qs.is_dir() else None), "the cage speed")
+
+    def impacts(self):
+        """Ball–pocket impacts: peak force against time and against orbital position."""
+        from .render.run_plots import impacts_figure
+
+        return impacts_figure(self._run.scene, self._dir("simulate", "impacts.csv"))
+
+    def burn_zone(self):
+        """The polar burn map of the guiding land, centred on its hot sector."""
+        from .render.run_plots import burn_zone_figure
+
+        sim = self._dir("simulate", "timeseries.h5")
+        return burn_zone_figure(self._run.scene, simulate_dir=sim)
+
+    def load_distribution(self, polar: bool = True):
+        """The quasi-static ball loads round the bearing (`polar=False`: loads, contact angles
+        and the crush screen against azimuth)."""
+        from .render.run_plots import load_distribution_figure
+
+        return load_distribution_figure(self._run.scene, self._dir("quasistatic", "quasistatic.json"), polar)
+
+    def animate(self, path: str | Path, frames: int = 120, fps: int = 15) -> Path:
+        """The cage orbit with the balls in their pockets as an animation: `.gif` (Pillow) or
+        `.mp4` (needs ffmpeg). Returns the path written."""
+        from .render.animation import write_cage_animation
+
+        return write_cage_animation(self._run.scene, self._dir("simulate", "timeseries.h5"), Path(path), frames, fps)
+
+
+def _drawn(fig, what: str):
+    if fig is None:
+        raise ValueError(f"no {what}: the run has no cage series (the scene has no [cage])")
+    return fig
 
 
 def open_run(run_dir: str | Path) -> Run:

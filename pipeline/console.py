@@ -20,7 +20,9 @@ __all__ = ["escape", "make_console", "explain", "finding_lines", "INTEGRATION_HI
 
 
 def make_console(stderr: bool = False) -> Console:
-    return Console(stderr=stderr, emoji=False)
+    """stderr's lines are soft-wrapped: a path or a message is printed whole, never broken at
+    the console's width (80 columns when stderr is not a terminal), so it can be copied."""
+    return Console(stderr=stderr, emoji=False, soft_wrap=stderr)
 
 
 # The integrator's failure reasons (dynamics/multibody/results.py, Result.value) -> what to

@@ -127,10 +127,11 @@ def test_shoulder_pairs_are_validated_per_side():
 def test_the_tighter_land_guides_and_equal_lands_guide_together():
     scene = bearingsim.load_scene("helicopter-b-given-hinge", ["bearing.outer_shoulder_diameter=[0.166, 0.168]"])
     both = bearingsim.load_scene("helicopter-b-given-hinge")
-    b, c = scene.bearing, scene.cage
-    assert c.guide_sides(b) == (1,) and both.cage.guide_sides(both.bearing) == (1, -1)
-    assert c.guide_clearance(b) == pytest.approx(both.cage.guide_clearance(both.bearing), rel=1e-12)
-    assert c.guide_land_length(b) == pytest.approx(0.5 * both.cage.guide_land_length(both.bearing), rel=1e-12)
+    b, c = scene.operating.bearing, scene.operating.cage  # what the model computes with
+    b2, c2 = both.operating.bearing, both.operating.cage
+    assert c.guide_sides(b) == (1,) and c2.guide_sides(b2) == (1, -1)
+    assert c.guide_clearance(b) == pytest.approx(c2.guide_clearance(b2), rel=1e-12)
+    assert c.guide_land_length(b) == pytest.approx(0.5 * c2.guide_land_length(b2), rel=1e-12)
     params, _ = build_model(scene)
     from bearingsim.dynamics.journal.hybrid import J_LANDS, J_LENGTH
 
@@ -302,8 +303,7 @@ def test_an_inner_land_drives_the_cage_and_an_outer_land_brakes_it(tmp_path):
     for name, overrides in (("inner", []), ("outer", OUTER_VARIANT)):
         scene, t, torque, speed = _land_torque(tmp_path / name, overrides)
         late = t >= 0.025  # past the start-up (its torque peaks at five times the settled one)
-        c = scene.cage
-        b = scene.bearing
+        c, b = scene.operating.cage, scene.operating.bearing
         land_speed = scene.speed.inner if name == "inner" else 0.0
         petroff = (2 * math.pi * scene.lubricant.eta0 * abs(np.mean(speed[late]) - land_speed)
                    * (0.5 * c.guide_land_diameter(b)) ** 3 * c.guide_land_length(b)

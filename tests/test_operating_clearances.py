@@ -21,7 +21,7 @@ LAND_O, CAGE_OD, POCKET, BALL, LAND_I, CAGE_BORE = 0.166, 0.16542, 0.02023, 0.01
 
 
 def _clearances(scene):
-    b, c = scene.bearing, scene.cage
+    b, c = scene.operating.bearing, scene.operating.cage
     return c.guide_clearance(b), c.pocket_diameter - b.ball_diameter, c.non_guiding_clearance(b)
 
 
@@ -51,6 +51,7 @@ def test_a_hotter_cage_closes_the_guide_clearance_further():
 def test_growth_conserves_the_masses():
     hot = load_scene("helicopter-b-given-hinge")
     cold = load_scene("helicopter-b-given-hinge", ["thermal.parts_degC=20"])
+    hot, cold = hot.operating, cold.operating
     assert hot.bearing.ball_mass(hot.materials.ball) == pytest.approx(cold.bearing.ball_mass(cold.materials.ball), rel=1e-12)
     assert hot.cage.mass(hot.materials.cage, hot.bearing) == pytest.approx(
         cold.cage.mass(cold.materials.cage, cold.bearing), rel=1e-12)
@@ -59,7 +60,7 @@ def test_growth_conserves_the_masses():
 def test_a_scene_without_lubricant_stays_at_the_reference_temperature():
     scene = load_scene("deep-groove-209")
     assert scene.lubricant is None and scene.temperatures.inner_ring == scene.temperatures.reference
-    assert scene.bearing == scene.nominal.bearing
+    assert scene.operating.bearing == scene.bearing
 
 
 def test_bad_thermal_keys_name_key_range_and_unit():
@@ -98,7 +99,7 @@ def test_run_out_lowers_the_screen_margin_of_case_b():
     plain = cage_screen(base, result)
     e_r = 30e-6
     eccentric = load_scene("helicopter-b-given-hinge", [f"cage.pocket_circle_eccentricity={e_r}"])
-    e_r_hot = eccentric.cage.pocket_circle_eccentricity  # grown with the cage
+    e_r_hot = eccentric.operating.cage.pocket_circle_eccentricity  # grown with the cage
     screen = cage_screen(eccentric, result)
     assert screen.required_eccentricity - plain.required_eccentricity == pytest.approx(e_r_hot, rel=1e-9)
     assert plain.required_eccentricity - screen.required_eccentricity_min == pytest.approx(e_r_hot, rel=1e-9)

@@ -27,13 +27,13 @@ def synthetic_run(scene, path):
     """A 10 ms run: the cage centre on a circle of radius ORBIT at WHIRL, the cage turning at
     CAGE_SPEED, the inner race displaced and spinning at INNER_SPEED, balls at rest on the
     pitch circle carrying 3000 N at their outer contact."""
-    Z = scene.bearing.ball_count
+    Z = scene.operating.bearing.ball_count
     t = np.linspace(0.0, 0.01, N)
     T, V, B = ("time",), ("time", "xyz"), ("time", "ball")
     cage_xyz = np.c_[ORBIT * np.cos(WHIRL * t), ORBIT * np.sin(WHIRL * t), np.zeros(N)]
     cage_v = np.c_[-ORBIT * WHIRL * np.sin(WHIRL * t), ORBIT * WHIRL * np.cos(WHIRL * t), np.zeros(N)]
     psi = np.arange(Z) * 2 * math.pi / Z
-    r = 0.5 * scene.bearing.pitch_diameter
+    r = 0.5 * scene.operating.bearing.pitch_diameter
     balls = np.broadcast_to(np.c_[r * np.cos(psi), r * np.sin(psi), np.zeros(Z)], (N, Z, 3)).copy()
     series = {
         "time": Series(t, "s", "time", T),
@@ -60,7 +60,7 @@ def burn_map(scene) -> BurnZoneMap:
     energy = np.zeros(360)
     for sector, joules in HEAT.items():
         energy[sector] = joules
-    return BurnZoneMap(RaceProfile.from_scene(scene.bearing, scene.cage), energy, None,
+    return BurnZoneMap(RaceProfile.from_scene(scene.operating.bearing, scene.operating.cage), energy, None,
                        np.zeros((360, 8)), np.linspace(-0.5, 0.5, 9), 0.0, metal_energy=energy,
                        film_energy=np.zeros(360), window=(0.005, 0.01))
 
@@ -106,13 +106,13 @@ def test_motion_series_have_the_frames_times_and_fields(written):
     reader = pv.PVDReader(str(out / files["balls"]))
     reader.set_active_time_value(reader.time_values[-1])
     balls = reader.read()[0]
-    assert balls.n_points == scene.bearing.ball_count
+    assert balls.n_points == scene.operating.bearing.ball_count
     np.testing.assert_allclose(balls.point_data["outer_load"], 3000.0)
     np.testing.assert_allclose(balls.point_data["pocket_force"], 5.0)
-    np.testing.assert_allclose(balls.point_data["diameter"], scene.bearing.ball_diameter, rtol=1e-7)
+    np.testing.assert_allclose(balls.point_data["diameter"], scene.operating.bearing.ball_diameter, rtol=1e-7)
     assert {"outer_load=N", "velocity=m/s"} <= set(balls.field_data["units"])
     radius = np.hypot(balls.points[:, 0], balls.points[:, 1])
-    np.testing.assert_allclose(radius, 0.5 * scene.bearing.pitch_diameter, rtol=1e-6)
+    np.testing.assert_allclose(radius, 0.5 * scene.operating.bearing.pitch_diameter, rtol=1e-6)
 
     reader = pv.PVDReader(str(out / files["inner_race"]))
     reader.set_active_time_value(reader.time_values[3])
@@ -134,7 +134,7 @@ def test_land_heat_on_the_outer_race_integrates_to_the_burn_zone_energy(written)
     hot = heat > 0.0
     sectors = np.floor(np.degrees(np.arctan2(centres[hot, 1], centres[hot, 0])) % 360.0).astype(int)
     assert set(sectors) == set(HEAT)
-    profile = RaceProfile.from_scene(scene.bearing, scene.cage)
+    profile = RaceProfile.from_scene(scene.operating.bearing, scene.operating.cage)
     z = np.abs(centres[hot, 2])
     assert z.min() > profile.z_land(1) and z.max() < profile.cage_half_width
     assert "land_heat=J/m2" in list(race.field_data["units"])

@@ -8,6 +8,8 @@ import dataclasses
 
 import pytest
 
+from bearingsim.pipeline.scene.load import variant
+
 from bearingsim.pipeline.staging.artefacts import atomic_write_json, read_manifest
 from bearingsim.pipeline.staging.runner import Stage, run_stages
 from bearingsim.pipeline.scene.load import read_scene_table, resolve
@@ -66,12 +68,12 @@ def test_changed_input_reruns_exactly_dependents(scene, tmp_path):
     run_stages(scene, tmp_path, stages, ["simulate"])
     calls.clear()
     # a numerical setting: only simulate depends on it
-    s2 = dataclasses.replace(scene, solver=dataclasses.replace(scene.solver, duration=0.05))
+    s2 = scene.replace(**{"solver.duration": 0.05})
     assert statuses(run_stages(s2, tmp_path, stages, ["simulate"]))["quasistatic"] == "cached"
     assert calls == ["simulate"]
     calls.clear()
     # a load: quasistatic depends on it, and simulate through quasistatic's key
-    s3 = dataclasses.replace(s2, load=dataclasses.replace(scene.load, moment=250.0))
+    s3 = s2.replace(**{"load.moment": 250.0})
     run_stages(s3, tmp_path, stages, ["simulate"])
     assert calls == ["quasistatic", "simulate"]
     calls.clear()
@@ -93,7 +95,7 @@ def test_failed_stage_leaves_previous_result_intact(scene, tmp_path):
     calls: list[str] = []
     run_stages(scene, tmp_path, make_stages(calls), ["simulate"])
     key_before = read_manifest(tmp_path / "simulate")["key"]
-    s2 = dataclasses.replace(scene, solver=dataclasses.replace(scene.solver, duration=0.05))
+    s2 = scene.replace(**{"solver.duration": 0.05})
     with pytest.raises(RuntimeError, match="on purpose"):
         run_stages(s2, tmp_path, make_stages(calls, fail={"simulate"}), ["simulate"])
     assert read_manifest(tmp_path / "simulate")["key"] == key_before
@@ -107,7 +109,7 @@ def test_failed_stage_leaves_previous_result_intact(scene, tmp_path):
 
 def test_identify_runs_only_when_hinge_is_fe(scene, tmp_path):
     calls: list[str] = []
-    fe_scene = dataclasses.replace(scene, hinge=dataclasses.replace(
+    fe_scene = variant(scene, hinge=dataclasses.replace(
         scene.hinge, source="fe", translational=None, bending=None))
     out = run_stages(fe_scene, tmp_path, make_stages(calls), ["simulate"])
     assert statuses(out)["identify"] == "computed"
@@ -117,7 +119,7 @@ def test_identify_runs_only_when_hinge_is_fe(scene, tmp_path):
 def test_upstream_rerun_invalidates_downstream(scene, tmp_path):
     """The FE inputs reach simulate only through identify's key."""
     calls: list[str] = []
-    fe_scene = dataclasses.replace(scene, hinge=dataclasses.replace(
+    fe_scene = variant(scene, hinge=dataclasses.replace(
         scene.hinge, source="fe", translational=None, bending=None))
     stages = make_stages(calls)
     run_stages(fe_scene, tmp_path, stages, ["simulate"])

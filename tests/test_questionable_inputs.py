@@ -8,6 +8,8 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+
+from bearingsim.pipeline.scene.load import variant
 from typer.testing import CliRunner
 
 from bearingsim.dynamics.multibody.results import IntegrationError, Result
@@ -43,7 +45,7 @@ def test_inch_ball_diameter_is_flagged(inches):
     scene = load_scene("deep-groove-209")
     bearing = copy.copy(scene.bearing)
     object.__setattr__(bearing, "ball_diameter", inches)  # past the geometry checks, which refuse it
-    scene = dataclasses.replace(scene, bearing=bearing)
+    scene = variant(scene, bearing=bearing)
     texts = [f.text for f in _plausibility(scene)]
     assert any("millimetres or inches" in t for t in texts), texts
 

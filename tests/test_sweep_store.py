@@ -52,7 +52,7 @@ def statuses(outcomes):
 
 
 def with_moment(scene, moment):
-    return dataclasses.replace(scene, load=dataclasses.replace(scene.load, moment=moment))
+    return scene.replace(**{"load.moment": moment})
 
 
 def test_second_run_dir_links_from_store(scene, tmp_path):

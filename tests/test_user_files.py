@@ -183,13 +183,13 @@ def test_an_old_report_is_removed_when_the_results_it_shows_change(tmp_path):
     stages = stand_in_stages(calls)
     run_stages(scene, tmp_path, stages, ["report"])
     assert (tmp_path / "report").is_dir()
-    changed = dataclasses.replace(scene, solver=dataclasses.replace(scene.solver, duration=0.05))
+    changed = scene.replace(**{"solver.duration": 0.05})
     run_stages(changed, tmp_path, stages, ["simulate"])  # `bearingsim simulate` with new inputs
     assert not (tmp_path / "report").exists(), "a report of the old results stayed beside the new ones"
     assert (tmp_path / "quasistatic").is_dir()  # upstream and unchanged: kept
     # new loads make both simulate and report stale when only quasistatic reruns
     run_stages(changed, tmp_path, stages, ["report"])
-    loaded = dataclasses.replace(changed, load=dataclasses.replace(changed.load, moment=100.0))
+    loaded = changed.replace(**{"load.moment": 100.0})
     run_stages(loaded, tmp_path, stages, ["quasistatic"])
     assert not (tmp_path / "simulate").exists() and not (tmp_path / "report").exists()
 
@@ -199,7 +199,7 @@ def test_a_stale_report_holding_a_users_file_is_kept(tmp_path, caplog):
     stages = stand_in_stages([])
     run_stages(scene, tmp_path, stages, ["report"])
     (tmp_path / "report" / "annotated.png").write_bytes(b"mine")
-    changed = dataclasses.replace(scene, solver=dataclasses.replace(scene.solver, duration=0.05))
+    changed = scene.replace(**{"solver.duration": 0.05})
     with caplog.at_level("WARNING"):
         run_stages(changed, tmp_path, stages, ["simulate"])
     assert (tmp_path / "report" / "annotated.png").read_bytes() == b"mine"

@@ -43,6 +43,21 @@ EXIT_SCENE, EXIT_UNAVAILABLE, EXIT_FAILED, EXIT_INTERRUPTED = 2, 3, 1, 130
 EXIT_NOT_SIMULABLE = 4  # check: valid for the quasi-static stage, refused by simulate and run
 
 
+def _print_version(value: bool) -> None:
+    if value:
+        from ..staging.provenance import package_version
+
+        out_console.print(f"bearingsim {package_version()}", highlight=False, markup=False)
+        raise typer.Exit()
+
+
+@app.callback()
+def _root(version: Annotated[bool, typer.Option("--version", is_eager=True, callback=_print_version,
+                                                help="Print bearingsim's version and exit.")] = False) -> None:
+    """Ball-bearing dynamics under high moment load: FE hinge identification, quasi-static
+    equilibrium, HHT-alpha multibody simulation, cage burn-zone prediction."""
+
+
 def _literal(text: str) -> str:
     """Help text shown as written: typer renders help as rich markup, which swallows units and
     defaults in square brackets ("[s]", "[default: ...]")."""
@@ -456,7 +471,10 @@ def _print_verdict(run_dir: Path) -> None:
 
 @app.command()
 def render(run_dir: Annotated[Path, typer.Argument(help="A run directory written by `bearingsim run`.")],
-           show: Annotated[bool, typer.Option("--show", help="Open an interactive window when a display is available.")] = False) -> None:
+           show: Annotated[bool, typer.Option("--show", help="Open an interactive window when a display is available.")] = False,
+           animate: Annotated[bool, typer.Option("--animate", help=_literal(
+               "Also write the cage orbit with the balls in their pockets as an animation: <run>/animation/"
+               "cage_orbit.gif (.mp4 too when ffmpeg is installed)."))] = False) -> None:
     """Regenerate renders and the report from saved results (never re-solves)."""
     from ..staging.provenance import attach_run_log
     from ..render.offscreen import display_available
@@ -500,6 +518,20 @@ def render(run_dir: Annotated[Path, typer.Argument(help="A run directory written
         handler.close()
     err_console.print(f"  report       computed in {outcome.wall_time:.2f} s", highlight=False)
     err_console.print(f"report: {run_dir / 'report' / outcome.info['report']}", highlight=False, markup=False)
+    if animate:
+        _write_animation(run_dir)
+
+
+def _write_animation(run_dir: Path) -> None:
+    """`render --animate`: the animation beside the report, in <run>/animation/."""
+    from ..render.animation import ANIMATION_DIR, write_cage_animations
+    from ..scene.load import load_scene
+
+    try:
+        paths = write_cage_animations(load_scene(run_dir / "scene.toml"), run_dir / "simulate", run_dir / ANIMATION_DIR)
+    except (ValueError, OSError) as exc:
+        _fail(EXIT_FAILED, f"animation: {exc}")
+    err_console.print("animation: " + ", ".join(str(p) for p in paths), highlight=False, markup=False)
 
 
 @app.command()
@@ -678,4 +710,27 @@ def main() -> None:
     """The console script and `python -m bearingsim`: SIGTERM becomes a logged interruption
     (exit 143, the running stage's temporary folder removed) before the commands run."""
     stop_on_sigterm()
-    app(prog_name="bearingsim")
+    command = typer.main.get_command(app)
+    _flags_without_metavar(command)
+    command(prog_name="bearingsim")
+
+
+def _flags_without_metavar(command) -> None:
+    """Show boolean flags as flags (`--force`), not as options taking a value (`--force <bool>`):
+    the help of every command, its --help included."""
+    import types
+
+    for param in getattr(command, "params", ()):
+        if getattr(param, "is_flag", False):
+            param.metavar = ""
+    plain_help = command.get_help_option
+
+    def help_option(self, ctx):
+        option = plain_help(ctx)
+        if option is not None:
+            option.metavar = ""
+        return option
+
+    command.get_help_option = types.MethodType(help_option, command)
+    for sub in getattr(command, "commands", {}).values():
+        _flags_without_metavar(sub)

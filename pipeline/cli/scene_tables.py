@@ -45,7 +45,7 @@ def _section(table: Table, title: str, obj) -> None:
 def derived_geometry(scene: Scene) -> list[tuple[str, float, str]]:
     """Derived quantities of docs/model.md §2 in engineering units (mm, deg, g, kg), from the
     dimensions as drawn (the operating ones are in the clearance table)."""
-    parts = scene.nominal or scene
+    parts = scene.nominal
     b, m = parts.bearing, parts.materials
     rows = [
         ("pitch diameter d_m", b.pitch_diameter * 1e3, "mm"),
@@ -95,7 +95,7 @@ def print_scene(scene: Scene, console: Console) -> None:
     table = Table("key", "value", "unit", box=None, pad_edge=False)
     for name in ("bearing", "cage", "materials", "load", "speed", "hinge", "solver", "physics", "output"):
         # the scene's own values (as drawn); the operating ones follow in the clearance table
-        obj = getattr(scene.nominal, name, None) if name in ("bearing", "cage", "materials") else getattr(scene, name)
+        obj = getattr(scene, name)
         if obj is not None:
             _section(table, name, obj)
     if scene.lubricant is not None:

@@ -13,11 +13,12 @@ from ..machine.kernel_cache import ensure_compiled, kernel_configuration
 def _without_fe_hinge(scene):
     """`scene` with an identified hinge replaced by a given one: the hinge's values do not select
     kernels, and the FE stage need not run to compile them."""
+    from ..scene.load import variant
     from ..scene.sections import Hinge
 
     if scene.hinge.source != "fe":
         return scene
-    return dataclasses.replace(scene, hinge=Hinge(source="given", translational=(1e9, 1e9, 1e9), bending=(1e5, 1e5),
+    return variant(scene, hinge=Hinge(source="given", translational=(1e9, 1e9, 1e9), bending=(1e5, 1e5),
                                                   damping_ratio_time=scene.hinge.damping_ratio_time))
 
 

@@ -1,6 +1,8 @@
 """Figures of a dynamic run (docs/model.md §11), drawn from saved time series only.
 
-Each function takes plain arrays and writes one PNG atomically (matplotlib, Agg).
+Each `*_figure` function takes plain arrays and returns a matplotlib Figure (what `run.plot`
+gives and the report embeds); the function of the same name without `_figure` writes it as
+one PNG atomically (matplotlib, Agg).
 """
 
 from __future__ import annotations
@@ -32,36 +34,60 @@ def _startup_label(settled_from: float | None) -> str:
     return f"start-up (t < {settled_from:.3g} s)" if settled_from is not None else "start-up"
 
 
-def cage_orbit(xy: np.ndarray, clearance: float, path: Path, title: str = "", t=None,
-               settled_from: float | None = None) -> None:
-    """Cage-centre orbit [µm] with the guide-clearance circle (ε = 1): the start-up grey,
-    the settled window (from `settled_from` [s], the verdict's) coloured."""
+def cage_orbit_figure(xy: np.ndarray, clearance: float | None, title: str = "", t=None,
+                      settled_from: float | None = None, film_factor: float | None = None,
+                      sector_deg: list[float] | None = None, thinnest: tuple | None = None):
+    """Cage-centre orbit [µm] inside the guide clearance C (ε = 1, metal contact begins) and,
+    with `film_factor` = 1 + ε0, the film clearance; the start-up grey, the settled window
+    (from `settled_from` [s], the verdict's) coloured, the loaded sector (`sector_deg`) as a
+    wedge and the thinnest film (`thinnest` = (index, label)) as a star. Returns the Figure."""
     fig, ax = _subplots(figsize=(6.2, 6.0))
+    xy = np.asarray(xy, dtype=float)[:, :2] * 1e6
     th = np.linspace(0, 2 * math.pi, 361)
-    c = clearance * 1e6
-    ax.plot(c * np.cos(th), c * np.sin(th), "k--", lw=1, label=f"guide clearance C = {c:.0f} µm")
+    lim = 1.05 * float(np.abs(xy).max(initial=1.0))
+    if clearance:
+        c = clearance * 1e6
+        ax.plot(c * np.cos(th), c * np.sin(th), "k--", lw=1, label=f"guide clearance C = {c:.0f} µm (ε = 1)")
+        lim = max(lim, 1.15 * c)
+        if film_factor:
+            ax.plot(c * film_factor * np.cos(th), c * film_factor * np.sin(th), "k:", lw=0.8,
+                    label=f"film clearance C(1 + ε0), ε0 = {film_factor - 1.0:g}")
+            lim = max(lim, 1.15 * c * film_factor)
+        if sector_deg:
+            a = np.radians(np.linspace(sector_deg[0], sector_deg[1], 60))
+            ax.fill(np.r_[0.0, c * np.cos(a), 0.0], np.r_[0.0, c * np.sin(a), 0.0], color="tab:red", alpha=0.15,
+                    label=f"loaded sector {sector_deg[0] % 360:.0f}–{sector_deg[1] % 360:.0f}°")
     late = _settled(t if t is not None else np.arange(len(xy)), settled_from)
     if (~late).any():
-        ax.plot(xy[~late, 0] * 1e6, xy[~late, 1] * 1e6, color="0.7", lw=0.5, label=_startup_label(settled_from))
-    ax.plot(xy[late, 0] * 1e6, xy[late, 1] * 1e6, color="C0", lw=0.6,
+        ax.plot(xy[~late, 0], xy[~late, 1], color="0.65", lw=0.5, label=_startup_label(settled_from))
+    ax.plot(xy[late, 0], xy[late, 1], color="C0", lw=0.6,
             label="settled window" if settled_from is not None else "whole run")
+    if thinnest is not None:
+        i, label = thinnest
+        ax.plot(xy[i, 0], xy[i, 1], "*", color="tab:red", ms=12, label=label)
     ax.set_aspect("equal")
-    lim = 1.15 * max(c, np.abs(xy).max() * 1e6)
     ax.set_xlim(-lim, lim)
     ax.set_ylim(-lim, lim)
     ax.set_xlabel("cage centre x [µm]")
     ax.set_ylabel("cage centre y [µm]")
-    ax.legend(loc="upper right", fontsize=8)
+    ax.legend(loc="upper right", fontsize=7)
     ax.grid(alpha=0.3)
-    ax.set_title(f"Cage centre orbit {title}")
-    _save(fig, path)
+    ax.set_title(f"Cage centre orbit {title}".strip(), fontsize=10)
+    return fig
 
 
-def cage_speed(t: np.ndarray, speed: np.ndarray, path: Path, kinematic: float | None = None,
-               title: str = "", settled_from: float | None = None) -> None:
+def cage_orbit(xy: np.ndarray, clearance: float, path: Path, title: str = "", t=None,
+               settled_from: float | None = None) -> None:
+    """`cage_orbit_figure` as a PNG."""
+    _save(cage_orbit_figure(xy, clearance, title, t=t, settled_from=settled_from), path)
+
+
+def cage_speed_figure(t: np.ndarray, speed: np.ndarray, kinematic: float | None = None, title: str = "",
+                      settled_from: float | None = None):
     """Cage rotation speed [rev/min] with its mean and relative variation over the settled
-    window (the verdict's; the last half of the run without one)."""
-    rpm = speed * 60.0 / (2 * math.pi)
+    window (the verdict's; the last half of the run without one). Returns the Figure."""
+    t = np.asarray(t, dtype=float)
+    rpm = np.asarray(speed, dtype=float) * 60.0 / (2 * math.pi)
     late = _settled(t, settled_from if settled_from is not None else t[0] + 0.5 * (t[-1] - t[0]))
     window = "settled" if settled_from is not None else "last half"
     mean = rpm[late].mean()
@@ -77,8 +103,14 @@ def cage_speed(t: np.ndarray, speed: np.ndarray, path: Path, kinematic: float | 
     ax.set_ylabel("cage speed [rev/min]")
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
-    ax.set_title(f"Cage speed {title}")
-    _save(fig, path)
+    ax.set_title(f"Cage speed {title}".strip())
+    return fig
+
+
+def cage_speed(t: np.ndarray, speed: np.ndarray, path: Path, kinematic: float | None = None,
+               title: str = "", settled_from: float | None = None) -> None:
+    """`cage_speed_figure` as a PNG."""
+    _save(cage_speed_figure(t, speed, kinematic, title, settled_from), path)
 
 
 def phase_portraits(t, positions: dict[str, np.ndarray], velocities: dict[str, np.ndarray],
@@ -116,10 +148,11 @@ def cage_race_force(t, force_norm, metal_force, eps, path: Path, title: str = ""
     _save(fig, path)
 
 
-def pocket_impacts(times, orbital_position, peak_force, path: Path, title: str = "",
-                   settled_from: float | None = None) -> None:
+def pocket_impacts_figure(times, orbital_position, peak_force, title: str = "",
+                          settled_from: float | None = None):
     """Ball–pocket impacts: peak force against time and against orbital position [deg,
-    0–360], start-up and settled window apart (the verdict counts the settled ones)."""
+    0–360], start-up and settled window apart (the verdict counts the settled ones). Returns
+    the Figure."""
     times, peak_force = np.asarray(times, dtype=float), np.asarray(peak_force, dtype=float)
     position = np.degrees(np.mod(np.asarray(orbital_position, dtype=float), 2 * math.pi))
     late = _settled(times, settled_from)
@@ -143,5 +176,11 @@ def pocket_impacts(times, orbital_position, peak_force, path: Path, title: str =
         ax.grid(alpha=0.3)
     count = (f"{int(late.sum())} settled + {int((~late).sum())} start-up" if settled_from is not None
              else f"{len(times)}")
-    fig.suptitle(f"Ball–pocket impacts ({count}) {title}")
-    _save(fig, path)
+    fig.suptitle(f"Ball–pocket impacts ({count}) {title}".strip())
+    return fig
+
+
+def pocket_impacts(times, orbital_position, peak_force, path: Path, title: str = "",
+                   settled_from: float | None = None) -> None:
+    """`pocket_impacts_figure` as a PNG."""
+    _save(pocket_impacts_figure(times, orbital_position, peak_force, title, settled_from), path)

@@ -8,8 +8,16 @@ from pathlib import Path
 
 
 def plot_load_distribution(result: dict, path: Path, title: str = "") -> None:
-    """Two panels sharing the azimuth axis: contact loads [N], contact angles [deg]."""
-    from . import new_figure, save_png
+    """`load_distribution_figure` as a PNG (the quasistatic stage's load_distribution.png)."""
+    from . import save_png
+
+    save_png(load_distribution_figure(result, title), Path(path), dpi=120)
+
+
+def load_distribution_figure(result: dict, title: str = ""):
+    """Two panels sharing the azimuth axis: contact loads [N], contact angles [deg] (and the
+    crush screen when `result` has one). Returns the Figure."""
+    from . import new_figure
 
     balls = result["balls"]
     az = [math.degrees(b["azimuth"]) % 360.0 for b in balls]
@@ -37,7 +45,34 @@ def plot_load_distribution(result: dict, path: Path, title: str = "") -> None:
     if screen:
         _plot_excursion(axes[2], az, [screen["excursion_per_ball"][i] for i in order], screen)
     fig.suptitle(f"Quasi-static load distribution — {title}" if title else "Quasi-static load distribution")
-    save_png(fig, Path(path), dpi=120)
+    return fig
+
+
+def ball_load_polar_figure(result: dict, title: str = ""):
+    """The ball loads round the bearing, seen along the axis: each ball's inner- and
+    outer-race contact load [N] as a radius at its azimuth (from +x towards +y), so the loaded
+    zone of the moment reads at a glance. Returns the Figure."""
+    import numpy as np
+
+    from . import new_figure
+
+    balls = result["balls"]
+    az = np.array([b["azimuth"] for b in balls], dtype=float) % (2 * math.pi)
+    order = np.argsort(az)
+    az = az[order]
+    fig = new_figure(figsize=(5.2, 5.2))
+    ax = fig.add_subplot(projection="polar")
+    closed = np.r_[az, az[0] + 2 * math.pi]
+    for key, style, label in (("inner_load", "o-", "inner race"), ("outer_load", "s--", "outer race")):
+        q = np.array([balls[i][key] for i in order], dtype=float)
+        ax.plot(closed, np.r_[q, q[0]], style, ms=4, lw=1, label=label)
+    heaviest = max(balls, key=lambda b: b["inner_load"])
+    ax.set_title(f"Ball loads [N] round the bearing{' — ' + title if title else ''}\n"
+                 f"heaviest {heaviest['inner_load']:.0f} N at {math.degrees(heaviest['azimuth']) % 360:.0f}°", fontsize=9)
+    ax.set_theta_zero_location("E")  # azimuth 0 along +x, counted towards +y
+    ax.set_rlabel_position(112.5)
+    ax.legend(loc="lower left", bbox_to_anchor=(-0.12, -0.12), fontsize=8, frameon=False)
+    return fig
 
 
 def _plot_excursion(ax, az, s, screen: dict) -> None:

@@ -22,7 +22,7 @@ def solve(scene: Scene):
     from ...dynamics.quasistatic.solver import solve_quasistatic
 
     return solve_quasistatic(
-        scene.bearing, scene.materials.ball, scene.materials.race, operating_point(scene),
+        scene.operating.bearing, scene.operating.materials.ball, scene.operating.materials.race, operating_point(scene),
         QuasiStaticOptions(centrifugal=scene.physics.centrifugal, gyroscopic=scene.physics.gyroscopic),
     )
 
@@ -34,7 +34,7 @@ def land_shift(scene: Scene, result) -> np.ndarray:
     from ...dynamics.quasistatic.result import tilt_rotation_matrix
 
     axis = tilt_rotation_matrix(np.asarray(result.inner_tilt, float))[:, 2]
-    half = 0.5 * scene.cage.width
+    half = 0.5 * scene.operating.cage.width
     centres = np.array([result.inner_displacement[:2] + axis[:2] * z / axis[2] for z in (-half, half)])
     return -centres if scene.cage.guidance == "outer" else centres
 
@@ -47,10 +47,9 @@ def cage_screen(scene: Scene, result, parts=None):
     from ...dynamics.quasistatic.crush_screen import crush_screen, excursion_of
 
     from ..scene.clearances import cage_clearances, land_film
-    from ..scene.load import Parts
 
-    parts = parts or Parts(scene.bearing, scene.cage, scene.materials)
-    excursion = excursion_of(result.azimuth, result.ball_orbital_speed, 0.5 * scene.cage.mean_diameter)
+    parts = parts or scene.operating
+    excursion = excursion_of(result.azimuth, result.ball_orbital_speed, 0.5 * scene.operating.cage.mean_diameter)
     return crush_screen(excursion, result.cage_speed, cage_clearances(parts), land_film(scene),
                         land_shift(scene, result))
 
@@ -65,9 +64,8 @@ def screen_payload(scene: Scene, result) -> dict | None:
     from ..scene.clearances import clearance_table
 
     payload = screen.to_json_dict()
-    if scene.nominal is not None:
-        cold = cage_screen(scene, result, parts=scene.nominal)
-        payload["crush_margin_at_reference_temperature"] = cold.crush_margin
-        payload["regime_at_reference_temperature"] = cold.regime
+    cold = cage_screen(scene, result, parts=scene.nominal)
+    payload["crush_margin_at_reference_temperature"] = cold.crush_margin
+    payload["regime_at_reference_temperature"] = cold.regime
     payload["clearances"] = clearance_table(scene)
     return payload

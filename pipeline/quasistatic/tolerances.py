@@ -86,15 +86,17 @@ def _excursion_at(scene, moment: float, axial: float, diametral_clearance: float
     from ...dynamics import thermal as th
     from ...dynamics.quasistatic.crush_screen import excursion_of
 
+    from ..scene.load import variant
     from .solution import land_shift, solve
 
-    b = scene.bearing
+    b = scene.operating.bearing
     if diametral_clearance is not None:
         factor = 1.0 + (b.diametral_clearance - diametral_clearance) / b.inner_groove_bottom_diameter
         b = th.scaled(b, factor, th.INNER_RING_LENGTHS)
-    s = dataclasses.replace(scene, bearing=b, load=dataclasses.replace(scene.load, moment=moment, axial=axial))
+    s = variant(scene, operating=dataclasses.replace(scene.operating, bearing=b),
+                load=dataclasses.replace(scene.load, moment=moment, axial=axial))
     r = solve(s)
-    x = excursion_of(r.azimuth, r.ball_orbital_speed, 0.5 * scene.cage.mean_diameter)
+    x = excursion_of(r.azimuth, r.ball_orbital_speed, 0.5 * scene.operating.cage.mean_diameter)
     return np.concatenate([[x.first_harmonic, x.peak_to_peak, math.cos(x.push_azimuth), math.sin(x.push_azimuth)],
                            land_shift(scene, r).ravel()])
 

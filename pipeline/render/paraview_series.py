@@ -147,7 +147,7 @@ def write_motion(series: dict, scene, out_dir: Path, cage_angle: np.ndarray | No
 
 
 def _write_inner_race(series: dict, scene, t: np.ndarray, out_dir: Path) -> str:
-    inner = inner_race_surface(scene.bearing, MOTION_AZIMUTHS)
+    inner = inner_race_surface(scene.operating.bearing, MOTION_AZIMUTHS)
     entries = []
     for i in range(len(t)):
         rotation = axis_rotation(series["inner_race/axis"].data[i])
@@ -167,7 +167,7 @@ def _write_balls(series: dict, scene, t: np.ndarray, out_dir: Path) -> str:
     entries = []
     for i in range(len(t)):
         mesh = _polydata(position[i])
-        mesh.point_data["diameter"] = np.full(position.shape[1], scene.bearing.ball_diameter, dtype=np.float32)
+        mesh.point_data["diameter"] = np.full(position.shape[1], scene.operating.bearing.ball_diameter, dtype=np.float32)
         mesh.point_data["ball"] = np.arange(position.shape[1], dtype=np.int32)
         for field, (data, _) in fields.items():
             mesh.point_data[field] = np.asarray(data[i], dtype=np.float32)
@@ -181,7 +181,7 @@ def _write_balls(series: dict, scene, t: np.ndarray, out_dir: Path) -> str:
 
 def _write_cage(series: dict, scene, t: np.ndarray, angle: np.ndarray, out_dir: Path) -> str:
     """The cage ring, turned by `angle` [rad] about its axis at each frame."""
-    ring = cage_surface(scene.cage, MOTION_AZIMUTHS)
+    ring = cage_surface(scene.operating.cage, MOTION_AZIMUTHS)
     force = np.asarray(series["cage_race/force"].data, dtype=float) if "cage_race/force" in series else None
     entries = []
     for i in range(len(t)):
@@ -210,7 +210,8 @@ def write_race(scene, out_dir: Path, burn_map=None, ring: str = "outer") -> str:
     of `burn_map` (render.burn_zone_data.BurnZoneMap) as cell data when there is one: J/m² over
     the cage's overlap with the guiding lands, 0 elsewhere."""
     sectors = burn_map.sectors if burn_map is not None else MOTION_AZIMUTHS
-    surface = (outer_race_surface if ring == "outer" else inner_race_surface)(scene.bearing, sectors, scene.cage)
+    surface = (outer_race_surface if ring == "outer" else inner_race_surface)(scene.operating.bearing, sectors,
+                                                                              scene.operating.cage)
     mesh = _polydata(surface.points, surface.quads)
     units = {}
     if burn_map is not None:

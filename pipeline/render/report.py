@@ -1,10 +1,14 @@
-"""The run report: one self-contained HTML page (PNGs embedded as base64 data URIs).
+"""The run report: one self-contained HTML page (PNGs embedded as base64 data URIs), read in a
+minute.
 
-Sections, in the order a reader asks: the verdict (one sentence, a table of its numbers
-with names and units, and the evidence: cage orbit and burn zone), summary metrics, burn
-zone, dynamic figures, quasi-static table, hinge, FE deflections, solver counters, scene,
-versions and stage manifests. Everything comes from files already in the run directory; a section whose
-stage did not run says so instead of disappearing.
+The first screen holds the verdict sentence, the cage orbit behind it, the polar burn map
+centred on the hot sector and the key numbers with their units; everything else sits in
+collapsible sections, in the order a reader asks: all the verdict's numbers, summary metrics,
+burn zone (unrolled map and 3-D), dynamic run, quasi-static equilibrium, hinge, FE deflections,
+solver counters, scene, versions and stage manifests. Each figure appears once. The page is the
+jinja2 template `templates/report.html` (its pieces in `templates/parts.html`); everything comes
+from files already in the run directory, and a section whose stage did not run says so instead
+of disappearing.
 """
 
 from __future__ import annotations
@@ -20,18 +24,21 @@ from pathlib import Path
 SOLVER_COUNTERS = ("steps", "rejected_steps", "newton_failures", "newton_iterations", "factorizations",
                    "residual_evaluations", "min_step_accepts", "integration_wall_time", "kernel_load_time",
                    "wall_time")
-DYNAMIC_FIGURES = ("cage_orbit.png", "cage_speed.png", "cage_race_force.png", "pocket_impacts.png",
-                   "phase_portraits.png")
-STYLE = """
-body{font-family:system-ui,sans-serif;max-width:1200px;margin:1em auto;padding:0 1em;color:#222}
-h1{font-size:1.5em}h2{border-bottom:1px solid #ccc;margin-top:2em}
-table{border-collapse:collapse;margin:.5em 0;font-size:.9em}
-td,th{border:1px solid #ddd;padding:2px 8px;text-align:right}th{background:#f4f4f4}
-td:first-child,th:first-child{text-align:left}
-figure{margin:1em 0}img{max-width:100%;border:1px solid #eee}
-figcaption{font-size:.9em;color:#444}pre{background:#f7f7f7;padding:.5em;overflow-x:auto;font-size:.85em}
-.note{color:#a60}.verdict{font-size:1.1em}
-"""
+# the simulate stage's figures the report shows (its cage_orbit.png is the verdict's orbit, shown
+# once above; its phase portraits stay in the stage folder)
+DYNAMIC_FIGURES = ("cage_speed.png", "pocket_impacts.png", "cage_race_force.png")
+
+
+def _templates():
+    """The jinja2 environment of templates/ (autoescaped: scene text is never markup)."""
+    import jinja2
+
+    return jinja2.Environment(loader=jinja2.FileSystemLoader(Path(__file__).parent / "templates"),
+                              autoescape=True, trim_blocks=True, lstrip_blocks=True)
+
+
+def _parts():
+    return _templates().get_template("parts.html").module
 
 
 def _fmt(value) -> str:
@@ -42,21 +49,28 @@ def _fmt(value) -> str:
     return "—" if value is None else str(value)
 
 
+def fixed(value, digits: int) -> str:
+    """`value` rounded to `digits` decimals, the quantity's resolution: round-off below it
+    reads 0 (not 4.7e-12 or -0.000); None and NaN read —."""
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return "—"
+    rounded = round(float(value), digits) + 0.0
+    return "0" if rounded == 0.0 else f"{rounded:.{digits}f}"
+
+
 def table(header: list[str], rows: list[list]) -> str:
-    """An HTML table; cells are escaped and numbers shown to 6 significant digits."""
-    head = "".join(f"<th>{html.escape(h)}</th>" for h in header)
-    body = "".join("<tr>" + "".join(f"<td>{html.escape(_fmt(c))}</td>" for c in row) + "</tr>" for row in rows)
-    return f"<table><tr>{head}</tr>{body}</table>"
+    """An HTML table (templates/parts.html); numbers shown to 6 significant digits unless a
+    cell is already text."""
+    return str(_parts().table(header, [[c if isinstance(c, str) else _fmt(c) for c in row] for row in rows]))
 
 
-def image(path: Path, caption: str = "") -> str:
+def image(path: Path, caption: str = "", width: int | None = None) -> str:
     """A PNG embedded as a data URI (the page must open alone, e-mailed or archived)."""
     path = Path(path)
     if not path.is_file():
-        return f'<p class="note">missing figure {html.escape(path.name)}</p>'
+        return str(_parts().missing(path.name))
     data = base64.b64encode(path.read_bytes()).decode("ascii")
-    cap = f"<figcaption>{html.escape(caption)}</figcaption>" if caption else ""
-    return f'<figure><img alt="{html.escape(path.name)}" src="data:image/png;base64,{data}">{cap}</figure>'
+    return str(_parts().figure(data, path.name, caption, width))
 
 
 def _read_json(path: Path) -> dict | None:
@@ -67,7 +81,7 @@ def _read_json(path: Path) -> dict | None:
 
 
 def _not_run(what: str) -> str:
-    return f'<p class="note">{html.escape(what)}</p>'
+    return str(_parts().note(what))
 
 
 def summary_section(summary: dict | None) -> str:
@@ -139,11 +153,10 @@ LIMITATION = (
     "probability. Details: docs/validation.md §10, §12.")
 
 
-def verdict_section(summary: dict | None, burn: dict | None, out_dir: Path, sim_dir: Path | None,
-                    evidence: dict | None = None) -> str:
-    """The sentence, the verdict's numbers with names and units, the warnings, and the
-    evidence figures (cage orbit, burn zone)."""
-    from ..results.verdict import screen_sentence, verdict_rows
+def verdict_section(summary: dict | None) -> str:
+    """The verdict sentence, the crush screen in one line and the run's warnings (the first
+    screen); its full table of numbers is `verdict_table`."""
+    from ..results.verdict import screen_sentence, too_short_to_settle
 
     if summary is None:
         return _not_run("No dynamic run in this directory (stage simulate did not run): no verdict.")
@@ -155,21 +168,52 @@ def verdict_section(summary: dict | None, burn: dict | None, out_dir: Path, sim_
     parts = [f'<p class="verdict"><b>{html.escape(verdict["text"])}</b></p>']
     screen = screen_sentence(verdict.get("screen"))
     if screen:
-        parts.append(f'<p class="verdict">{html.escape(screen[0].upper() + screen[1:])}.</p>')
-    parts.append(table(["quantity", "value", "unit"], [list(r) for r in verdict_rows(verdict)]))
-    for w in summary.get("warnings") or []:
-        parts.append(_not_run(f"warning: {w}"))
-    parts.append(f'<p class="note">{html.escape(LIMITATION)}</p>')
-    orbit = (evidence or {}).get("orbit")
-    if orbit:
-        parts.append(image(out_dir / orbit, "Evidence: the cage-centre orbit, start-up in grey, settled window "
-                           "in blue, inside the guide clearance (ε = 1, metal contact begins) and the film "
-                           "clearance; the loaded sector shaded, the thinnest film starred."))
-    elif sim_dir is not None and (sim_dir / "cage_orbit.png").is_file():
-        parts.append(image(sim_dir / "cage_orbit.png", "Evidence: the cage-centre orbit (whole run)."))
-    if burn is not None:
-        parts.append(image(out_dir / burn["map"], f"Evidence: the burn zone — {burn.get('caption', '')}."))
+        parts.append(f'<p class="sub">{html.escape(screen[0].upper() + screen[1:])}.</p>')
+    if too_short_to_settle(summary):
+        parts.append('<p class="short">This run is too short to settle: its numbers are not a verdict yet; '
+                     'run longer (solver.duration).</p>')
     return "".join(parts)
+
+
+def verdict_table(summary: dict | None) -> str:
+    """Every number of the verdict with its name and unit, the warnings, and how far to trust it."""
+    from ..results.verdict import verdict_rows
+
+    verdict = (summary or {}).get("verdict")
+    if not verdict:
+        return _not_run("No verdict.")
+    parts = [table(["quantity", "value", "unit"], [list(r) for r in verdict_rows(verdict)])]
+    parts += [_not_run(f"warning: {w}") for w in summary.get("warnings") or []]
+    return "".join(parts)
+
+
+def key_numbers(summary: dict | None, burn: dict | None) -> str:
+    """The numbers a reader looks for first, with units and the precision they carry."""
+    from ..results.verdict import format_arc, format_film_um, format_percent, format_ratio, too_short_to_settle
+
+    verdict = (summary or {}).get("verdict")
+    if not verdict:
+        return ""
+    screen = verdict.get("screen") or {}
+    rows = [["cage motion", f"{verdict['class']}", ""], ["risk", verdict["risk"], ""],
+            ["loaded sector", format_arc(verdict.get("sector_deg")), "deg"],
+            ["land heat, 80 % arc", format_arc(verdict.get("heat_sector_deg")), "deg"],
+            ["thinnest land film", format_film_um(verdict.get("land_film_min_um")), "µm"],
+            ["Λ_min = h_min/σ", format_ratio(verdict.get("land_film_ratio_min")), "-"],
+            ["metal contact", format_percent(verdict.get("metal_contact_fraction") or 0.0), "% of settled run"],
+            ["mean eccentricity ε", fixed(verdict.get("eps_mean"), 2), "-"],
+            ["pocket impacts", "—" if verdict.get("pocket_impacts") is None else str(verdict["pocket_impacts"]), "count"]]
+    if verdict.get("pocket_impact_force_p95_N") is not None:
+        rows.append(["impact force p95", fixed(verdict["pocket_impact_force_p95_N"], 0), "N"])
+    if screen:
+        rows += [["crush margin (screen)", fixed(screen.get("crush_margin"), 2), "-"],
+                 ["guide clearance C", fixed(1e6 * screen["guide_clearance"], 0), "µm"]]
+    if burn is not None:
+        rows.append(["land heat (settled)", f"{burn['energy_total_J']:.3g}", "J"])
+    settled = verdict.get("settled_revolutions")
+    rows.append(["settled cage revolutions", fixed(settled, 1)
+                 + (" — too short to settle" if too_short_to_settle(summary) else ""), "rev"])
+    return table(["key number", "value", "unit"], rows)
 
 
 SOLVER_LABELS = {"steps": "accepted steps", "rejected_steps": "rejected steps",
@@ -189,27 +233,35 @@ def solver_section(summary: dict | None) -> str:
     return table(["counter", "value", "unit"], rows)
 
 
-def quasistatic_section(qs_dir: Path | None) -> str:
+def quasistatic_section(qs_dir: Path | None, out_dir: Path | None = None) -> str:
+    """Inner-race displacement and tilt and the per-ball table, each rounded to its quantity's
+    resolution (0.01 µm, 0.001 mrad, 0.1 N, 0.01°, 1 MPa), the polar ball loads and the loads
+    against azimuth."""
     result = _read_json(qs_dir / "quasistatic.json") if qs_dir else None
     if result is None:
         return _not_run("Stage quasistatic did not run.")
     deg = 180.0 / math.pi
     ir = result.get("inner_race", {})
     parts = [table(["inner race", "value", "unit"], [
-        ["displacement x, y, z", [d * 1e6 for d in ir.get("displacement", [])], "µm"],
-        ["tilt about x, y", [r * 1e3 for r in ir.get("tilt", [])], "mrad"],
-        ["cage speed (kinematic)", f"{result['cage_speed'] * 30.0 / math.pi:.1f}" if result.get("cage_speed") is not None
-         else None, "rev/min"],
+        ["displacement x, y, z", ", ".join(fixed(d * 1e6, 2) for d in ir.get("displacement", [])), "µm"],
+        ["tilt about x, y", ", ".join(fixed(r * 1e3, 3) for r in ir.get("tilt", [])), "mrad"],
+        ["cage speed (kinematic)", fixed(result["cage_speed"] * 30.0 / math.pi, 1) if result.get("cage_speed") is not None
+         else "—", "rev/min"],
         ["converged", result.get("converged"), ""], ["iterations", result.get("iterations"), ""]])]
-    rows = [[f"{b['azimuth'] * deg:.1f}", b["inner_load"], b["outer_load"], b["inner_contact_angle"] * deg,
-             b["outer_contact_angle"] * deg, b.get("max_pressure_inner", float("nan")) / 1e6,
-             b.get("max_pressure_outer", float("nan")) / 1e6] for b in result.get("balls", [])]
+    rows = [[fixed(b["azimuth"] * deg, 1), fixed(b["inner_load"], 1), fixed(b["outer_load"], 1),
+             fixed(b["inner_contact_angle"] * deg, 2), fixed(b["outer_contact_angle"] * deg, 2),
+             fixed(b.get("max_pressure_inner", float("nan")) / 1e6, 0),
+             fixed(b.get("max_pressure_outer", float("nan")) / 1e6, 0)] for b in result.get("balls", [])]
+    parts += [_not_run(f"warning: {w}") for w in result.get("warnings", [])]
+    if out_dir is not None and (Path(out_dir) / BALL_LOAD_FIGURE).is_file():
+        parts.append(image(Path(out_dir) / BALL_LOAD_FIGURE, "Ball loads round the bearing, seen along its axis.", 460))
+    parts.append(image(qs_dir / "load_distribution.png", "Ball loads and contact angles against azimuth.", 620))
     parts.append(table(["azimuth [deg]", "Q_i [N]", "Q_o [N]", "α_i [deg]", "α_o [deg]",
                         "p_max,i [MPa]", "p_max,o [MPa]"], rows))
-    for w in result.get("warnings", []):
-        parts.append(_not_run(f"warning: {w}"))
-    parts.append(image(qs_dir / "load_distribution.png", "Ball loads and contact angles against azimuth."))
     return "".join(parts)
+
+
+BALL_LOAD_FIGURE = "ball_loads_polar.png"
 
 
 def _cleaned(matrix) -> list:
@@ -304,8 +356,10 @@ def burn_section(burn: dict | None, out_dir: Path) -> str:
             "Colour scales run from 0 to the data's maximum.</p>")
     ring = burn.get("ring", "outer")
     frame = "" if ring == "outer" else " in the frame that turns with the ring"
-    return (text + image(out_dir / burn["map"], f"Unrolled {ring} race{frame}: azimuth × axial position.")
-            + image(out_dir / burn["render"], f"{ring.capitalize()} race in 3-D{frame}, four fixed views (half ring each)."))
+    return (text + image(out_dir / burn["map"], f"Unrolled {ring} race{frame}: azimuth × axial position, centred on "
+                                                "the hot sector.", 900)
+            + image(out_dir / burn["render"], f"{ring.capitalize()} race in 3-D{frame}, four fixed views (half ring "
+                                              "each).", 900))
 
 
 def paraview_note(out_dir: Path) -> str:
@@ -332,33 +386,43 @@ def provenance_section(run_dir: Path, stage_dirs: dict[str, Path]) -> str:
 
 def write_report_html(path: Path, scene, run_dir: Path, stage_dirs: dict[str, Path], out_dir: Path,
                       fe_records: list[dict], burn: dict | None, evidence: dict | None = None) -> None:
-    """Assemble and write the page (atomically)."""
+    """Assemble the page from templates/report.html and write it (atomically)."""
+    from markupsafe import Markup
+
+    from ..results.verdict import LAND_NAMES, short_label
     from ..staging.artefacts import atomic_write_text
 
     sim = stage_dirs.get("simulate")
     summary = _read_json(sim / "summary.json") if sim else None
     scene_file = run_dir / "scene.toml"
     scene_text = scene_file.read_text(encoding="utf-8") if scene_file.is_file() else ""
-    dyn = "".join(image(sim / f) for f in DYNAMIC_FIGURES if (sim / f).is_file()) if sim else ""
+    dyn = "".join(image(sim / f, width=820) for f in DYNAMIC_FIGURES if (sim / f).is_file()) if sim else ""
     dyn += paraview_note(out_dir)
+    orbit = (evidence or {}).get("orbit")
+    orbit_html = image(out_dir / orbit) if orbit else (
+        image(sim / "cage_orbit.png") if sim is not None and (sim / "cage_orbit.png").is_file() else "")
+    land = LAND_NAMES.get(getattr(scene.cage, "guidance", ""), "guide land")
+    burn_html = image(out_dir / burn["polar"]) if burn is not None and burn.get("polar") else ""
     sections = [
-        ("Verdict", verdict_section(summary, burn, out_dir, sim, evidence)),
-        ("Summary metrics", summary_section(summary)),
-        ("Burn zone", burn_section(burn, out_dir)),
-        ("Dynamic run", dyn or _not_run("No dynamic figures.")),
-        ("Quasi-static equilibrium", quasistatic_section(stage_dirs.get("quasistatic"))),
-        ("Hinge", hinge_section(scene, stage_dirs.get("identify"))),
-        ("FE deflections", fe_section(fe_records, out_dir, "identify" in stage_dirs)),
-        ("Solver counters", solver_section(summary)),
-        ("Scene", f"<pre>{html.escape(scene_text)}</pre>"),
-        ("Versions and stages", provenance_section(run_dir, stage_dirs)),
+        ("The verdict's numbers", "every quantity behind the sentence, with its unit", verdict_table(summary)),
+        ("How far to trust this verdict", "validation against the reference cases", _not_run(LIMITATION)),
+        ("Summary metrics", "the settled window's statistics and the drift check", summary_section(summary)),
+        ("Burn zone", f"the {land} unrolled and in 3-D", burn_section(burn, out_dir)),
+        ("Dynamic run", "cage speed, pocket impacts, cage–land force", dyn or _not_run("No dynamic figures.")),
+        ("Quasi-static equilibrium", "ball loads, contact angles, inner-race position",
+         quasistatic_section(stage_dirs.get("quasistatic"), out_dir)),
+        ("Hinge", "the mounting's stiffness", hinge_section(scene, stage_dirs.get("identify"))),
+        ("FE deflections", "the identification's load cases", fe_section(fe_records, out_dir, "identify" in stage_dirs)),
+        ("Solver counters", "", solver_section(summary)),
+        ("Scene", "as this run used it", f"<pre>{html.escape(scene_text)}</pre>"),
+        ("Versions and stages", "", provenance_section(run_dir, stage_dirs)),
     ]
-    body = "".join(f"<h2>{html.escape(t)}</h2>{b}" for t, b in sections)
-    page = (f"<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\">"
-            f"<title>bearingsim — {html.escape(scene.name)}</title><style>{STYLE}</style></head><body>"
-            f"<h1>bearingsim run report — {html.escape(scene.name)}</h1>"
-            f"<p>{html.escape(scene.description)}</p>"
-            f"<p>{html.escape(operating_line(scene, 'simulate' in stage_dirs))}</p>"
-            f"<p>Generated {time.strftime('%Y-%m-%d %H:%M:%S %z')} from the saved results in "
-            f"<code>{html.escape(str(run_dir))}</code>.</p>{body}</body></html>\n")
+    page = _templates().get_template("report.html").render(
+        name=scene.name, description=scene.description,
+        label=short_label(summary) if (summary or {}).get("verdict") else "no verdict",
+        operating=operating_line(scene, "simulate" in stage_dirs),
+        generated=time.strftime("%Y-%m-%d %H:%M:%S %z"), run_dir=str(run_dir),
+        verdict=Markup(verdict_section(summary)), orbit=Markup(orbit_html), burn=Markup(burn_html),
+        key_numbers=Markup(key_numbers(summary, burn)),
+        sections=[{"title": t, "hint": h, "body": Markup(b)} for t, h, b in sections])
     atomic_write_text(path, page)

@@ -1,8 +1,9 @@
 """Everything the `report` stage writes, from the saved results of the upstream stages.
 
-Files in the output directory: `report.html` (self-contained), `burn_zone_3d.png`,
+Files in the output directory: `report.html` (self-contained), `burn_zone_polar.png` (the
+land's heat round the bearing, centred on the hot sector), `burn_zone_3d.png`,
 `burn_zone_map.png`, `verdict_orbit.png` (the cage orbit behind the verdict: start-up and
-settled window), `fe_<axis>.png` + `fe_<axis>.vtu` per FE load case, and `renders.json`
+settled window), `ball_loads_polar.png` (the quasi-static ball loads round the bearing), `fe_<axis>.png` + `fe_<axis>.vtu` per FE load case, and `renders.json`
 (what was drawn, warp scales, burn-zone peak and heat). Nothing is solved here.
 
 Everything drawn from the time series covers the settled window of `summary.json`
@@ -23,35 +24,12 @@ from typing import Callable
 import numpy as np
 
 from ..staging.artefacts import atomic_write_json
-from ..results.timeseries import Series
+from .run_series import BURN_DATASETS, OPTIONAL_DATASETS, _h5_attrs, burn_zone_of, read_series, settled_start  # noqa: F401
 
 REPORT_FILE = "report.html"
-BURN_RENDER, BURN_MAP = "burn_zone_3d.png", "burn_zone_map.png"
+BURN_RENDER, BURN_MAP, BURN_POLAR = "burn_zone_3d.png", "burn_zone_map.png", "burn_zone_polar.png"
 ORBIT_FIGURE = "verdict_orbit.png"
 RENDERS_FILE = "renders.json"
-BURN_DATASETS = ("time", "balls/position", "cage_race/friction_power", "cage_race/contact_azimuth")
-OPTIONAL_DATASETS = ("cage_race/eccentricity_ratio", "cage_race/film_power", "cage/position", "cage/speed")
-
-
-def burn_datasets(ring: str) -> tuple[str, ...]:
-    """The series the burn zone of the `ring`'s land needs (the inner ring's: its angle too)."""
-    return BURN_DATASETS + (f"contacts/{ring}_contact_angle", f"contacts/{ring}_load") + (
-        ("inner_race/angle",) if ring == "inner" else ())
-
-
-def read_series(path: Path, names: tuple[str, ...]) -> dict[str, Series]:
-    """Only the named datasets of a `timeseries.h5` (a 0.8 s run holds ~250 MB; the
-    burn zone needs a fraction). Same result as `read_timeseries` for those names."""
-    import h5py
-
-    out = {}
-    with h5py.File(path, "r") as h5:
-        for name in names:
-            if name in h5:
-                ds = h5[name]
-                out[name] = Series(ds[()], str(ds.attrs.get("units", "")), str(ds.attrs.get("description", "")),
-                                   tuple(str(ds.attrs.get("dims", "")).split(",")))
-    return out
 
 
 def render_fe_cases(scene, identify_dir: Path, out_dir: Path, show: bool,
@@ -70,72 +48,36 @@ def render_fe_cases(scene, identify_dir: Path, out_dir: Path, show: bool,
     return records
 
 
-def _h5_attrs(path: Path) -> dict:
-    import h5py
-
-    with h5py.File(path, "r") as h5:
-        return {k: v for k, v in h5.attrs.items()}
-
-
-def settled_start(series: dict, summary: dict | None, guide_clearance: float | None) -> float | None:
-    """Start of the settled window [s]: the summary's, else found from the series by the
-    summary's rule, else None (the whole run)."""
-    window = (summary or {}).get("settled_window")
-    if window and window[0] is not None:
-        return float(window[0])
-    if all(n in series for n in ("cage_race/eccentricity_ratio", "cage/position", "cage/speed")):
-        from ..results.settled_window import detect_settled_window
-
-        return detect_settled_window(series["time"].data, series["cage_race/eccentricity_ratio"].data,
-                                     series["cage/position"].data[:, :2], series["cage/speed"].data,
-                                     guide_clearance).start
-    return None
-
-
 def render_burn_zone(scene, simulate_dir: Path, summary: dict | None, out_dir: Path, show: bool,
                      maps: dict | None = None) -> dict | None:
-    """Both burn-zone images of the guiding land (the outer ring's, or the inner ring's in its
-    own frame); None when the scene has no land-guided cage. The map drawn (a BurnZoneMap) is
-    put in `maps["burn_zone"]` when `maps` is given."""
-    from ..results.simulation_output import guide_land_speed, land_boundary
+    """The burn-zone images of the guiding land (polar map, unrolled map, 3-D render: the outer
+    ring's, or the inner ring's in the frame turning with it); None when the scene has no
+    land-guided cage. The map drawn (a BurnZoneMap) is put in `maps["burn_zone"]` when `maps`
+    is given."""
+    from ..figures import save_png
     from .burn_zone import heat_caption, render_burn_zone_3d, render_burn_zone_map
-    from .burn_zone_data import RaceProfile, burn_zone_map, race_semi_major_axis
+    from .run_plots import burn_zone_figure
 
-    if scene.cage is None or scene.cage.guide_ring is None:
+    found = burn_zone_of(scene, simulate_dir, summary)
+    if found is None:
         return None
-    ring = scene.cage.guide_ring
-    profile = RaceProfile.from_scene(scene.bearing, scene.cage)
-    path = simulate_dir / "timeseries.h5"
-    needed = burn_datasets(ring)
-    series = read_series(path, needed + OPTIONAL_DATASETS)
-    missing = [n for n in needed if n not in series]
-    if missing:
-        raise ValueError(f"{path} lacks {', '.join(missing)}; rerun the "
-                         "simulate stage (bearingsim simulate SCENE --force)")
-    clearance = _h5_attrs(path).get("guide_clearance_m")
-    start = settled_start(series, summary, float(clearance) if clearance is not None else None)
-    startup = (summary or {}).get("startup") or {}
-    semi_axis = race_semi_major_axis(scene.bearing, scene.materials.ball, scene.materials.race,
-                                     series[f"contacts/{ring}_contact_angle"].data,
-                                     series[f"contacts/{ring}_load"].data, ring)
-    bzm = burn_zone_map(series, profile, summary_sector=(summary or {}).get("burn_zone_sector"),
-                        semi_axis=semi_axis, start=start, land_boundary=land_boundary(scene),
-                        land_speed=guide_land_speed(scene),
-                        startup_metal_energy=_startup_metal(series, start, startup))
+    bzm, profile, settled, film_layer = found
     if maps is not None:
         maps["burn_zone"] = bzm
+    save_png(burn_zone_figure(scene, bzm), out_dir / BURN_POLAR)
     render_burn_zone_map(bzm, out_dir / BURN_MAP, scene.name)
-    rim = scene.bearing.outer_outside_diameter if ring == "outer" else scene.bearing.inner_bore_diameter
+    b = scene.operating.bearing
+    rim = b.outer_outside_diameter if profile.ring == "outer" else b.inner_bore_diameter
     render_burn_zone_3d(bzm, out_dir / BURN_RENDER, scene.name, 0.5 * rim if rim else None, show=show)
     peak = bzm.peak_sector
     return {
-        "render": BURN_RENDER, "map": BURN_MAP, "sectors": bzm.sectors,
+        "render": BURN_RENDER, "map": BURN_MAP, "polar": BURN_POLAR, "sectors": bzm.sectors,
         "window_s": list(bzm.window),
-        "settled": start is not None,
+        "settled": settled,
         "energy_total_J": float(bzm.sector_energy.sum()),
         "energy_metal_J": float(bzm.metal_energy.sum()),
         "energy_film_J": float(bzm.film_energy.sum()),
-        "film_layer": "cage_race/film_power" in series,
+        "film_layer": film_layer,
         "startup_metal_energy_J": bzm.startup_metal_energy,
         "caption": heat_caption(bzm),
         "peak_sector_deg": math.degrees(bzm.sector_center(peak)) if peak is not None else None,
@@ -143,81 +85,21 @@ def render_burn_zone(scene, simulate_dir: Path, summary: dict | None, out_dir: P
         "peak_areal_density_J_m2": float(bzm.sector_energy[peak] * bzm.areal_density_factor) if peak is not None else 0.0,
         "sector_deg": [math.degrees(v) for v in bzm.sector] if bzm.sector is not None else None,
         "land_overlap_mm": profile.land_overlap * 1e3,
-        "ring": ring,
+        "ring": profile.ring,
         "track_outside_fraction": bzm.track_outside_fraction,
         "track_max_N_s": float(np.max(bzm.track_density, initial=0.0)),
     }
 
 
-def _startup_metal(series: dict, start: float | None, startup: dict) -> float:
-    """Metal-contact energy [J] before the settled window (the summary's when it has it)."""
-    if startup.get("metal_energy") is not None:
-        return float(startup["metal_energy"])
-    if start is None:
-        return 0.0
-    from ..results.cage_metrics import split_weights
-
-    t = np.asarray(series["time"].data, dtype=float)
-    return float(np.sum(np.asarray(series["cage_race/friction_power"].data, dtype=float) * split_weights(t, start)[0]))
-
-
 def render_verdict_orbit(scene, simulate_dir: Path, summary: dict | None, out_dir: Path) -> str | None:
-    """`verdict_orbit.png`: the cage-centre orbit, start-up grey and settled window coloured,
-    inside the guide clearance (eps = 1, where metal contact begins) and the film clearance
-    C (1 + eps0); the loaded sector of the verdict as a wedge and the cage centre at the
-    thinnest film as a star. None when the run has no cage series."""
-    from ..figures import new_figure, save_png
-    from ..results.simulation_output import land_boundary
+    """`verdict_orbit.png`: the orbit behind the verdict (`run_plots.orbit_figure`); None when
+    the run has no cage series."""
+    from ..figures import save_png
+    from .run_plots import orbit_figure
 
-    path = simulate_dir / "timeseries.h5"
-    series = read_series(path, ("time", "cage/position", "cage_race/eccentricity_ratio", "cage/speed"))
-    if "cage/position" not in series:
+    fig = orbit_figure(scene, simulate_dir, summary)
+    if fig is None:
         return None
-    clearance = _h5_attrs(path).get("guide_clearance_m")
-    clearance = float(clearance) if clearance is not None else None
-    t = np.asarray(series["time"].data, dtype=float)
-    xy = np.asarray(series["cage/position"].data, dtype=float)[:, :2] * 1e6
-    start = settled_start(series, summary, clearance)
-    late = t >= (start if start is not None else t[0])
-    verdict = (summary or {}).get("verdict") or {}
-    fig = new_figure(figsize=(6.4, 6.2))
-    ax = fig.subplots()
-    th = np.linspace(0.0, 2.0 * math.pi, 361)
-    lim = 1.05 * float(np.abs(xy).max(initial=1.0))
-    if clearance:
-        c = clearance * 1e6
-        eps0 = land_boundary(scene)
-        ax.plot(c * np.cos(th), c * np.sin(th), "k--", lw=1, label=f"guide clearance C = {c:.0f} µm (ε = 1)")
-        ax.plot(c * (1 + eps0) * np.cos(th), c * (1 + eps0) * np.sin(th), "k:", lw=0.8,
-                label=f"film clearance C(1 + ε0), ε0 = {eps0:g}")
-        lim = max(lim, 1.15 * c * (1 + eps0))
-        sector = verdict.get("sector_deg")
-        if sector:
-            a = np.radians(np.linspace(sector[0], sector[1], 60))
-            ax.fill(np.r_[0.0, c * np.cos(a), 0.0], np.r_[0.0, c * np.sin(a), 0.0], color="tab:red", alpha=0.15,
-                    label=f"loaded sector {sector[0] % 360:.0f}–{sector[1] % 360:.0f}°")
-    if (~late).any():
-        ax.plot(xy[~late, 0], xy[~late, 1], color="0.65", lw=0.5,
-                label=f"start-up (t < {start:.3g} s)" if start is not None else "start-up")
-    ax.plot(xy[late, 0], xy[late, 1], color="C0", lw=0.6,
-            label="settled window" if start is not None else "whole run")
-    when = (summary or {}).get("land_film_min_time")
-    if when is not None:
-        i = int(np.argmin(np.abs(t - when)))
-        h = verdict.get("land_film_min_um")
-        ax.plot(xy[i, 0], xy[i, 1], "*", color="tab:red", ms=12,
-                label=(f"thinnest film {h:.3g} µm" if h is not None else "thinnest film") + f" at t = {when:.4g} s")
-    ax.set_aspect("equal")
-    ax.set_xlim(-lim, lim)
-    ax.set_ylim(-lim, lim)
-    ax.set_xlabel("cage centre x [µm]")
-    ax.set_ylabel("cage centre y [µm]")
-    ax.grid(alpha=0.3)
-    ax.legend(loc="upper right", fontsize=7)
-    title = f"Cage centre orbit — {scene.name}"
-    if verdict:
-        title += f"\n{verdict.get('class')}, {verdict.get('risk')} risk"
-    ax.set_title(title, fontsize=10)
     save_png(fig, out_dir / ORBIT_FIGURE)
     return ORBIT_FIGURE
 
@@ -308,6 +190,13 @@ def write_run_report(scene, run_dir: Path, upstream: dict[str, Path], out_dir: P
         progress("FE deflections", 0.8)
         fe_records = draw_fe()
     progress("report", 0.9)
+    qs = upstream.get("quasistatic")
+    if qs is not None and (qs / "quasistatic.json").is_file():
+        from ..figures import save_png
+        from .report import BALL_LOAD_FIGURE
+        from .run_plots import load_distribution_figure
+
+        save_png(load_distribution_figure(scene, qs, polar=True), out_dir / BALL_LOAD_FIGURE)
     write_report_html(out_dir / REPORT_FILE, scene, run_dir, upstream, out_dir, fe_records, burn,
                       evidence={"orbit": orbit})
     info = {"report": REPORT_FILE, "fe_cases": [r["file"] for r in fe_records],

@@ -32,12 +32,15 @@ def _stages_held(run) -> list[str]:
 
 
 def run_repr(run) -> str:
-    """`Run('helicopter-b', runs/demo; stages: quasistatic, simulate; pressed, elevated risk)`."""
+    """`Run('helicopter-b', runs/demo; stages: quasistatic, simulate; pressed, elevated risk)`,
+    with "; too short to settle" when the run is (results.verdict.short_label)."""
+    from .verdict import short_label
+
     stages = _stages_held(run)
     parts = [f"{run.scene.name!r}, {run.run_dir}", "stages: " + (", ".join(stages) if stages else "none")]
-    verdict = (_summary(run) or {}).get("verdict") or {}
-    if verdict.get("class"):
-        parts.append(f"{verdict['class']}, {verdict.get('risk', '?')} risk")
+    summary = _summary(run)
+    if ((summary or {}).get("verdict") or {}).get("class"):
+        parts.append(short_label(summary))
     return f"Run({'; '.join(parts)})"
 
 

@@ -56,7 +56,7 @@ def land_boundary(scene) -> float:
 def land_roughness(scene) -> float:
     """Composite RMS roughness sigma of cage rim and land [m]: the scene's
     `cage.land_roughness` when it has one, else DEFAULT_LAND_ROUGHNESS (cage_metrics)."""
-    value = getattr(scene.cage, "land_roughness", None) if scene.cage is not None else None
+    value = getattr(scene.operating.cage, "land_roughness", None) if scene.cage is not None else None
     return float(value) if value is not None else DEFAULT_LAND_ROUGHNESS
 
 
@@ -116,7 +116,7 @@ def _non_guiding(t, series: dict[str, Series], scene) -> dict:
     """The gap to the non-guiding land along the run (pipeline.results.non_guiding)."""
     from .non_guiding import non_guiding_gap, non_guiding_summary
 
-    cage, bearing = scene.cage, scene.bearing
+    cage, bearing = scene.operating.cage, scene.operating.bearing
     clearance = cage.non_guiding_clearance(bearing)
     if clearance is None:
         return {}

@@ -320,3 +320,22 @@ def verdict_lines(summary: dict | None) -> list[str]:
         lines.append(f"  {screen_line}")
     lines += [f"  warning: {w}" for w in summary.get("warnings") or []]
     return lines
+
+
+SHORT_RUN = "too short to settle"  # the words every display of a run that has not settled uses
+
+
+def too_short_to_settle(summary: dict | None) -> bool:
+    """Did the run end before its statistics settled (a `run too short to settle` warning of
+    summary.json, pipeline.results.settled_window)?"""
+    return any(str(w).startswith(f"run {SHORT_RUN}") for w in (summary or {}).get("warnings") or ())
+
+
+def short_label(summary: dict | None) -> str:
+    """"pressed, elevated risk" — or "pressed, elevated risk; too short to settle": the class
+    and risk of a summary's verdict as the repr, the report and the figures' titles show them."""
+    verdict = (summary or {}).get("verdict") or {}
+    if not verdict.get("class"):
+        return "no verdict"
+    text = f"{verdict['class']}, {verdict.get('risk', '?')} risk"
+    return text + (f"; {SHORT_RUN}" if too_short_to_settle(summary) else "")

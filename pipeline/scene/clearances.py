@@ -2,6 +2,9 @@
 
 Used by `bearingsim check` (printed side by side), the quasi-static stage (the crush screen and
 `quasistatic.json`) and the simulate stage's summary (docs/model.md §2.1, §10.1).
+
+A scene or parts argument is a `pipeline.scene.load.Scene` or `Parts`, not imported here: the
+scene's own display (pipeline.scene.display) shows these clearances.
 """
 
 from __future__ import annotations
@@ -10,10 +13,8 @@ import math
 
 from ...dynamics.quasistatic.crush_screen import CageClearances, LandFilm
 
-from .load import Parts, Scene
 
-
-def cage_clearances(parts: Parts) -> CageClearances:
+def cage_clearances(parts) -> CageClearances:
     """Pocket, guide and non-guiding clearances and the run-out of one state of the parts."""
     b, c = parts.bearing, parts.cage
     return CageClearances(pocket=c.pocket_diameter - b.ball_diameter, guide=c.guide_clearance(b),
@@ -21,10 +22,10 @@ def cage_clearances(parts: Parts) -> CageClearances:
                           pocket_index_range=c.pocket_index_range(), non_guiding=c.non_guiding_clearance(b))
 
 
-def land_film(scene: Scene) -> LandFilm:
+def land_film(scene) -> LandFilm:
     """The guide lands of the operating cage as the screen's short journal bearing (none for
     a ball-guided cage: a film of no length, which pushes nothing)."""
-    b, c = scene.bearing, scene.cage
+    b, c = scene.operating.bearing, scene.operating.cage
     viscosity = scene.lubricant.eta0 if scene.lubricant is not None else 0.0
     if c.guide_ring is None:
         return LandFilm(radius=0.5 * c.mean_diameter, length=0.0, lands=1, eps0=scene.physics.cage_race_boundary,
@@ -34,8 +35,8 @@ def land_film(scene: Scene) -> LandFilm:
                     eps0=scene.physics.cage_race_boundary, viscosity=viscosity)
 
 
-def _operating(scene: Scene) -> Parts:
-    return Parts(scene.bearing, scene.cage, scene.materials)
+def _operating(scene):
+    return scene.operating
 
 
 # (key, label, function of the parts) for the table
@@ -54,10 +55,10 @@ _ROWS = (
 )
 
 
-def clearance_table(scene: Scene) -> dict:
+def clearance_table(scene) -> dict:
     """{key: {"reference": value, "operating": value}} in SI (m, rad), plus the temperatures
     [°C]; keys without a value (no cage, no land) are left out."""
-    ops, cold = _operating(scene), scene.nominal or _operating(scene)
+    ops, cold = scene.operating, scene.nominal
     out: dict = {}
     for key, _, f in _ROWS:
         try:
@@ -73,7 +74,7 @@ def clearance_table(scene: Scene) -> dict:
     return out
 
 
-def clearance_rows(scene: Scene) -> list[tuple[str, str, str, str]]:
+def clearance_rows(scene) -> list[tuple[str, str, str, str]]:
     """(quantity, at reference temperature, operating, unit) for people: µm, mm, deg."""
     table = clearance_table(scene)
     rows = []

@@ -6,10 +6,13 @@ compute it. Nothing downstream sees raw TOML.
 
 from __future__ import annotations
 
+import contextvars
 import copy
 import dataclasses
 import re
 import tomllib
+from collections.abc import Iterable, Iterator, Mapping
+from contextlib import contextmanager
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
@@ -49,11 +52,29 @@ class Parts:
     materials: Materials
 
 
-@dataclass(frozen=True)
+_BUILDING = contextvars.ContextVar("bearingsim_scene_building", default=False)
+
+
+@contextmanager
+def _building():
+    """The resolver (and the few internal variants of a resolved scene) may construct a Scene."""
+    token = _BUILDING.set(True)
+    try:
+        yield
+    finally:
+        _BUILDING.reset(token)
+
+
+@dataclass(frozen=True, repr=False)
 class Scene:
-    """`bearing`, `cage` and `materials` are the operating parts (each grown to its temperature,
-    docs/model.md §2.1): what every stage computes with. `nominal` holds them as the scene gives
-    them, at `temperatures.reference`; the FE identification meshes those."""
+    """A validated scene (docs/scenes.md): build it with `bearingsim.load_scene`, change it with
+    `replace`, which validates the change as the file would be.
+
+    `bearing`, `cage` and `materials` are the parts as the scene gives them (as drawn, at
+    `temperatures.reference`); `operating` holds them grown to their operating temperatures
+    (docs/model.md §2.1), which is what the quasi-static and dynamic stages compute with. The
+    FE identification meshes the parts as drawn. `raw` is the validated TOML table after
+    overrides (`to_dict`), from which the scene is rebuilt exactly."""
 
     name: str
     description: str
@@ -69,10 +90,59 @@ class Scene:
     physics: Physics
     output: Output
     raw: dict  # the validated TOML table after overrides (for saving and hashing)
-    nominal: Parts | None = None  # as given, at the reference temperature
+    operating: Parts  # bearing, cage and materials at their operating temperatures
     temperatures: th.PartTemperatures = th.PartTemperatures()
     expansion: th.ExpansionCoefficients = th.ExpansionCoefficients()
     tolerances: Any | None = None  # pipeline.quasistatic.tolerances.ToleranceSpec when [tolerances] is given
+
+    def __post_init__(self) -> None:
+        if not _BUILDING.get():
+            raise TypeError(
+                "a Scene is built by bearingsim.load_scene and changed by scene.replace(...), e.g. "
+                "scene.replace(**{'load.moment': 500}), which validates the change as the scene file "
+                "would be; dataclasses.replace and Scene(...) would skip that validation")
+
+    @property
+    def nominal(self) -> Parts:
+        """The parts as the scene gives them (as drawn): `bearing`, `cage`, `materials` together."""
+        return Parts(self.bearing, self.cage, self.materials)
+
+    def replace(self, changes: Mapping[str, Any] | Iterable[str] | None = None, /, **dotted: Any) -> "Scene":
+        """A new scene with `changes` applied and validated exactly as the scene file would be:
+        ``scene.replace(**{"load.moment": 500})``, ``scene.replace({"solver.duration": 0.1})``
+        or ``scene.replace(["load.moment=500"])``. A bad value raises the `SceneError` the file
+        would give (key, value, allowed range, unit)."""
+        strings = override_strings(changes) + override_strings(dotted)
+        scene = resolve(apply_overrides(self.raw, strings), self.origin)
+        object.__setattr__(scene, "_origin", self.origin)
+        return scene
+
+    @property
+    def origin(self) -> str:
+        """Where the scene came from: a path, `built-in:<name>`, or how Python gave it."""
+        return getattr(self, "_origin", "a Scene object of the Python API")
+
+    def to_dict(self) -> dict:
+        """The scene as a TOML-shaped dict (a copy of `raw`: the keys the scene gives, after
+        overrides); `load_scene(scene.to_dict()) == scene`. A `[sweep]` table is not part of
+        the scene and is not kept."""
+        return copy.deepcopy(self.raw)
+
+    def to_toml(self) -> str:
+        """The scene as TOML text; `load_scene(scene.to_toml()) == scene`."""
+        import tomli_w
+
+        return tomli_w.dumps(self.raw)
+
+    def __repr__(self) -> str:
+        from .display import scene_repr
+
+        return scene_repr(self)
+
+    def _repr_html_(self) -> str:
+        from .display import scene_html
+
+        return scene_html(self)
 
 
 # --- built-in scenes -------------------------------------------------------------------
@@ -179,6 +249,50 @@ def parse_override(text: str) -> tuple[list[str], Any]:
     except RecursionError:
         raise SceneError(key, f"--set: the value nests arrays too deeply ({len(value_text)} characters)") from None
     return key.split("."), value
+
+
+def override_strings(overrides: Mapping[str, Any] | Iterable[str] | None) -> list[str]:
+    """`{"load.moment": 300}` -> `["load.moment=300"]`; strings pass through. A nested
+    mapping is flattened to dotted keys (`{"materials.ball": {"density": 7800}}`)."""
+    if overrides is None:
+        return []
+    if isinstance(overrides, str):
+        return [overrides]
+    if not isinstance(overrides, Mapping):
+        return [str(o) for o in overrides]
+    out = []
+    for key, value in _flatten(overrides, ""):
+        out.append(f"{key}={_toml_literal(key, value)}")
+    return out
+
+
+def _flatten(mapping: Mapping, prefix: str) -> Iterator[tuple[str, Any]]:
+    for key, value in mapping.items():
+        dotted = f"{prefix}{key}"
+        if isinstance(value, Mapping):
+            yield from _flatten(value, dotted + ".")
+        else:
+            yield dotted, value
+
+
+def _toml_literal(key: str, value: Any) -> str:
+    import numpy as np
+    import tomli_w
+
+    if isinstance(value, np.ndarray):
+        value = value.tolist()
+    elif isinstance(value, np.generic):
+        value = value.item()
+    elif isinstance(value, tuple):
+        value = list(value)
+    elif isinstance(value, Path):
+        value = str(value)
+    if isinstance(value, list):  # one line, as typed after --set
+        return "[" + ", ".join(_toml_literal(key, v) for v in value) + "]"
+    try:
+        return tomli_w.dumps({"v": value})[len("v = "):].strip()
+    except (TypeError, ValueError) as exc:
+        raise SceneError(key, f"{value!r} cannot be written as a TOML value: {exc}") from None
 
 
 def apply_overrides(table: dict, overrides: list[str]) -> dict:
@@ -314,37 +428,44 @@ def resolve(table: dict, origin: str = "<table>") -> Scene:
         race=_alpha(materials.race, th.BEARING_STEEL_EXPANSION), ball=_alpha(materials.ball, th.BEARING_STEEL_EXPANSION),
         cage=_alpha(materials.cage, th.CAGE_BRONZE_EXPANSION))
     nominal = Parts(bearing, cage, materials)
-    scene = Scene(
-        name=name,
-        description=convert("description", table.get("description", ""), str, {}),
-        bearing=bearing,
-        cage=cage,
-        materials=materials,
-        lubricant=lubricant,
-        load=build(Load, table["load"], "load"),
-        speed=build(Speed, table["speed"], "speed"),
-        hinge=hinge,
-        fe=resolve_fe(table.get("fe"), hinge),
-        solver=build(SolverSettings, table.get("solver", {}), "solver"),
-        physics=physics,
-        output=build(Output, table.get("output", {}), "output"),
-        raw=table,
-        nominal=nominal,
-        temperatures=temperatures,
-        expansion=expansion,
-    )
+    with _building():
+        scene = Scene(
+            name=name,
+            description=convert("description", table.get("description", ""), str, {}),
+            bearing=bearing,
+            cage=cage,
+            materials=materials,
+            lubricant=lubricant,
+            load=build(Load, table["load"], "load"),
+            speed=build(Speed, table["speed"], "speed"),
+            hinge=hinge,
+            fe=resolve_fe(table.get("fe"), hinge),
+            solver=build(SolverSettings, table.get("solver", {}), "solver"),
+            physics=physics,
+            output=build(Output, table.get("output", {}), "output"),
+            raw=table,
+            operating=nominal,  # until grown below: the checks that follow read the parts as drawn
+            temperatures=temperatures,
+            expansion=expansion,
+        )
     # geometry the model cannot represent, resources a run cannot have (pipeline.scene.validity),
     # checked on the parts as drawn; then the parts grown to their operating temperatures
     from .validity import raise_errors, scene_findings
 
     raise_errors(scene_findings(scene))
-    operating = operating_parts(nominal, temperatures, expansion)
-    scene = dataclasses.replace(scene, bearing=operating.bearing, cage=operating.cage, materials=operating.materials)
+    scene = variant(scene, operating=operating_parts(nominal, temperatures, expansion))
     if "tolerances" in table:
         from .tolerance_section import build_tolerance_spec
 
-        scene = dataclasses.replace(scene, tolerances=build_tolerance_spec(table["tolerances"], scene))
+        scene = variant(scene, tolerances=build_tolerance_spec(table["tolerances"], scene))
     return scene
+
+
+def variant(scene: Scene, **fields: Any) -> Scene:
+    """`scene` with `fields` replaced, unvalidated: for bearingsim's own derived scenes (a
+    tolerance stack's grown parts, a compile-only hinge), never for user input (`Scene.replace`)."""
+    with _building():
+        return dataclasses.replace(scene, **fields)
 
 
 def _alpha(material: Material | None, default: float) -> float:
@@ -411,7 +532,64 @@ def _is_matrix(value: Any) -> bool:
     return isinstance(value, list) and bool(value) and all(isinstance(r, list) for r in value)
 
 
-def load_scene(scene: str | Path, overrides: list[str] | None = None) -> Scene:
-    """Load a scene file or built-in scene name, apply `--set` overrides and validate."""
-    table, origin = read_scene_table(scene)
-    return resolve(apply_overrides(table, list(overrides or [])), origin)
+def is_toml_text(scene: Any) -> bool:
+    """A string that is a scene's TOML text rather than a path or a built-in name: it holds a
+    line break, or a `key = value` and does not name a .toml file."""
+    return isinstance(scene, str) and ("\n" in scene or ("=" in scene and not scene.rstrip().endswith(".toml")))
+
+
+def scene_table(scene: Any) -> tuple[dict, str]:
+    """(TOML table, origin) of a Scene, a dict (TOML-shaped: tables as dicts, dotted keys not
+    split), a scene's TOML text, a scene file path or a built-in scene name."""
+    if isinstance(scene, Scene):
+        return scene.to_dict(), scene.origin
+    if isinstance(scene, Mapping):
+        return plain_table(scene, ""), "a dict of the Python API"
+    if is_toml_text(scene):
+        try:
+            return tomllib.loads(scene), "TOML text of the Python API"
+        except tomllib.TOMLDecodeError as exc:
+            raise SceneError("", f"the scene text is not valid TOML: {exc}") from None
+    if not isinstance(scene, (str, Path)):
+        raise SceneError("", f"a scene is a file path, a built-in scene name, TOML text, a dict or a Scene; "
+                             f"got {type(scene).__name__}")
+    return read_scene_table(scene)
+
+
+def plain_table(mapping: Mapping, prefix: str) -> dict:
+    """A dict of Python values as the TOML table it stands for: tuples and numpy arrays as
+    lists, numpy scalars as numbers, paths as strings (SceneError for what TOML cannot hold)."""
+    import numpy as np
+
+    def plain(key: str, value: Any) -> Any:
+        if isinstance(value, Mapping):
+            return plain_table(value, f"{key}.")
+        if isinstance(value, np.ndarray):
+            value = value.tolist()
+        if isinstance(value, (list, tuple)):
+            return [plain(key, v) for v in value]
+        if isinstance(value, np.generic):
+            return value.item()
+        if isinstance(value, Path):
+            return str(value)
+        if value is None or not isinstance(value, (str, int, float, bool)):
+            raise SceneError(key, f"{value!r} is not a TOML value (a number, string, boolean, list or table)")
+        return value
+
+    out = {}
+    for key, value in mapping.items():
+        if not isinstance(key, str):
+            raise SceneError(prefix.rstrip("."), f"table keys are strings, got {key!r}")
+        out[key] = plain(f"{prefix}{key}", value)
+    return out
+
+
+def load_scene(scene: Any, overrides: Mapping[str, Any] | Iterable[str] | None = None) -> Scene:
+    """A validated Scene from a scene file path, a built-in scene name, a scene's TOML text, a
+    dict or another Scene, with `overrides` (``{"load.moment": 300}`` or ``["load.moment=300"]``)
+    applied and validated exactly as the file's values are."""
+    table, origin = scene_table(scene)
+    resolved = resolve(apply_overrides(table, override_strings(overrides)), origin)
+    # provenance for scene.toml's header; a frozen dataclass, so set past its __setattr__
+    object.__setattr__(resolved, "_origin", origin)
+    return resolved

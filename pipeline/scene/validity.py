@@ -118,10 +118,8 @@ def scene_findings(scene) -> list[Finding]:
 
 
 def _as_drawn(scene):
-    nominal = getattr(scene, "nominal", None)
-    if nominal is None:
-        return scene
-    return dataclasses.replace(scene, bearing=nominal.bearing, cage=nominal.cage, materials=nominal.materials)
+    """The scene: its bearing, cage and materials are as drawn (`operating` holds them grown)."""
+    return scene
 
 
 def _form2(scene) -> bool:
@@ -431,7 +429,7 @@ def _land_overlap(scene) -> list[Finding]:
     drawn = _as_drawn(scene)
     ring = drawn.cage.guide_ring
     key = f"bearing.{ring}_shoulder_diameter"
-    for parts, when in ((drawn, ""), (scene, " at the operating temperatures ([thermal])")):
+    for parts, when in ((drawn, ""), (scene.operating, " at the operating temperatures ([thermal])")):
         c, b = parts.cage, parts.bearing
         if b.shoulders(ring) is None:
             return []  # the land itself is missing: _cage_fit says so

@@ -22,7 +22,7 @@ def ring_seat(scene: Scene):
     rings')."""
     from ...fe_model import RingSeat
 
-    b = scene.nominal.bearing
+    b = scene.bearing  # as drawn
     missing = [k for k in RING_KEYS if getattr(b, k) is None]
     if missing:
         raise SceneError(f"bearing.{missing[0]}",
@@ -38,7 +38,7 @@ def ring_seat(scene: Scene):
 
 
 def identify_inputs(scene: Scene) -> dict:
-    b = scene.nominal.bearing
+    b = scene.bearing
     return {"fe": dataclasses.asdict(scene.fe) if scene.fe is not None else None,
             "ring": {k: getattr(b, k) for k in RING_KEYS},
             "pitch_diameter": b.pitch_diameter}

@@ -17,15 +17,16 @@ TOLERANCE_FIGURE = "crush_probability.png"
 
 def quasistatic_inputs(scene: Scene) -> dict:
     return {
-        "bearing": dataclasses.asdict(scene.bearing),
-        "ball": dataclasses.asdict(scene.materials.ball),
-        "race": dataclasses.asdict(scene.materials.race),
+        # the parts the stage computes with: at their operating temperatures
+        "bearing": dataclasses.asdict(scene.operating.bearing),
+        "ball": dataclasses.asdict(scene.operating.materials.ball),
+        "race": dataclasses.asdict(scene.operating.materials.race),
         "load": dataclasses.asdict(scene.load),
         "speed": dataclasses.asdict(scene.speed),
         "centrifugal": scene.physics.centrifugal,
         "gyroscopic": scene.physics.gyroscopic,
         # the crush screen's inputs (absent without a cage)
-        "cage": dataclasses.asdict(scene.cage) if scene.cage is not None else None,
+        "cage": dataclasses.asdict(scene.operating.cage) if scene.cage is not None else None,
         "land_viscosity": scene.lubricant.eta0 if scene.lubricant is not None and scene.cage is not None else None,
         "land": (scene.physics.cage_race_boundary, scene.physics.cage_race_lands) if scene.cage is not None else None,
         # the operating parts above follow from these; the margin at reference temperature needs them too

@@ -74,9 +74,9 @@ def model_params(scene: Scene, identify_dir, static_x, static_R):
 
     from ..quasistatic.solution import operating_point
 
-    s, m = scene, scene.materials
+    s, p = scene, scene.operating  # the parts at their operating temperatures
     return build_model_params(
-        s.bearing, s.cage, m.ball, m.race, m.cage, s.lubricant, operating_point(s),
+        p.bearing, p.cage, p.materials.ball, p.materials.race, p.materials.cage, s.lubricant, operating_point(s),
         hinge=hinge_matrices(s, identify_dir), static_frame=(static_x, static_R), options=s.physics,
         load_step=s.load.load_step)
 

@@ -59,7 +59,7 @@ LOAD_UNITS = {"radial": "N", "axial": "N", "moment": "N.m"}
 
 
 def _main_load_key(scene) -> str:
-    arm = 0.5 * scene.bearing.pitch_diameter
+    arm = 0.5 * scene.operating.bearing.pitch_diameter
     sizes = {"load.radial": abs(scene.load.radial), "load.axial": abs(scene.load.axial),
              "load.moment": abs(scene.load.moment) / arm}
     return max(sizes, key=sizes.get) if any(sizes.values()) else "load"
@@ -83,7 +83,7 @@ def _number(x: Any) -> float | None:
 def quasistatic_findings(scene, payload: dict) -> list[Finding]:
     """The quasi-static result against the limits of the contact model (docs/model.md §6, §10)."""
     out: list[Finding] = []
-    b = scene.bearing
+    b = scene.operating.bearing
     key = _main_load_key(scene)
     loads = _load_text(scene, key)
     race = payload.get("inner_race", {})

@@ -50,15 +50,25 @@ class SweepResult:
             raise ImportError("to_pandas() needs pandas: pip install pandas (the rows are in .rows)") from None
         return pandas.DataFrame(self.rows)
 
+    @property
+    def plot(self) -> "SweepPlots":
+        """`sweep.plot.map()`: the stability map as a matplotlib Figure (a line plot for one
+        varied key)."""
+        return SweepPlots(self)
+
     def __repr__(self) -> str:
         from collections import Counter
 
         classes = Counter(r.get("cage_class") for r in self.rows)
         counts = ", ".join(f"{n} {c}" for c, n in classes.most_common())
+        short = sum(1 for r in self.rows if r.get("too_short_to_settle") in (True, "True"))
+        if short:
+            counts += f"; {short} too short to settle"
         return f"SweepResult({len(self.rows)} points over {', '.join(self.varied)}: {counts}; {self.sweep_dir})"
 
     def _repr_html_(self) -> str:
-        columns = ["status", *self.varied, "cage_class", "risk", "cage_metal_contact_fraction", "warnings"]
+        columns = ["status", *self.varied, "cage_class", "risk", "too_short_to_settle", "cage_metal_contact_fraction",
+                   "warnings"]
         head = "".join(f"<th>{html.escape(c)}</th>" for c in columns)
         body = "".join("<tr>" + "".join(f"<td>{html.escape(_cell(r.get(c)))}</td>" for c in columns) + "</tr>"
                        for r in self.rows)
@@ -70,6 +80,20 @@ class SweepResult:
                 f"<table><tr>{head}</tr>{body}</table>{figure}</div>")
 
 
+class SweepPlots:
+    """The figures of a sweep, each a matplotlib Figure."""
+
+    def __init__(self, result: SweepResult):
+        self._result = result
+
+    def map(self, x: str | None = None, y: str | None = None):
+        """The cage-stability map: a line plot of the metal-contact fraction and the mean
+        eccentricity over the one varied key, else the class map over two (`x`, `y`)."""
+        from .stability_map import stability_map_figure
+
+        return stability_map_figure(self._result.rows, self._result.varied, map_x=x, map_y=y)
+
+
 def _cell(value) -> str:
     if value is None:
         return ""
@@ -79,7 +103,7 @@ def _cell(value) -> str:
 def vary_strings(vary: Mapping[str, Any] | Iterable[str] | str) -> list[str]:
     """`{"load.moment": [0, 300]}` -> `["load.moment=0,300"]`; `{"k": "0:600:4"}` keeps the
     range; strings (the command line's `--vary`) pass through."""
-    from ..api import _toml_literal
+    from ..scene.load import _toml_literal
 
     if isinstance(vary, str):
         return [vary]
@@ -117,7 +141,7 @@ def sweep(scene, vary: Mapping[str, Any] | Iterable[str] | str, *,
                `distributed.Client` as `client`.
     Finished points of an earlier call are reused (`retry_failed` reruns failed ones).
     """
-    from ..api import override_strings
+    from ..scene.load import override_strings
     from ..staging.no_follow import named_in_python
     from .driver import dask_client, gather, plan_sweep, replaced_sweep, run_in_process, run_sweep, unfinished
     from .table import read_table
@@ -143,17 +167,23 @@ def sweep(scene, vary: Mapping[str, Any] | Iterable[str] | str, *,
 
 
 class _StatusPrinter:
-    """One stderr line whenever the counts change (the command line's plain-text progress)."""
+    """`progress=True`: a bar of the points done (tqdm.auto: a notebook widget, or stderr), with
+    the ETA, the failed and running points and the workers running them."""
 
     def __init__(self):
-        self.last = None
+        self.bar = None
 
     def __call__(self, status) -> None:
-        from .console import status_line
+        from tqdm.auto import tqdm
 
-        line = status_line(status)
-        counts = (status.done, status.failed, status.running, status.lost_workers, status.retried)
-        if counts != self.last:
-            self.last = counts
-            print(f"sweep: {line}", file=sys.stderr, flush=True)
-
+        if self.bar is None:
+            self.bar = tqdm(total=status.total, desc="sweep", unit="point")
+        self.bar.n = status.done + status.failed
+        workers = ", ".join(f"{w.rsplit('/', 1)[-1]}: {n}" for w, n in sorted(status.running_on.items()))
+        self.bar.set_postfix_str(f"{status.failed} failed, {status.running} running"
+                                 + (f" on {workers}" if workers else "")
+                                 + (f", {status.resumed} from an earlier run" if status.resumed else "")
+                                 + (f"; last {status.last}" if status.last else ""), refresh=False)
+        self.bar.refresh()
+        if status.done + status.failed >= status.total:
+            self.bar.close()

@@ -67,6 +67,7 @@ class SweepStatus:
     last: str = ""  # label and outcome of the latest finished point
     lost_workers: int = 0  # workers that left the cluster during the sweep
     retried: int = 0  # points that were running on a lost worker and were started again
+    running_on: dict = dataclasses.field(default_factory=dict)  # worker address -> points it runs now
 
 
 def plan_sweep(scene, sets: list[str] | None = None, vary: list[str] | None = None, *,
@@ -141,7 +142,8 @@ def run_sweep(plan: SweepPlan, client, *, progress: Callable[[SweepStatus], None
             workers.poll({f.key for f in futures})
             if progress is not None:
                 status = _status(plan, records, futures, client, resumed, finished_now, t0, last)
-                progress(dataclasses.replace(status, lost_workers=workers.lost, retried=workers.retried))
+                progress(dataclasses.replace(status, lost_workers=workers.lost, retried=workers.retried,
+                                             running_on=workers.busy))
             if not futures:
                 break
             if time.perf_counter() - last_table > 15.0:  # partial table for long sweeps
@@ -169,6 +171,7 @@ class WorkerWatch:
 
     def __init__(self, client):
         self.client, self.lost, self.retried = client, 0, 0
+        self.busy: dict[str, int] = {}  # worker -> our points it runs now
         self._workers: set[str] | None = None
         self._running: dict[str, set] = {}
 
@@ -183,6 +186,7 @@ class WorkerWatch:
             self.lost += len(gone)
             self.retried += sum(len(self._running.get(w, set()) & keys) for w in gone)
         self._workers, self._running = workers, running
+        self.busy = {w: len(k) for w, k in running.items() if k}
 
 
 def _outcome(fut, req: PointRequest) -> dict:

@@ -57,9 +57,21 @@ def _positions(values: list[Any]) -> tuple[list[float], list[float] | None, list
 def plot_stability_map(rows: list[dict], varied: list[str], out: Path, *, map_x: str | None = None,
                        map_y: str | None = None, title: str = "") -> Path:
     """Draw the map of `rows` (results-table rows) into `out` (PNG) and return it."""
+    from ..figures import save_png
+
+    save_png(stability_map_figure(rows, varied, map_x=map_x, map_y=map_y, title=title), Path(out), dpi=120)
+    return Path(out)
+
+
+def stability_map_figure(rows: list[dict], varied: list[str], *, map_x: str | None = None,
+                         map_y: str | None = None, title: str = ""):
+    """The map as a Figure: a line plot over the one varied key, else the class map of two
+    keys (one panel per combination of the others)."""
+    if len(varied) == 1:
+        return line_figure(rows, varied[0], title)
     from matplotlib.patches import Patch
 
-    from ..figures import new_figure, save_png
+    from ..figures import new_figure
 
     x_key, y_key = map_axes(varied, map_x, map_y)
     others = [k for k in varied if k not in (x_key, y_key)]
@@ -82,8 +94,51 @@ def plot_stability_map(rows: list[dict], varied: list[str], out: Path, *, map_x:
     fig.legend(handles=handles, loc="lower center", ncol=ncol, frameon=False, fontsize=8)
     fig.suptitle(title or "cage stability map\n(contours: metal-contact fraction)", fontsize=10)
     fig.tight_layout(rect=(0, 0.045 * legend_rows / nrows + 0.02, 1, 0.95))
-    save_png(fig, Path(out), dpi=120)
-    return Path(out)
+    return fig
+
+
+def line_figure(rows: list[dict], key: str, title: str = ""):
+    """A sweep of one key: the metal-contact fraction and the mean eccentricity ratio against
+    it, each point's marker coloured by its cage class; a point too short to settle is drawn
+    hollow and says so."""
+    from matplotlib.lines import Line2D
+
+    from ..figures import new_figure
+
+    xs, xticks, xlabels = _positions([r.get(key) for r in rows])
+    fig = new_figure(figsize=(7.5, 4.4))
+    ax = fig.subplots()
+    eps_ax = ax.twinx()
+    order = sorted(range(len(rows)), key=xs.__getitem__)
+    for axis, column, style, label in ((ax, "cage_metal_contact_fraction", "-", "metal-contact fraction"),
+                                       (eps_ax, "cage_eps_mean", ":", "mean eccentricity ratio ε")):
+        points = [(xs[i], rows[i].get(column)) for i in order if rows[i].get(column) is not None]
+        if points:
+            axis.plot(*zip(*points), style, color="0.35", lw=1, zorder=1)
+        for i in order:
+            value, short = rows[i].get(column), rows[i].get("too_short_to_settle") in (True, "True")
+            if value is None:
+                continue
+            colour = CLASS_COLOURS.get(rows[i]["cage_class"], "#000000")
+            axis.plot(xs[i], value, "o" if column == "cage_metal_contact_fraction" else "s", ms=8,
+                      mfc="white" if short else colour, mec=colour, mew=1.5, zorder=2)
+        axis.set_ylabel(label)
+    ax.set_ylim(-0.05, 1.05)
+    eps_ax.set_ylim(0.0, max([1.2, *(float(r["cage_eps_mean"]) * 1.1 for r in rows if r.get("cage_eps_mean") is not None)]))
+    ax.set_xlabel(axis_label(key))
+    if xticks is not None:
+        ax.set_xticks(xticks, xlabels)
+    ax.grid(alpha=0.3)
+    present = list(dict.fromkeys(r["cage_class"] for r in rows))
+    handles = [Line2D([], [], ls="", marker="o", color=CLASS_COLOURS.get(c, "#000000"), label=CLASS_LABELS.get(c, c))
+               for c in present]
+    handles += [Line2D([], [], color="0.35", ls="-", label="metal-contact fraction (circles)"),
+                Line2D([], [], color="0.35", ls=":", label="mean ε (squares)")]
+    if any(r.get("too_short_to_settle") in (True, "True") for r in rows):
+        handles.append(Line2D([], [], ls="", marker="o", mfc="white", mec="k", label="too short to settle"))
+    ax.legend(handles=handles, fontsize=7, loc="upper left")
+    ax.set_title(title or f"cage over {key}", fontsize=10)
+    return fig
 
 
 def _freeze(value: Any) -> Any:

@@ -259,7 +259,8 @@ def test_a_ball_guided_cage_has_no_land_and_needs_spherical_pockets():
     from bearingsim.dynamics.bearing.params import IP_JOURNAL
 
     assert params.ip[IP_JOURNAL] == 0
-    assert params.guide_clearance == pytest.approx(0.5 * (scene.cage.pocket_diameter - scene.bearing.ball_diameter))
+    op = scene.operating
+    assert params.guide_clearance == pytest.approx(0.5 * (op.cage.pocket_diameter - op.bearing.ball_diameter))
     with pytest.raises(SceneError, match="cannot hold the cage radially"):
         bearingsim.load_scene("deep-groove-6205-ball-guided", ["cage.pocket_shape=cylindrical"])
 

@@ -265,8 +265,25 @@ def scenes(name: Annotated[Optional[str], typer.Argument(
 
 
 @app.command()
+def lubricants() -> None:
+    """List the built-in lubricants: viscosity at 40 and 100 °C, model, alpha*, source."""
+    from .libraries import print_lubricants
+
+    print_lubricants(out_console)
+
+
+@app.command()
+def materials() -> None:
+    """List the built-in materials (cage, ball, race) with their values and sources."""
+    from .libraries import print_materials
+
+    print_materials(out_console)
+
+
+@app.command()
 def check(scene: SceneArg, set_: SetOpt = None) -> None:
-    """Validate a scene and print it resolved, with units and the derived geometry."""
+    """Validate a scene and print it resolved, with units and the derived geometry; what simulate
+    and run would refuse comes first."""
     from .scene_tables import print_scene
 
     from ..stages.session import fe_findings
@@ -278,12 +295,12 @@ def check(scene: SceneArg, set_: SetOpt = None) -> None:
         _check_sweep_table(scene, set_)
     except SceneError as exc:
         _fail(EXIT_SCENE, f"scene: {explain(exc)}")
-    print_scene(resolved, out_console)
-    _print_findings(notes)
     refusals = [f for f in run_findings(resolved, {"simulate"}) if f.level == "error"]
     if refusals:
         err_console.print("note: simulate and run would refuse this scene: "
                           + escape("; ".join(f.text for f in refusals)), highlight=False, soft_wrap=True)
+    print_scene(resolved, out_console)
+    _print_findings(notes)
 
 
 def _check_sweep_table(scene: str, overrides) -> None:

@@ -340,10 +340,12 @@ def resolve_materials(table: Any, need_cage: bool) -> Materials:
     for key in ("ball", "race"):
         if key not in table:
             raise SceneError(f"materials.{key}", "required table is missing")
+    from .named_materials import resolve_material  # a name or a table (docs/scenes.md)
+
     return Materials(
-        ball=build(Material, table["ball"], "materials.ball"),
-        race=build(Material, table["race"], "materials.race"),
-        cage=build(Material, table["cage"], "materials.cage") if "cage" in table else None,
+        ball=resolve_material(table["ball"], "materials.ball", "ball"),
+        race=resolve_material(table["race"], "materials.race", "race"),
+        cage=resolve_material(table["cage"], "materials.cage", "cage") if "cage" in table else None,
     )
 
 

@@ -22,7 +22,7 @@ from bearingsim.dynamics.geometry import Material, effective_modulus
 from bearingsim.dynamics.journal.hybrid import J_E_EFF
 from bearingsim.dynamics.materials.library import builtin_material_names, load_builtin_material
 from bearingsim.pipeline.cli.commands import app
-from bearingsim.pipeline.scene.load import read_scene_table, resolve
+from bearingsim.pipeline.scene.load import apply_overrides, read_scene_table, resolve
 from bearingsim.pipeline.scene.schema import SceneError
 from bearingsim.pipeline.stages.simulate import model_params
 
@@ -101,6 +101,11 @@ def test_the_cage_mass_follows_the_named_density():
 def test_a_table_may_refine_a_named_material():
     scene = _scene(cage={"name": "pa66-gf25", "youngs_modulus": 5.5e9})
     assert scene.nominal.materials.cage == Material(5.5e9, 0.41, 1322.0, 44.5e-6)
+    # --set (and a sweep's --vary) refines a named entry the same way
+    table = copy.deepcopy(read_scene_table("helicopter-b-given-hinge")[0])
+    table["materials"]["cage"] = "pa66-gf25"
+    overridden = resolve(apply_overrides(table, ["materials.cage.youngs_modulus=5.5e9"]))
+    assert overridden.nominal.materials.cage == scene.nominal.materials.cage
 
 
 @pytest.mark.parametrize("value, key, words", [

@@ -302,6 +302,8 @@ def apply_overrides(table: dict, overrides: list[str]) -> dict:
         node = table
         for part in path[:-1]:
             nxt = node.setdefault(part, {})
+            if isinstance(nxt, str) and node is table.get("materials"):  # a built-in name: refine it
+                nxt = node[part] = {"name": nxt}
             if not isinstance(nxt, dict):
                 raise SceneError(".".join(path), f"--set: {part!r} is a value, not a table")
             node = nxt

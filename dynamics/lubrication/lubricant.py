@@ -2,7 +2,7 @@
 
 A `Lubricant` is a frozen dataclass with the unit and allowed range of every field in its
 metadata, so the scene loader can validate a `[lubricant]` table against it. Built-in sets
-live in `dynamics/data/<name>.toml`, each number with its source in a comment.
+live in `dynamics/lubrication/data/<name>.toml`, each number with its source in a comment.
 
 Model parameters are stored as given; `rheology_params()` packs them, at the operating
 temperature, into the contiguous float64 array the kernels of `dynamics.lubrication.rheology` take.
@@ -14,6 +14,7 @@ a WLF set, and `as_barus()` / `as_roelands()` to get the equivalent simpler mode
 from __future__ import annotations
 
 import dataclasses
+import math
 import tomllib
 from dataclasses import dataclass, field
 from importlib import resources
@@ -49,7 +50,8 @@ class Lubricant:
     )
     # Barus / Roelands (isothermal: values at temperature_degC)
     ambient_viscosity: float | None = field(
-        default=None, metadata={"unit": "Pa.s", "gt": 0.0, "doc": "eta0, barus/roelands only"}
+        default=None, metadata={"unit": "Pa.s", "gt": 0.0, "lt": rheology.GLASS_VISCOSITY,
+                                "doc": "eta0, barus/roelands only (roelands: above eta_inf = 6.31e-5 Pa.s)"}
     )
     pressure_viscosity_coefficient: float | None = field(
         default=None, metadata={"unit": "1/Pa", "ge": 0.0, "doc": "Barus alpha, barus only"}
@@ -66,6 +68,7 @@ class Lubricant:
     wlf_b1: float | None = field(default=None, metadata={"unit": "-", "ge": 0.0, "doc": "B1: F(p) = 1 - B1 ln(1 + B2 p)"})
     wlf_b2_per_Pa: float | None = field(default=None, metadata={"unit": "1/Pa", "ge": 0.0, "doc": "B2 of F(p)"})
     description: str = field(default="", metadata={"doc": "free text"})
+    source: str = field(default="", metadata={"doc": "where the set's numbers come from (free text; built-in sets cite theirs)"})
 
     def __post_init__(self) -> None:
         _validate(self)
@@ -107,6 +110,18 @@ class Lubricant:
     def alpha_star(self) -> float:
         """Approximate pressure-viscosity coefficient d ln eta/dp at p = 0 [1/Pa] (§6.4)."""
         return float(rheology.pressure_viscosity_coefficient(self.model_code, self.rheology_params()))
+
+    def glass_pressure(self, p_max: float = 1.0e11) -> float | None:
+        """The lowest pressure [Pa] at which eta(p) reaches the glass viscosity eta_g, above
+        which every model holds it there (`rheology`, docs/model.md §6.4); None when eta(p_max)
+        is still below eta_g. Bisection on the non-decreasing eta(p), to 1 kPa."""
+        if self.viscosity(p_max) < rheology.GLASS_VISCOSITY:
+            return None
+        lo, hi = 0.0, p_max
+        while hi - lo > 1.0e3:
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if self.viscosity(mid) < rheology.GLASS_VISCOSITY else (lo, mid)
+        return hi
 
     def density_at_temperature(self) -> float:
         """rho at the operating temperature [kg/m^3] (linear thermal law)."""
@@ -165,6 +180,12 @@ def _validate(lub: Lubricant) -> None:
                     f"{where}: {f.name} = {value!r} is out of range; allowed {sym} "
                     f"{f.metadata[key]} [{f.metadata.get('unit', '-')}]."
                 )
+    eta_inf = math.exp(rheology.ROELANDS_LN_ETA_INF)
+    if lub.viscosity_model == "roelands" and lub.ambient_viscosity <= eta_inf:
+        raise ValueError(
+            f"{where}: ambient_viscosity = {lub.ambient_viscosity!r} is at or below Roelands' eta_inf = "
+            f"{eta_inf:.3g} Pa.s, where his law makes the viscosity fall with pressure; allowed > "
+            f"{eta_inf:.3g} [Pa.s], or viscosity_model = 'barus'.")
     if lub.viscosity_model == "wlf" and lub.temperature_degC <= lub.wlf_tg0_degC:
         raise ValueError(
             f"{where}: temperature_degC = {lub.temperature_degC} is at or below the glass "
@@ -174,13 +195,13 @@ def _validate(lub: Lubricant) -> None:
 
 
 def builtin_lubricant_names() -> list[str]:
-    """Names of the lubricant data files shipped in dynamics/data (without .toml)."""
+    """Names of the lubricant data files shipped in dynamics/lubrication/data (without .toml)."""
     data = resources.files("bearingsim.dynamics.lubrication") / "data"
     return sorted(p.name[:-5] for p in data.iterdir() if p.name.endswith(".toml"))
 
 
 def load_builtin_lubricant(name: str) -> Lubricant:
-    """Read dynamics/data/<name>.toml into a Lubricant (validated)."""
+    """Read dynamics/lubrication/data/<name>.toml into a Lubricant (validated)."""
     names = builtin_lubricant_names()
     if name not in names:
         raise ValueError(
@@ -188,7 +209,7 @@ def load_builtin_lubricant(name: str) -> Lubricant:
             "Give the parameters explicitly in [lubricant] instead."
         )
     text = (resources.files("bearingsim.dynamics.lubrication") / "data" / f"{name}.toml").read_text(encoding="utf-8")
-    return lubricant_from_dict(tomllib.loads(text), source=f"dynamics/data/{name}.toml")
+    return lubricant_from_dict(tomllib.loads(text), source=f"dynamics/lubrication/data/{name}.toml")
 
 
 def lubricant_from_dict(table: dict, source: str = "[lubricant]") -> Lubricant:

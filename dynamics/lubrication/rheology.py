@@ -12,10 +12,17 @@ Three models, each a pure numba kernel in SI units (Pa, K, Pa.s):
 
 docs/model.md does not number the equations of §6.4; docstrings cite "§6.4" and the model name.
 
-Above the glass transition pressure (T <= T_g(p)) the WLF formula diverges at
-(T - T_g) F = -C2, and at very high pressure F(p) itself turns negative; the kernel clamps the
-viscosity at eta_g in both cases, which keeps eta(p) continuous and non-decreasing (the liquid is a glass and
-its traction is limited by the Eyring stress anyway). No kernel returns NaN for p >= 0.
+Every model holds the viscosity at the glass viscosity eta_g = 1e12 Pa.s once it reaches it
+(docs/model.md §6.4, *Glass viscosity*): no liquid is more viscous (the glass transition is where
+the viscosity passes about 1e12 Pa.s), no law fitted to liquid data says anything beyond it, and
+the cap keeps every eta(p) finite and far inside float32 (3.4e38), the precision of the traction
+engine's table. Barus' exponential would otherwise pass float32 near alpha p = 90 (4.5 GPa at
+alpha = 2e-8 1/Pa) and float64 near alpha p = 700, and Roelands' near (ln eta0 + 9.67)((1 +
+p/p_r)^z - 1) = 700. In the WLF law the glass is where T <= T_g(p), and where the empirical
+F(p) turns negative at very high pressure (there (T - T_g) F would turn positive again and eta
+would fall); it is held at eta_g in both cases. So eta(p) is continuous, non-decreasing and
+finite for every p >= 0 in every model (the Eyring stress limits the traction of a glass
+anyway), and no kernel returns NaN or overflows.
 
 The kernels dispatch on an integer model code so the traction quadrature can take any model
 through one signature: ``viscosity(p, model, params)`` with ``params`` packed by
@@ -39,6 +46,8 @@ MODEL_CODES = {"barus": MODEL_BARUS, "roelands": MODEL_ROELANDS, "wlf": MODEL_WL
 ROELANDS_PRESSURE = 1.96e8  # p_r [Pa], Roelands' universal reference pressure
 ROELANDS_LN_ETA_INF = -9.67  # ln(eta_inf / 1 Pa.s), eta_inf = 6.31e-5 Pa.s (Roelands 1966)
 WLF_LOG10_ETA_GLASS = 12.0  # log10(eta_g / 1 Pa.s): viscosity at the glass transition
+GLASS_VISCOSITY = 10.0**WLF_LOG10_ETA_GLASS  # eta_g [Pa.s]: every model is held there (module docstring)
+LN_GLASS_VISCOSITY = math.log(GLASS_VISCOSITY)
 
 # params layout (index constants keep the packing and the kernels in step)
 # barus:    [eta0, alpha]
@@ -48,17 +57,31 @@ WLF_LOG10_ETA_GLASS = 12.0  # log10(eta_g / 1 Pa.s): viscosity at the glass tran
 
 @numba.njit(**KERNEL)
 def viscosity_barus(p, eta0, alpha):
-    """Barus viscosity eta = eta0 exp(alpha p) [Pa.s] (docs/model.md §6.4, Barus). p [Pa], alpha [1/Pa]."""
-    return eta0 * math.exp(alpha * p)
+    """Barus viscosity eta = min(eta0 exp(alpha p), eta_g) [Pa.s] (docs/model.md §6.4, (M.69)).
+
+    p [Pa], eta0 [Pa.s], alpha [1/Pa]. The exponent is compared with ln(eta_g/eta0) before
+    exp is taken, so no pressure overflows.
+    """
+    exponent = alpha * p
+    if exponent >= LN_GLASS_VISCOSITY - math.log(eta0):
+        return GLASS_VISCOSITY
+    return eta0 * math.exp(exponent)
 
 
 @numba.njit(**KERNEL)
 def viscosity_roelands(p, eta0, z):
-    """Roelands viscosity [Pa.s] (docs/model.md §6.4, Roelands): ln(eta/eta0) = (ln eta0 + 9.67)((1+p/p_r)^z - 1).
+    """Roelands viscosity [Pa.s] (docs/model.md §6.4, (M.70)): ln(eta/eta0) = (ln eta0 + 9.67)((1+p/p_r)^z - 1),
+    held at eta_g above it.
 
-    p [Pa], eta0 [Pa.s] at ambient pressure and the operating temperature, z [-].
+    p [Pa], eta0 [Pa.s] at ambient pressure and the operating temperature (above
+    eta_inf = 6.31e-5 Pa.s, so that eta grows with p), z [-]. The exponent is compared with
+    ln(eta_g/eta0) before exp is taken, so no pressure overflows.
     """
-    return eta0 * math.exp((math.log(eta0) - ROELANDS_LN_ETA_INF) * ((1.0 + p / ROELANDS_PRESSURE) ** z - 1.0))
+    ln_eta0 = math.log(eta0)
+    exponent = (ln_eta0 - ROELANDS_LN_ETA_INF) * ((1.0 + p / ROELANDS_PRESSURE) ** z - 1.0)
+    if exponent >= LN_GLASS_VISCOSITY - ln_eta0:
+        return GLASS_VISCOSITY
+    return eta0 * math.exp(exponent)
 
 
 @numba.njit(**KERNEL)
@@ -66,14 +89,14 @@ def viscosity_wlf(p, T, Tg0, A1, A2, B1, B2, C1, C2):
     """Modified WLF (Yasutomi-Bair-Winer) viscosity eta(p, T) [Pa.s] (docs/model.md §6.4, modified WLF).
 
     p [Pa], T and Tg0 [K], A1 [K], A2 [1/Pa], B1 [-], B2 [1/Pa], C1 [-], C2 [K].
-    Clamped at eta_g = 1e12 Pa.s where the liquid is below its glass transition.
+    Held at eta_g = 1e12 Pa.s where the liquid is below its glass transition.
     """
     Tg = Tg0 + A1 * math.log1p(A2 * p)
     F = 1.0 - B1 * math.log1p(B2 * p)
     if T <= Tg or F <= 0.0:
         # glass (T below T_g(p)), or past the pressure where the empirical F(p) changes sign
         # (there (T - T_g) F would turn positive again and eta would fall): hold eta_g
-        return 10.0**WLF_LOG10_ETA_GLASS
+        return GLASS_VISCOSITY
     X = (T - Tg) * F
     return 10.0 ** (WLF_LOG10_ETA_GLASS - C1 * X / (C2 + X))
 

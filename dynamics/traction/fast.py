@@ -546,6 +546,13 @@ class FastTraction:
                 f"{far_ratio}), p_max = {p_max} Pa > 0, n_table = {n_table} >= 2.")
         p = np.linspace(0.0, p_max, n_table)
         eta = rheology.viscosity_array(p, lubricant.model_code, lubricant.rheology_params())
+        # the residual-only passes read a float32 copy: every law is held at eta_g = 1e12 Pa.s
+        # (`lubrication.rheology`), so this holds unless a law breaks that promise
+        if not np.all(np.isfinite(eta)) or eta.max() > rheology.GLASS_VISCOSITY or np.any(np.diff(eta) < 0.0):
+            raise ValueError(
+                f"lubricant '{lubricant.name}': its {lubricant.viscosity_model} viscosity is not finite, "
+                f"non-decreasing and at most {rheology.GLASS_VISCOSITY:g} Pa.s over 0 .. {p_max:g} Pa; "
+                "check lubricant.viscosity_model and its parameters (docs/model.md §6.4)")
         table = np.ascontiguousarray(np.stack([eta, np.append(np.diff(eta), 0.0)], axis=1))
         return cls(eta_table=table, p_step=float(p[1] - p[0]),
                    tau0=float(lubricant.eyring_stress), law_parameter=float(lubricant.eyring_stress),

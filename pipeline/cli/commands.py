@@ -266,6 +266,22 @@ def scenes(name: Annotated[Optional[str], typer.Argument(
 
 
 @app.command()
+def lubricants() -> None:
+    """List the built-in lubricants: viscosity at 40 and 100 °C, model, alpha*, source."""
+    from .libraries import print_lubricants
+
+    print_lubricants(out_console)
+
+
+@app.command()
+def materials() -> None:
+    """List the built-in materials (cage, ball, race) with their values and sources."""
+    from .libraries import print_materials
+
+    print_materials(out_console)
+
+
+@app.command()
 def check(scene: SceneArg, set_: SetOpt = None) -> None:
     """Validate a scene and print it resolved, with units and the derived geometry. Exit code 4:
     the scene is valid for the quasi-static stage, but simulate and run would refuse it (the

@@ -6,6 +6,7 @@ import dataclasses
 import math
 
 from rich.console import Console
+from rich.markup import escape
 from rich.table import Table
 
 from ..scene.load import Scene
@@ -75,6 +76,9 @@ def derived_geometry(scene: Scene) -> list[tuple[str, float, str]]:
             ("lubricant viscosity eta_0 at temperature", scene.lubricant.eta0 * 1e3, "mPa.s"),
             ("pressure-viscosity coefficient alpha*", scene.lubricant.alpha_star, "1/Pa"),
         ]
+        p_g = scene.lubricant.glass_pressure()
+        if p_g is not None:  # docs/model.md §6.4: every viscosity model is held at eta_g above it
+            rows.append(("pressure where eta reaches 1e12 Pa.s (held there above)", p_g * 1e-9, "GPa"))
     return rows
 
 
@@ -98,6 +102,11 @@ def print_scene(scene: Scene, console: Console) -> None:
         obj = getattr(scene, name)
         if obj is not None:
             _section(table, name, obj)
+        if name == "materials":
+            from ..scene.named_materials import material_rows
+
+            for row in material_rows(scene):
+                table.add_row(*(escape(text) for text in row))
     if scene.lubricant is not None:
         _section(table, "lubricant", scene.lubricant)
     if scene.fe is not None:

@@ -302,6 +302,8 @@ def apply_overrides(table: dict, overrides: list[str]) -> dict:
         node = table
         for part in path[:-1]:
             nxt = node.setdefault(part, {})
+            if isinstance(nxt, str) and node is table.get("materials"):  # a built-in name: refine it
+                nxt = node[part] = {"name": nxt}
             if not isinstance(nxt, dict):
                 raise SceneError(".".join(path), f"--set: {part!r} is a value, not a table")
             node = nxt
@@ -340,10 +342,12 @@ def resolve_materials(table: Any, need_cage: bool) -> Materials:
     for key in ("ball", "race"):
         if key not in table:
             raise SceneError(f"materials.{key}", "required table is missing")
+    from .named_materials import resolve_material  # a name or a table (docs/scenes.md)
+
     return Materials(
-        ball=build(Material, table["ball"], "materials.ball"),
-        race=build(Material, table["race"], "materials.race"),
-        cage=build(Material, table["cage"], "materials.cage") if "cage" in table else None,
+        ball=resolve_material(table["ball"], "materials.ball", "ball"),
+        race=resolve_material(table["race"], "materials.race", "race"),
+        cage=resolve_material(table["cage"], "materials.cage", "cage") if "cage" in table else None,
     )
 
 

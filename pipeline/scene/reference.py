@@ -51,12 +51,20 @@ def _sections():
         ("[cage]", CageGeometry, "Cylindrical pockets with radial axes; the cage is guided by the lands of "
                                  "the race named in `guidance`. Without `[cage]` no cage is modelled."),
         ("[materials.ball], [materials.race], [materials.cage]", Material,
-         "`[materials.cage]` is required with a `[cage]` table. Inline tables work: "
-         "`ball = { youngs_modulus = 208e9, poisson_ratio = 0.3, density = 7850 }`."),
+         "`[materials.cage]` is required with a `[cage]` table. Each entry is a table (inline tables work: "
+         "`ball = { youngs_modulus = 208e9, poisson_ratio = 0.3, density = 7850 }`), the name of a built-in "
+         "material (`cage = \"pa66-gf25\"`, *Built-in materials* below), or a table that starts from one "
+         "and refines it (`cage = { name = \"pa66-gf25\", youngs_modulus = 5.5e9 }`). The values serve "
+         "every model alike: the Hertz contacts (ball–race, ball–pocket and cage–land effective moduli, "
+         "docs/model.md §6.2, §7, §8), the masses and inertias, and the parts' thermal growth (§2.1). "
+         "`bearingsim check` names the built-in material each part uses and warns when a part runs "
+         "hotter than its material's continuous limit."),
         ("[lubricant]", Lubricant,
-         "`name = \"nato-o156\"` loads the built-in set (docs/model.md §6.4); any key given beside it "
-         "refines that set (e.g. `temperature_degC`, `eyring_stress`). Without a built-in name every "
-         "key without a default is required."),
+         "`name = \"nato-o156\"` loads a built-in set (*Built-in lubricants* below; docs/model.md §6.4); "
+         "any key given beside it refines that set (e.g. `temperature_degC`, `eyring_stress`). Without a "
+         "built-in name every key without a default is required. Every viscosity model is held at the "
+         "glass viscosity 1e12 Pa·s above the pressure where it reaches it (`bearingsim check` prints "
+         "that pressure)."),
         ("[thermal]", Thermal,
          "Operating geometry (docs/model.md §2.1): every length of a part grows by its material's "
          "`thermal_expansion` times its temperature rise over `reference_degC`; the screen, the quasi-static "
@@ -150,6 +158,42 @@ def tolerance_section() -> str:
     return "\n".join(rows) + "\n"
 
 
+def builtin_lubricants_section() -> str:
+    """The built-in lubricants, from their data files (dynamics/lubrication/data)."""
+    from ...dynamics.lubrication.lubricant import builtin_lubricant_names, load_builtin_lubricant
+
+    rows = ["## Built-in lubricants\n",
+            "`[lubricant] name = \"...\"` (`bearingsim lubricants` prints this table). Each data file "
+            "gives the source of every number; each is a modified-WLF set fitted to published "
+            "viscosities and pressure–viscosity coefficients (docs/model.md §6.4).\n",
+            "| name | what | η 40 °C [mPa·s] | η 100 °C [mPa·s] | α* 40 / 100 °C [1e-8 1/Pa] | sources |",
+            "| --- | --- | --- | --- | --- | --- |"]
+    for name in builtin_lubricant_names():
+        lub = load_builtin_lubricant(name)
+        cold, hot = lub.at_temperature(40.0), lub.at_temperature(100.0)
+        rows.append(f"| `{name}` | {_cell(lub.description)} | {cold.eta0 * 1e3:.3g} | {hot.eta0 * 1e3:.3g} | "
+                    f"{cold.alpha_star * 1e8:.3g} / {hot.alpha_star * 1e8:.3g} | {_cell(lub.source)} |")
+    return "\n".join(rows) + "\n"
+
+
+def builtin_materials_section() -> str:
+    """The built-in materials, from their data files (dynamics/materials/data)."""
+    from ...dynamics.materials.library import builtin_material_names, load_builtin_material
+
+    rows = ["## Built-in materials\n",
+            "`[materials] cage = \"...\"` (or `ball`, `race`; `bearingsim materials` prints this table). "
+            "\"max\" is the continuous operating temperature of the source, where one gives it.\n",
+            "| name | for | E [GPa] | ν | ρ [kg/m³] | α [1e-6/K] | max [°C] | what | sources |",
+            "| --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
+    for name in builtin_material_names():
+        m = load_builtin_material(name)
+        mat, t = m.material, m.max_temperature_degC
+        rows.append(f"| `{name}` | {', '.join(m.roles)} | {mat.youngs_modulus * 1e-9:.4g} | {mat.poisson_ratio:.3g} | "
+                    f"{mat.density:.4g} | {mat.thermal_expansion * 1e6:.3g} | {'—' if t is None else f'{t:g}'} | "
+                    f"{_cell(m.description)} | {_cell(m.source)} |")
+    return "\n".join(rows) + "\n"
+
+
 def render() -> str:
     sections, fe = _sections()
     parts = [INTRO]
@@ -159,6 +203,8 @@ def render() -> str:
             parts.append(note + "\n")
         parts.append(section_table(cls if cls is not None else fe()) + "\n")
     parts.append(tolerance_section())
+    parts.append(builtin_lubricants_section())
+    parts.append(builtin_materials_section())
     return "\n".join(parts)
 
 

@@ -114,6 +114,9 @@ def scene_findings(scene) -> list[Finding]:
     out += _cage_fit(drawn)
     out += _resources(scene)
     out += _plausibility(drawn)
+    from .named_materials import overheated_materials
+
+    out += [warning(key, message) for key, message in overheated_materials(scene)]
     return out
 
 
@@ -413,6 +416,9 @@ def _dynamics_findings(scene) -> list[Finding]:
                                      f"[m]; give it in [bearing], or run only the quasi-static stage, which "
                                      f"needs none of them (bearingsim quasistatic; stages=['quasistatic'] in Python)"))
     out += _land_overlap(scene)
+    if scene.physics.ehd_film and scene.lubricant is None:  # refused by stages.simulate.check_dynamic_physics
+        out.append(error("physics.ehd_film", "true needs a [lubricant] table (the film's viscosity); give one, or "
+                                             "remove the key (without a lubricant the film is off)"))
     if not scene.physics.centrifugal:
         out.append(error("physics.centrifugal",
                          "false acts only on the quasi-static solve: the dynamic model's inertia always carries "

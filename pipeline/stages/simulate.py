@@ -109,6 +109,27 @@ def compile_dynamic_kernels(scene: Scene, params, start) -> None:
     load_kernels(params, start, scene.solver)
 
 
+def _lubricant_cause(scene: Scene, exc: RuntimeError) -> RuntimeError:
+    """A Newton failure of a run whose film follows the Barus law, told as the lubricant's
+    (docs/model.md §6.4, *Barus at contact pressures*): eta0 exp(alpha p) puts 1e7-1e12 Pa.s over
+    most of a contact above about 1 GPa, where the Eyring traction acts as dry friction with no slip
+    scale; the same oil as Roelands (same eta0 and alpha*) runs, the solver keys do not help."""
+    from ...dynamics.multibody import IntegrationError
+
+    lub = scene.lubricant
+    if not isinstance(exc, IntegrationError) or lub is None or lub.viscosity_model != "barus" \
+            or not exc.reason.startswith("Newton"):
+        return exc
+    z = lub.as_roelands().roelands_z
+    # a reason of its own, so that `console.explain` keeps this hint instead of the solver's
+    return IntegrationError(exc.t, exc.h, f"with a Barus lubricant, {exc.reason[:1].lower()}{exc.reason[1:]}", (
+        f"the lubricant first: lubricant.viscosity_model = 'barus' gives eta0 exp(alpha p) = "
+        f"{lub.viscosity(1.0e9):.3g} Pa.s at 1 GPa and {lub.viscosity(1.5e9):.3g} Pa.s at 1.5 GPa, where the "
+        f"Eyring film traction acts as dry friction that Newton cannot follow; the solver keys do not help. Use "
+        f"lubricant.viscosity_model = 'roelands' with lubricant.roelands_z = {z:.3g} (the same eta0 and alpha*), "
+        f"or a built-in oil (lubricant.name; bearingsim lubricants)"))
+
+
 def compute(ctx: StageContext) -> dict:
     from ...dynamics.bearing import simulate_bearing
 
@@ -128,8 +149,11 @@ def compute(ctx: StageContext) -> dict:
         ctx.progress(f"t = {t * 1e3:7.2f} / {t_end * 1e3:.1f} ms, h = {h:.2e} s", t / t_end)
 
     # scene.solver is the integrator's own settings (HHTSettings) plus the run's duration
-    run = simulate_bearing(params, start, scene.solver, scene.solver.duration,
-                           scene.output.sample_interval, progress=progress)
+    try:
+        run = simulate_bearing(params, start, scene.solver, scene.solver.duration,
+                               scene.output.sample_interval, progress=progress)
+    except RuntimeError as exc:
+        raise _lubricant_cause(scene, exc) from exc
     run.stats["kernel_load_time"] += compile_seconds
     ctx.progress("writing results", 0.99)
     summary = write_simulation_results(ctx.out_dir, scene, params, start, run,

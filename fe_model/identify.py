@@ -24,6 +24,7 @@ per case: the independent cross-check.
 
 from __future__ import annotations
 
+import dataclasses
 import pathlib
 import time
 from dataclasses import dataclass, field
@@ -100,10 +101,18 @@ def _materials(config: FEConfig, ring: RingSeat) -> dict:
 
 
 def solve_perturbations(config: FEConfig, ring: RingSeat, cache_dir: pathlib.Path, progress: Progress,
-                        model: str = "axisymmetric") -> _Solved:
+                        model: str = "axisymmetric", refine: bool = False) -> _Solved:
     """Mesh (cached), assemble, factor once, solve every case, rigid-fit the responses.
-    model: "axisymmetric" (the meridian section, default) or "3d" (tetrahedra)."""
+    For the parametric housing, model: "axisymmetric" (the meridian section, default) or "3d"
+    (tetrahedra); `config.model = "mesh"` solves on the engineer's mesh instead
+    (fe_model.mesh_model). `refine`: a once-refined discretisation (the convergence check)."""
     config.validate(ring)
+    if config.model == "mesh":
+        from .mesh_model import solve_mesh_perturbations
+
+        return solve_mesh_perturbations(config, ring, progress, refine)
+    if refine:
+        config = dataclasses.replace(config, mesh_size=0.5 * config.mesh_size)
     if model == "axisymmetric":
         return _solve_axisymmetric(config, ring, cache_dir, progress)
     if model == "3d":
@@ -274,16 +283,40 @@ def identify_hinge(
             solved.write_case(path, pick)
             files[axis_name] = path.name
     solved.timings["write"] = time.perf_counter() - t0
+    meta = _meta(config, solved, fit, files)
+    if config.refinement_check:
+        progress("refine", 0.92)
+        t0 = time.perf_counter()
+        meta["refinement"] = refinement_change(config, ring, out_dir, fit, model)
+        solved.timings["refinement_check"] = time.perf_counter() - t0
     result = HingeIdentification(fit.H_u, fit.H_psi, fit, solved.mesh_stats, solved.timings, files)
-    write_hinge_toml(out_dir / "hinge.toml", fit.H_u, fit.H_psi, _meta(config, solved, fit, files))
+    write_hinge_toml(out_dir / "hinge.toml", fit.H_u, fit.H_psi, meta)
     files["hinge"] = "hinge.toml"
     progress("done", 1.0)
     return result
 
 
-def _meta(config: FEConfig, solved: _Solved, fit: HingeFit, files: dict) -> dict:
-    import dataclasses
+def refinement_change(config: FEConfig, ring: RingSeat, out_dir: pathlib.Path, fit: HingeFit,
+                      model: str = "axisymmetric") -> dict:
+    """The hinge on a once-refined discretisation and the relative change of each term
+    (refined - scene) / refined: an estimate of the scene's discretisation error."""
+    fine_solved = solve_perturbations(config, ring, out_dir, lambda stage, fraction: None, model, refine=True)
+    fine = fit_hinge(fine_solved.loads, fine_solved.responses, fine_solved.groups)
+    change = {name: float((value(fit) - value(fine)) / value(fine)) for name, value in HINGE_TERMS.items()}
+    return {"what": ("mesh_size halved" if config.model != "mesh" else "every tetrahedron split into eight"),
+            "dofs": int(fine_solved.mesh_stats["dofs"]),
+            "H_u_refined": fine.H_u.tolist(), "H_psi_refined": fine.H_psi.tolist(),
+            "relative_change": change, "largest_relative_change": float(max(abs(v) for v in change.values()))}
 
+
+HINGE_TERMS = {"H_u_xx": lambda f: f.H_u[0, 0], "H_u_yy": lambda f: f.H_u[1, 1], "H_u_zz": lambda f: f.H_u[2, 2],
+               "H_psi_x": lambda f: f.H_psi[0], "H_psi_y": lambda f: f.H_psi[1]}
+
+
+def _meta(config: FEConfig, solved: _Solved, fit: HingeFit, files: dict) -> dict:
+    config_table = dataclasses.asdict(config)
+    config_table["materials"] = {m.region: {"youngs_modulus": m.youngs_modulus, "poisson_ratio": m.poisson_ratio}
+                                 for m in config.materials}
     cases = [
         {"name": n, "load": l.tolist(), "displacement_m": r[:3].tolist(), "rotation_rad": r[3:].tolist()}
         for n, l, r in zip(solved.names, solved.loads, solved.responses)
@@ -304,6 +337,6 @@ def _meta(config: FEConfig, solved: _Solved, fit: HingeFit, files: dict) -> dict
         "mesh": solved.mesh_stats,
         "timings_s": solved.timings,
         "files": files,
-        "config": dataclasses.asdict(config),
+        "config": config_table,
         "cases": cases,
     }

@@ -144,12 +144,14 @@ def _check_seat(mesh, facets, key, config, ring, radii, meaning, warnings) -> tu
                                   "cylinder round it")
     lo, hi = (1.0 - SEAT_RADIUS_MARGIN) * radii[0], (1.0 + SEAT_RADIUS_MARGIN) * radii[1]
     if not lo <= r_mean <= hi:
-        ratio = r_mean / (0.5 * (radii[0] + radii[1]))
+        from .config import MESH_UNITS
+
+        fits = [u for u, f in MESH_UNITS.items() if lo <= r_mean / MESH_UNITS[unit] * f <= hi]
+        hint = (f"with fe.mesh_unit = {fits[0]!r} it would be {r_mean / MESH_UNITS[unit] * MESH_UNITS[fits[0]]:.4g} m, "
+                "on the ring" if fits else "no length unit puts it on the ring: is it the right region?")
         raise MeshInputError(key, f"{key} = {name!r} has radius {r_mean:.4g} m (coordinates read in "
                                   f"fe.mesh_unit = {unit!r}), but the ring sits at {radii[0]:.4g} to {radii[1]:.4g} m "
-                                  f"({meaning}): the ring is not on this seat ({ratio:.3g} times too "
-                                  f"{'large' if ratio > 1 else 'small'}); is fe.mesh_unit right, or is it the "
-                                  "right region?")
+                                  f"({meaning}): the ring is not on this seat; {hint}")
     if not ring.width / SEAT_LENGTH_RATIO <= length <= SEAT_LENGTH_RATIO * ring.width:
         warnings.append((key, f"{name!r} is {length:.4g} m long, the ring {ring.width:.4g} m wide "
                               "(bearing.width): check that the region is the seat of the ring"))

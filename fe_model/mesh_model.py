@@ -84,7 +84,15 @@ def solve_mesh_perturbations(config: FEConfig, ring, progress, refine: bool = Fa
     t0 = time.perf_counter()
     loads, groups, names = load_cases(config)
     U = np.zeros((model.n_dofs, len(names)))
-    U[free] = solver.solve((unit_loads @ loads.T)[free]).reshape(free.size, -1)
+    if solver.method == "amg":
+        # conjugate gradients from zero are homogeneous in the load (x_k(a b) = a x_k(b)), so a
+        # case is its magnitude times the unit case of its axis: one iterative solve per axis
+        axes = np.flatnonzero(np.abs(loads).sum(axis=0))
+        U_unit = np.zeros((model.n_dofs, 6))
+        U_unit[np.ix_(free, axes)] = solver.solve(unit_loads[free][:, axes]).reshape(free.size, -1)
+        U = U_unit @ loads.T
+    else:
+        U[free] = solver.solve((unit_loads @ loads.T)[free]).reshape(free.size, -1)
     solver_stats = _solver_stats(solver)
     solver.free()
     responses = (fit @ U).T
@@ -112,15 +120,31 @@ def solve_mesh_perturbations(config: FEConfig, ring, progress, refine: bool = Fa
 
 
 def _refined(mesh):
-    """Every tetrahedron split into eight (skfem's uniform refinement), regions kept. A
-    quadratic (curved) mesh is refined on its straight corner mesh: the check then measures
-    the discretisation, not the curvature of the file's edges."""
+    """Every tetrahedron split into eight (skfem's uniform refinement: the new vertices are
+    the edge midpoints, vertex n_vertices + edge), volume and surface regions kept (each facet
+    into its four children). A quadratic (curved) mesh is refined on its straight corner mesh:
+    the check then measures the discretisation, not the curvature of the file's edges."""
     from skfem import MeshTet1
 
-    if not isinstance(mesh, MeshTet1) or type(mesh) is not MeshTet1:
-        mesh = MeshTet1(mesh.p[:, : mesh.nvertices], mesh.t, _boundaries=mesh.boundaries,
-                        _subdomains=mesh.subdomains)
-    return mesh.refined()
+    from ..meshes.mesh_data import facet_lookup
+
+    base = MeshTet1(mesh.p[:, : mesh.nvertices], mesh.t[:4], _subdomains=mesh.subdomains)
+    fine = base.refined()
+    lookup = facet_lookup(fine.facets)
+    n = base.nvertices
+    facet_edges = {}
+    edges = {tuple(e): i for i, e in enumerate(np.sort(base.edges, axis=0).T.tolist())}
+    boundaries = {}
+    for name, facets in (mesh.boundaries or {}).items():
+        children = []
+        for f in np.asarray(facets):
+            a, b, c = base.facets[:, f]
+            if f not in facet_edges:
+                facet_edges[f] = [n + edges[tuple(sorted(pair))] for pair in ((a, b), (b, c), (c, a))]
+            ab, bc, ca = facet_edges[f]
+            children += [(a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca)]
+        boundaries[name] = np.array([lookup[tuple(sorted(t))] for t in children], dtype=np.int64)
+    return fine.with_boundaries(boundaries)
 
 
 def _solver_stats(solver) -> dict:

@@ -82,9 +82,15 @@ class AMGSolver:
         self._K = full_from_upper(K_upper)
         self.tolerance = tolerance
         self.max_iterations = max_iterations
+        # node blocks (3 x 3: the dofs are 3 node + component, clamps take whole nodes), so that
+        # aggregates are sets of nodes; evolution strength and energy-minimising prolongation
+        # hold the iterations near 50 on P2 tetrahedra with 1:100 moduli, where the classic
+        # settings (symmetric strength, Jacobi smoothing) take 150 (benchmarks/fe_mesh.py)
+        blocks = self._K.tobsr(blocksize=(3, 3)) if self._K.shape[0] % 3 == 0 else self._K
         self._hierarchy = pyamg.smoothed_aggregation_solver(
-            self._K, B=np.ascontiguousarray(near_nullspace), symmetry="symmetric",
-            strength=("symmetric", {"theta": 0.0}), max_coarse=500)
+            blocks, B=np.ascontiguousarray(near_nullspace), symmetry="symmetric",
+            strength=("evolution", {"k": 2, "proj_type": "D_A", "epsilon": 4.0}),
+            smooth=("energy", {"krylov": "cg", "maxiter": 2}), max_coarse=500)
         self._M = self._hierarchy.aspreconditioner(cycle="V")
         self.iterations: list[int] = []
         self.residuals: list[float] = []

@@ -85,7 +85,7 @@ class FEConfig:
         choices=("auto", "pardiso", "splu", "amg"),
     )
     direct_max_dofs: int = _f(
-        150_000, "-", "linear_solver = auto: the largest system (free dofs) given to a direct solver",
+        100_000, "-", "linear_solver = auto: the largest system (free dofs) given to a direct solver",
         ge=0)
     iterative_tolerance: float = _f(
         1e-10, "-", "linear_solver = amg: relative residual at which conjugate gradients stop",

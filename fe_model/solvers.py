@@ -138,7 +138,7 @@ class AMGSolver:
 
 
 def spd_solver(K_upper: sp.csr_matrix, method: str, near_nullspace=None, tolerance: float = 1e-10,
-               direct_max_dofs: int = 150_000):
+               direct_max_dofs: int = 100_000):
     """The solver `method` names ("auto", "pardiso", "splu", "amg") for the upper triangle
     `K_upper`: "auto" is a direct solver up to `direct_max_dofs` unknowns and AMG beyond
     (`near_nullspace` is needed for AMG: a callable giving the (n, 6) rigid-body modes)."""

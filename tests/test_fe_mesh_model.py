@@ -218,87 +218,27 @@ def axisymmetric_assembly_as_mesh(tmp_path, mesh_size: float, edge_refinement: f
 
 
 def test_mesh_of_the_axisymmetric_assembly_is_near_the_axisymmetric_hinge(tmp_path):
-    """A coarse uniform 3-D mesh (P2, ~40k dofs) is within a few per cent of the default
-    axisymmetric hinge; the documented tolerance is the slow test's (docs/validation.md)."""
+    """A coarse uniform 3-D mesh (0.03 m, P2, ~40k dofs) against the default axisymmetric hinge
+    (itself within 0.04 % of its converged value, docs/model.md §3). Tetrahedra converge from the
+    stiff side; the radial and bending terms are within 1 % already, the axial one, governed by
+    the singular stresses at the support edges, within 12 %. The documented tolerance holds on
+    the graded mesh of the slow test below (docs/validation.md §14)."""
     axi, _ = hinge(FEConfig(), tmp_path)
     mesh, _ = hinge(axisymmetric_assembly_as_mesh(tmp_path, 0.03, 1.0), tmp_path)
     a, m = np.r_[np.diag(axi.H_u), axi.H_psi], np.r_[np.diag(mesh.H_u), mesh.H_psi]
-    assert np.all(np.abs(m / a - 1.0) < 0.08), m / a - 1.0
+    excess = m / a - 1.0
+    assert np.all(excess > 0.0), excess
+    assert np.all(excess[[0, 1, 3, 4]] < 0.015) and excess[2] < 0.15, excess
 
 
-# --- the scene: mesh_file resolution, the other model's keys, the stage key -----------------------
-SCENE_FE = """
-[fe]
-model = "mesh"
-mesh_file = "{mesh}"
-
-[fe.materials]
-shaft = {{ youngs_modulus = 208e9, poisson_ratio = 0.3 }}
-support_a = {{ youngs_modulus = 2.195e9, poisson_ratio = 0.0 }}
-support_b = {{ youngs_modulus = 2.195e9, poisson_ratio = 0.0 }}
-housing = {{ youngs_modulus = 71e9, poisson_ratio = 0.33 }}
-"""
-
-
-def scene_text(mesh: str) -> str:
-    from bearingsim.pipeline.scene.load import builtin_scene_text
-
-    base = builtin_scene_text("helicopter-b")
-    return base.replace("[fe]\n", SCENE_FE.format(mesh=mesh).strip() + "\n")
-
-
-def test_relative_mesh_file_is_relative_to_the_scene_file_and_the_key_follows_content(feet_msh, tmp_path):
-    import shutil
-
-    from bearingsim.pipeline.scene.load import load_scene
-    from bearingsim.pipeline.stages.identify import identify_inputs
-
-    (tmp_path / "a").mkdir()
-    (tmp_path / "b").mkdir()
-    for folder in ("a", "b"):
-        shutil.copy(feet_msh, tmp_path / folder / "housing.msh")
-        (tmp_path / folder / "scene.toml").write_text(scene_text("housing.msh"))
-    a, b = load_scene(tmp_path / "a" / "scene.toml"), load_scene(tmp_path / "b" / "scene.toml")
-    assert a.fe.mesh_file == str(tmp_path / "a" / "housing.msh") and a.raw["fe"]["mesh_file"] == a.fe.mesh_file
-    assert identify_inputs(a) == identify_inputs(b)  # same content elsewhere: the same identification
-    (tmp_path / "b" / "housing.msh").write_bytes(b"x" + (tmp_path / "b" / "housing.msh").read_bytes())
-    assert identify_inputs(a) != identify_inputs(b)
-
-
-def test_a_key_of_the_other_model_is_refused(tmp_path):
-    from bearingsim.pipeline.scene.load import load_scene
-    from bearingsim.pipeline.scene.schema import SceneError
-
-    (tmp_path / "s.toml").write_text(scene_text("/nowhere/housing.msh"))
-    with pytest.raises(SceneError) as err:
-        load_scene(tmp_path / "s.toml", ["fe.mesh_size=0.01"])
-    assert err.value.key == "fe.mesh_size" and "'axisymmetric'" in str(err.value)
-    with pytest.raises(SceneError) as err:
-        load_scene("helicopter-b", ["fe.inner_seat=seat"])
-    assert err.value.key == "fe.inner_seat"
-    with pytest.raises(SceneError) as err:
-        load_scene(tmp_path / "s.toml", ["fe.materials.housing.youngs_modulus=-1"])
-    assert err.value.key == "fe.materials.housing.youngs_modulus"
-
-
-def test_the_built_in_example_names_its_mesh_in_the_mesh_cache(monkeypatch, tmp_path):
-    from bearingsim.pipeline.scene.load import load_scene
-    from bearingsim.pipeline.scene.mesh_files import ensure_example, mesh_identity
-
-    monkeypatch.setenv("BEARINGSIM_MESH_CACHE", str(tmp_path))
-    scene = load_scene("housing-feet")
-    assert scene.fe.mesh_file.startswith(str(tmp_path)) and scene.fe.model == "mesh"
-    assert mesh_identity(scene.fe.mesh_file) == {"example": scene.fe.mesh_file.rsplit("/", 1)[1]}
-    assert ensure_example(scene.fe.mesh_file) and not ensure_example(scene.fe.mesh_file)  # written once
-    assert read_mesh(scene.fe.mesh_file).quadratic
-
-
-def test_a_bad_mesh_through_the_stage_is_a_scene_error_and_writes_nothing(feet_msh, tmp_path):
-    import bearingsim
-
-    (tmp_path / "s.toml").write_text(scene_text(str(feet_msh)))
-    scene = bearingsim.load_scene(tmp_path / "s.toml", ["fe.inner_seat=bore", "fe.element_order=1"])
-    with pytest.raises(bearingsim.SceneError) as err:
-        bearingsim.run(scene, tmp_path / "run", stages=["identify"])
-    assert err.value.key == "fe.inner_seat" and "'bore'" in str(err.value)
-    assert not (tmp_path / "run" / "identify").exists()
+@pytest.mark.slow
+def test_graded_mesh_of_the_axisymmetric_assembly_agrees_within_the_documented_tolerance(tmp_path):
+    """The earlier 3-D default mesh (0.03 m graded 0.25 to the edges, P2, ~480k dofs: AMG + CG)
+    read as a user's mesh agrees with the axisymmetric hinge within 1.5 % on every term
+    (docs/validation.md §14: measured +0.63, +0.48, +1.23, -0.97, -0.91 %)."""
+    axi, _ = hinge(FEConfig(), tmp_path)
+    mesh, solved = hinge(dataclasses.replace(axisymmetric_assembly_as_mesh(tmp_path, 0.03, 0.25),
+                                             linear_solver="auto"), tmp_path)
+    assert solved.mesh_stats["linear_solver"] == "amg"
+    a, m = np.r_[np.diag(axi.H_u), axi.H_psi], np.r_[np.diag(mesh.H_u), mesh.H_psi]
+    assert np.all(np.abs(m / a - 1.0) < 0.015), m / a - 1.0

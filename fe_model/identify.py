@@ -33,6 +33,7 @@ from typing import Callable
 import numpy as np
 
 from .config import FEConfig
+from .cases import LOAD_AXES, _Solved, load_cases  # noqa: F401  (load_cases: public here too)
 from .hinge_fit import HingeFit, fit_hinge
 from .loads import RegionMoments, distributed_load_matrix, rigid_fit_operator
 from .solvers import SPDFactorization
@@ -40,7 +41,6 @@ from ..meshes import RingSeat, cached_housing_mesh
 
 Progress = Callable[[str, float], None]
 MATERIAL_IDS = {"shaft": 1, "inner_ring": 2, "support_a": 3, "support_b": 3, "housing": 4}
-LOAD_AXES = (("fx", 0), ("fy", 1), ("fz", 2), ("mx", 3), ("my", 4))
 
 
 @dataclass
@@ -65,32 +65,6 @@ class HingeIdentification:
     @property
     def coupling(self) -> dict:
         return self.fit.coupling
-
-
-@dataclass
-class _Solved:
-    loads: np.ndarray  # (n, 6)
-    responses: np.ndarray  # (n, 6)
-    groups: np.ndarray  # (n,) magnitude index
-    names: list
-    mesh_stats: dict
-    timings: dict
-    write_case: Callable[[pathlib.Path, int], None]  # .vtu of case k
-    displacements: np.ndarray | None = None  # (3N, n), 3-D model only
-
-
-def load_cases(config: FEConfig) -> tuple[np.ndarray, np.ndarray, list[str]]:
-    """All perturbation cases: (n, 6) loads [N, N*m], magnitude-set label, case names."""
-    loads, groups, names = [], [], []
-    for axis_name, axis in LOAD_AXES:
-        values = config.perturbation_forces if axis < 3 else config.perturbation_moments
-        for k, value in enumerate(values):
-            row = np.zeros(6)
-            row[axis] = value
-            loads.append(row)
-            groups.append(k)
-            names.append(f"{axis_name}_{value:+g}")
-    return np.array(loads), np.array(groups), names
 
 
 def _materials(config: FEConfig, ring: RingSeat) -> dict:

@@ -33,7 +33,7 @@ def solve_mesh_perturbations(config: FEConfig, ring, progress, refine: bool = Fa
     from skfem import FacetBasis
 
     from .elasticity import ElasticModel
-    from .identify import _Solved, load_cases
+    from .cases import _Solved, load_cases
     from ..meshes.imported import MeshReadError, read_mesh
 
     timings = {}

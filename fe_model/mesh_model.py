@@ -108,8 +108,8 @@ def solve_mesh_perturbations(config: FEConfig, ring, progress, refine: bool = Fa
              "seats": regions.seats,
              "warnings": [{"key": k, "message": m} for k, m in regions.warnings], **solver_stats}
     material = np.zeros(mesh.nelements, dtype=np.int32)
-    for k, m in enumerate(config.materials):
-        material[mesh.subdomains[m.region]] = k + 1
+    for index, region in enumerate(config.materials):
+        material[mesh.subdomains[region.region]] = index + 1
 
     def write_case(path_out: pathlib.Path, k: int) -> None:
         from .artefacts import write_case_vtu

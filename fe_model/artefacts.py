@@ -93,19 +93,17 @@ def von_mises(model, u: np.ndarray) -> np.ndarray:
     return np.sqrt(1.5 * np.einsum("ije,ije->e", dev, dev))
 
 
-def write_case_vtu(path: pathlib.Path, model, u: np.ndarray, material_id: np.ndarray) -> None:
+def write_case_vtu(path: pathlib.Path, model, u: np.ndarray, material_id: np.ndarray,
+                   field_data: dict | None = None) -> None:
     """One load case of the 3-D model: quadratic (or linear) tetrahedra, point displacement,
-    cell stress."""
-    mesh = model.mesh
+    cell stress; `field_data` (name -> numbers) for ParaView and the renders."""
+    basis = model.basis
     U = u.reshape(-1, 3)
-    if model.basis.elem.__class__.__name__ == "ElementTetP2":
-        # skfem's local edge order (01, 12, 02, 03, 13, 23) is VTK's tetra10 order
-        points = np.vstack([mesh.p.T, 0.5 * (mesh.p[:, mesh.edges[0]] + mesh.p[:, mesh.edges[1]]).T])
-        cells = ("tetra10", np.vstack([mesh.t, mesh.nvertices + mesh.t2e]).T)
-    else:
-        points, cells = mesh.p.T, ("tetra", mesh.t.T)
-    write_vtu(path, points, cells, {"displacement": U[: points.shape[0]]},
-              {"von_mises": von_mises(model, u), "material": material_id})
+    # the dofs are the nodes: P1 the vertices; P2 the vertices, then one node per edge, skfem's
+    # local edge order (01, 12, 02, 03, 13, 23) being VTK's tetra10 order (curved edges included)
+    cell_type = "tetra10" if basis.elem.__class__.__name__ == "ElementTetP2" else "tetra"
+    write_vtu(path, basis.doflocs.T, (cell_type, basis.element_dofs.T), {"displacement": U},
+              {"von_mises": von_mises(model, u), "material": material_id}, field_data=field_data)
 
 
 # Volume .vtu of the axisymmetric model: a uniform section mesh of VIEW_WALL_FRACTION x the
@@ -166,7 +164,7 @@ def write_revolved_case_vtu(path: pathlib.Path, view: RevolvedView, load: np.nda
 
 
 def write_vtu(path: pathlib.Path, points, cells: tuple[str, np.ndarray], point_data: dict, cell_data: dict,
-              compression: str | None = "zlib") -> None:
+              compression: str | None = "zlib", field_data: dict | None = None) -> None:
     """A volume .vtu, written atomically (temp file in the same directory, then rename).
     Real arrays are stored as float32 (7 digits: plenty for ParaView and the renders; half
     the bytes), connectivity as int32."""
@@ -178,7 +176,8 @@ def write_vtu(path: pathlib.Path, points, cells: tuple[str, np.ndarray], point_d
 
     out = meshio.Mesh(compact(points), [(cells[0], compact(cells[1]))],
                       point_data={k: compact(v) for k, v in point_data.items()},
-                      cell_data={k: [compact(v)] for k, v in cell_data.items()})
+                      cell_data={k: [compact(v)] for k, v in cell_data.items()},
+                      field_data={k: np.atleast_1d(np.asarray(v, dtype=float)) for k, v in (field_data or {}).items()})
     path = pathlib.Path(path)
     fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=path.name, suffix=".tmp.vtu")
     os.close(fd)

@@ -24,6 +24,7 @@ per case: the independent cross-check.
 
 from __future__ import annotations
 
+import dataclasses
 import pathlib
 import time
 from dataclasses import dataclass, field
@@ -32,6 +33,7 @@ from typing import Callable
 import numpy as np
 
 from .config import FEConfig
+from .cases import LOAD_AXES, _Solved, load_cases  # noqa: F401  (load_cases: public here too)
 from .hinge_fit import HingeFit, fit_hinge
 from .loads import RegionMoments, distributed_load_matrix, rigid_fit_operator
 from .solvers import SPDFactorization
@@ -39,7 +41,6 @@ from ..meshes import RingSeat, cached_housing_mesh
 
 Progress = Callable[[str, float], None]
 MATERIAL_IDS = {"shaft": 1, "inner_ring": 2, "support_a": 3, "support_b": 3, "housing": 4}
-LOAD_AXES = (("fx", 0), ("fy", 1), ("fz", 2), ("mx", 3), ("my", 4))
 
 
 @dataclass
@@ -66,32 +67,6 @@ class HingeIdentification:
         return self.fit.coupling
 
 
-@dataclass
-class _Solved:
-    loads: np.ndarray  # (n, 6)
-    responses: np.ndarray  # (n, 6)
-    groups: np.ndarray  # (n,) magnitude index
-    names: list
-    mesh_stats: dict
-    timings: dict
-    write_case: Callable[[pathlib.Path, int], None]  # .vtu of case k
-    displacements: np.ndarray | None = None  # (3N, n), 3-D model only
-
-
-def load_cases(config: FEConfig) -> tuple[np.ndarray, np.ndarray, list[str]]:
-    """All perturbation cases: (n, 6) loads [N, N*m], magnitude-set label, case names."""
-    loads, groups, names = [], [], []
-    for axis_name, axis in LOAD_AXES:
-        values = config.perturbation_forces if axis < 3 else config.perturbation_moments
-        for k, value in enumerate(values):
-            row = np.zeros(6)
-            row[axis] = value
-            loads.append(row)
-            groups.append(k)
-            names.append(f"{axis_name}_{value:+g}")
-    return np.array(loads), np.array(groups), names
-
-
 def _materials(config: FEConfig, ring: RingSeat) -> dict:
     steel = (config.shaft_youngs_modulus, config.shaft_poisson_ratio)
     support = (config.support_modulus(ring), 0.0)
@@ -100,10 +75,18 @@ def _materials(config: FEConfig, ring: RingSeat) -> dict:
 
 
 def solve_perturbations(config: FEConfig, ring: RingSeat, cache_dir: pathlib.Path, progress: Progress,
-                        model: str = "axisymmetric") -> _Solved:
+                        model: str = "axisymmetric", refine: bool = False) -> _Solved:
     """Mesh (cached), assemble, factor once, solve every case, rigid-fit the responses.
-    model: "axisymmetric" (the meridian section, default) or "3d" (tetrahedra)."""
+    For the parametric housing, model: "axisymmetric" (the meridian section, default) or "3d"
+    (tetrahedra); `config.model = "mesh"` solves on the engineer's mesh instead
+    (fe_model.mesh_model). `refine`: a once-refined discretisation (the convergence check)."""
     config.validate(ring)
+    if config.model == "mesh":
+        from .mesh_model import solve_mesh_perturbations
+
+        return solve_mesh_perturbations(config, ring, progress, refine)
+    if refine:
+        config = dataclasses.replace(config, mesh_size=0.5 * config.mesh_size)
     if model == "axisymmetric":
         return _solve_axisymmetric(config, ring, cache_dir, progress)
     if model == "3d":
@@ -274,16 +257,40 @@ def identify_hinge(
             solved.write_case(path, pick)
             files[axis_name] = path.name
     solved.timings["write"] = time.perf_counter() - t0
+    meta = _meta(config, solved, fit, files)
+    if config.refinement_check:
+        progress("refine", 0.92)
+        t0 = time.perf_counter()
+        meta["refinement"] = refinement_change(config, ring, out_dir, fit, model)
+        solved.timings["refinement_check"] = time.perf_counter() - t0
     result = HingeIdentification(fit.H_u, fit.H_psi, fit, solved.mesh_stats, solved.timings, files)
-    write_hinge_toml(out_dir / "hinge.toml", fit.H_u, fit.H_psi, _meta(config, solved, fit, files))
+    write_hinge_toml(out_dir / "hinge.toml", fit.H_u, fit.H_psi, meta)
     files["hinge"] = "hinge.toml"
     progress("done", 1.0)
     return result
 
 
-def _meta(config: FEConfig, solved: _Solved, fit: HingeFit, files: dict) -> dict:
-    import dataclasses
+def refinement_change(config: FEConfig, ring: RingSeat, out_dir: pathlib.Path, fit: HingeFit,
+                      model: str = "axisymmetric") -> dict:
+    """The hinge on a once-refined discretisation and the relative change of each term
+    (refined - scene) / refined: an estimate of the scene's discretisation error."""
+    fine_solved = solve_perturbations(config, ring, out_dir, lambda stage, fraction: None, model, refine=True)
+    fine = fit_hinge(fine_solved.loads, fine_solved.responses, fine_solved.groups)
+    change = {name: float((value(fit) - value(fine)) / value(fine)) for name, value in HINGE_TERMS.items()}
+    return {"what": ("mesh_size halved" if config.model != "mesh" else "every tetrahedron split into eight"),
+            "dofs": int(fine_solved.mesh_stats["dofs"]),
+            "H_u_refined": fine.H_u.tolist(), "H_psi_refined": fine.H_psi.tolist(),
+            "relative_change": change, "largest_relative_change": float(max(abs(v) for v in change.values()))}
 
+
+HINGE_TERMS = {"H_u_xx": lambda f: f.H_u[0, 0], "H_u_yy": lambda f: f.H_u[1, 1], "H_u_zz": lambda f: f.H_u[2, 2],
+               "H_psi_x": lambda f: f.H_psi[0], "H_psi_y": lambda f: f.H_psi[1]}
+
+
+def _meta(config: FEConfig, solved: _Solved, fit: HingeFit, files: dict) -> dict:
+    config_table = dataclasses.asdict(config)
+    config_table["materials"] = {m.region: {"youngs_modulus": m.youngs_modulus, "poisson_ratio": m.poisson_ratio}
+                                 for m in config.materials}
     cases = [
         {"name": n, "load": l.tolist(), "displacement_m": r[:3].tolist(), "rotation_rad": r[3:].tolist()}
         for n, l, r in zip(solved.names, solved.loads, solved.responses)
@@ -304,6 +311,6 @@ def _meta(config: FEConfig, solved: _Solved, fit: HingeFit, files: dict) -> dict
         "mesh": solved.mesh_stats,
         "timings_s": solved.timings,
         "files": files,
-        "config": dataclasses.asdict(config),
+        "config": config_table,
         "cases": cases,
     }

@@ -93,11 +93,14 @@ class HousingGeometry:
         return 0.5 * self.ring.outer_outside_diameter
 
 
-def build_housing_mesh(geometry: HousingGeometry, mesh_size: float, edge_refinement: float = 1.0) -> MeshData:
+def build_housing_mesh(geometry: HousingGeometry, mesh_size: float, edge_refinement: float = 1.0,
+                       msh_file=None) -> MeshData:
     """Mesh the assembly with linear tetrahedra of characteristic size `mesh_size` [m],
     graded to `edge_refinement * mesh_size` at the circular edges (1 = uniform) and to
     SINGULAR_EDGE_FACTOR times that at the edges whose singular stresses dominate the
-    axial hinge stiffness (`_singular_curves`)."""
+    axial hinge stiffness (`_singular_curves`). `msh_file`: also write the mesh there as Gmsh
+    .msh 4.1 with its physical groups (the 3-D mesh of this geometry as a user's mesh file,
+    for `[fe] model = "mesh"`: docs/validation.md)."""
     with gmsh_session("housing") as gmsh:
         parts = _add_parts(gmsh, geometry)
         tags = [dimtag for dimtags in parts.values() for dimtag in dimtags]
@@ -119,6 +122,9 @@ def build_housing_mesh(geometry: HousingGeometry, mesh_size: float, edge_refinem
                 (_singular_curves(gmsh, geometry), SINGULAR_EDGE_FACTOR * edge_refinement),
             ], reach=EDGE_REACH)
         gmsh.model.mesh.generate(3)
+        if msh_file is not None:
+            gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
+            gmsh.write(str(msh_file))
         return extract_mesh(gmsh)
 
 

@@ -108,3 +108,17 @@ def load_grouped_mesh(path, cells_name: str):
         volumes = {k.split(":", 1)[1]: data[k] for k in data.files if k.startswith("volume:")}
         surfaces = {k.split(":", 1)[1]: data[k] for k in data.files if k.startswith("surface:")}
         return data["points"], data[cells_name], volumes, surfaces
+
+
+def atomic_write_text(path, text: str) -> None:
+    """Write `text` (UTF-8) atomically to `path`: a temporary file in the same directory, then
+    a rename."""
+    path = pathlib.Path(path)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(text)
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)

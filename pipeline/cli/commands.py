@@ -440,9 +440,18 @@ def stiffness(scene: SceneArg,
                       highlight=False, markup=False)
 
 
+RefineOpt = Annotated[bool, typer.Option(
+    "--refine", help="Also identify on a once-refined discretisation (mesh_size halved; a mesh: every "
+                     "tetrahedron split into eight) and report the change of H: the same as "
+                     "--set fe.refinement_check=true.")]
+
+
 @app.command()
-def identify(scene: SceneArg, out: OutOpt = None, set_: SetOpt = None, no_store: NoStoreOpt = False) -> None:
+def identify(scene: SceneArg, out: OutOpt = None, set_: SetOpt = None, no_store: NoStoreOpt = False,
+             refine: RefineOpt = False) -> None:
     """Rerun only the FE hinge identification stage (its cache is ignored)."""
+    if refine:
+        set_ = [*(set_ or []), "fe.refinement_check=true"]
     try:
         resolved = _load(scene, set_)
     except SceneError as exc:
@@ -450,7 +459,20 @@ def identify(scene: SceneArg, out: OutOpt = None, set_: SetOpt = None, no_store:
     if resolved.hinge.source != "fe":
         _fail(EXIT_SCENE, f"scene: hinge.source: is {resolved.hinge.source!r}; identification runs only "
                           "for hinge.source = 'fe' (try --set hinge.source=fe)")
-    _pipeline(scene, set_, out, ["identify"], {"identify"}, shared=not no_store)
+    _, run_dir, _ = _pipeline(scene, set_, out, ["identify"], {"identify"}, shared=not no_store)
+    if refine:
+        _print_refinement(run_dir / "identify" / "hinge.toml")
+
+
+def _print_refinement(hinge_file: Path) -> None:
+    """The change of each hinge term on the refined discretisation, on stdout."""
+    import tomllib
+
+    refinement = tomllib.loads(hinge_file.read_text(encoding="utf-8")).get("refinement", {})
+    changes = refinement.get("relative_change", {})
+    out_console.print(f"refinement ({refinement.get('what')}, {refinement.get('dofs')} dofs): change of H "
+                      "(scene - refined) / refined: " + ", ".join(f"{k} {v:+.3%}" for k, v in changes.items()),
+                      highlight=False, soft_wrap=True, markup=False)
 
 
 @app.command()

@@ -30,17 +30,24 @@ def _fixed(value: float, digits: int) -> str:
     return f"{round(value, digits) + 0.0:.{digits}f}"
 
 
-def _section(table: Table, title: str, obj) -> None:
+def _section(table: Table, title: str, obj, skip: tuple[str, ...] = ()) -> None:
     table.add_row(f"[bold]\\[{title}][/]", "", "")
+    tables = []  # [fe.materials.<region>], after the section's own keys
     for f in dataclasses.fields(obj):
         value = getattr(obj, f.name)
-        if dataclasses.is_dataclass(value):
+        if f.name in skip:
+            continue
+        if isinstance(value, tuple) and value and all(hasattr(v, "region") for v in value):
+            tables += [(f"{title}.{f.name}.{item.region}", item) for item in value]
+        elif dataclasses.is_dataclass(value):
             _section(table, f"{title}.{f.name}", value)
         else:
             shown = _fmt(value) if value is not None else "—"
             if value is None and f.name == "thermal_expansion":
                 shown = "default (\\[thermal] below)"
             table.add_row(f"  {f.name}", shown, _unit(f))
+    for name, item in tables:
+        _section(table, name, item, skip=("region",))
 
 
 def derived_geometry(scene: Scene) -> list[tuple[str, float, str]]:
@@ -110,7 +117,9 @@ def print_scene(scene: Scene, console: Console) -> None:
     if scene.lubricant is not None:
         _section(table, "lubricant", scene.lubricant)
     if scene.fe is not None:
-        _section(table, "fe", scene.fe)
+        from ...fe_model.config import AXISYMMETRIC_KEYS, MESH_KEYS
+
+        _section(table, "fe", scene.fe, skip=AXISYMMETRIC_KEYS if scene.fe.model == "mesh" else MESH_KEYS)
     _resolved_thermal(table, scene)
     console.print(table)
     derived = Table("derived geometry (as drawn)", "value", "unit", box=None, pad_edge=False)

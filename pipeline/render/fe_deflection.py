@@ -1,8 +1,9 @@
 """FE deflection renders of the identification load cases (docs/model.md §3, §11).
 
 Input: the `case_<axis>.vtu` files of the identify stage (`fe_model/artefacts.py`):
-cells (wedges: the section swept round the axis) with point data `displacement` [m] and cell
-data `von_mises` [Pa] and `material`. For each case one PNG, two panels of the same warped half model: |u| [µm]
+cells (wedges: the section swept round the axis; or the tetrahedra of the engineer's mesh,
+`fe.model = "mesh"`, with field data `reference_point` [m], where the cut passes) with point
+data `displacement` [m] and cell data `von_mises` [Pa] and `material`. For each case one PNG, two panels of the same warped half model: |u| [µm]
 and von Mises stress [MPa], each coloured from 0 to the case's maximum. The model is cut
 by the plane through the bearing axis that contains the load's lateral direction (x-z
 for fx, fz, my; y-z for fy, mx), so the bending of shaft and housing shows in the cut
@@ -108,11 +109,22 @@ def prepare_case(mesh, case: FECase) -> dict:
     # keep the half facing the camera (see _camera): y > 0 for an x-z cut, x < 0 for y-z,
     # so that +x (or +y) points to the right in the picture
     keep = (0.0, -1.0, 0.0) if normal == "y" else (1.0, 0.0, 0.0)
-    half = mesh.clip(normal=keep, origin=mesh.center, invert=True)
+    half = mesh.clip(normal=keep, origin=cut_origin(mesh), invert=True)
     return {"mesh": mesh, "half": half, "scale": scale, "normal": normal,
             "max_displacement": float(magnitude.max(initial=0.0)),
             "max_von_mises": float(np.max(mesh.cell_data["von_mises"], initial=0.0))
             if "von_mises" in mesh.cell_data else None}
+
+
+def cut_origin(mesh) -> tuple[float, float, float]:
+    """A point on the bearing axis for the cut: the reference point of a mesh-model case file
+    (field data `reference_point`, the inner seat's centroid), else the model's centre (the
+    axisymmetric assembly is centred on its axis)."""
+    if "reference_point" in mesh.field_data:
+        point = np.asarray(mesh.field_data["reference_point"], dtype=float).ravel()
+        if point.size == 3 and np.isfinite(point).all():
+            return tuple(float(v) for v in point)
+    return tuple(float(v) for v in mesh.center)
 
 
 def _camera(mesh, normal: str) -> list:

@@ -373,12 +373,48 @@ def resolve_lubricant(table: Any):
     return build(lub.Lubricant, table, "lubricant")
 
 
-def resolve_fe(table: Any, hinge: Hinge) -> Any | None:
+def resolve_fe(table: Any, hinge: Hinge, origin: str = "<table>") -> Any | None:
+    """`[fe]` as fe_model's FEConfig: the generic checks, `[fe.materials.<region>]` tables, no key
+    of the other model (fe_model.config.MESH_KEYS / AXISYMMETRIC_KEYS), and `mesh_file` made
+    absolute (relative to the scene file; for a built-in scene, the example meshes bearingsim
+    writes itself, pipeline/scene/mesh_files.py)."""
     if hinge.source != "fe":
         return None
-    from ...fe_model.config import FEConfig
+    from ...fe_model.config import AXISYMMETRIC_KEYS, MESH_KEYS, FEConfig, RegionMaterial
 
-    return build(FEConfig, table if table is not None else {}, "fe")
+    table = {} if table is None else table
+    if not isinstance(table, dict):
+        raise SceneError("fe", f"expected a table, got {table!r}")
+    table = dict(table)
+    materials = table.pop("materials", {})
+    config = build(FEConfig, table, "fe")
+    other = AXISYMMETRIC_KEYS if config.model == "mesh" else MESH_KEYS
+    given = [k for k in other if k in table or (k == "materials" and materials)]
+    if given:
+        reader = "axisymmetric" if config.model == "mesh" else "mesh"
+        raise SceneError(f"fe.{given[0]}", f"only read by fe.model = {reader!r} (fe.model is {config.model!r}); "
+                                           f"remove it, or set fe.model = {reader!r}")
+    if config.model != "mesh":
+        return config
+    if not isinstance(materials, dict):
+        raise SceneError("fe.materials", f"expected a table of volume regions, each a table with youngs_modulus "
+                                         f"[Pa] and poisson_ratio, got {materials!r}")
+    regions = []
+    for name, body in materials.items():
+        key = f"fe.materials.{name}"
+        if not isinstance(body, dict):
+            raise SceneError(key, f"expected a table with youngs_modulus [Pa] and poisson_ratio, got {body!r}")
+        if "region" in body:
+            raise SceneError(f"{key}.region", "unknown key; the region is the table's name; allowed keys here: "
+                                              "poisson_ratio, youngs_modulus")
+        for needed in ("youngs_modulus", "poisson_ratio"):
+            if needed not in body:
+                raise SceneError(f"{key}.{needed}", "required key is missing" + (" [Pa]" if needed[0] == "y" else ""))
+        regions.append(build(RegionMaterial, {**body, "region": str(name)}, key))
+    from .mesh_files import resolve_mesh_file
+
+    mesh_file = resolve_mesh_file(config.mesh_file, origin)
+    return dataclasses.replace(config, materials=tuple(regions), mesh_file=mesh_file)
 
 
 def resolve(table: dict, origin: str = "<table>") -> Scene:
@@ -432,6 +468,7 @@ def resolve(table: dict, origin: str = "<table>") -> Scene:
         race=_alpha(materials.race, th.BEARING_STEEL_EXPANSION), ball=_alpha(materials.ball, th.BEARING_STEEL_EXPANSION),
         cage=_alpha(materials.cage, th.CAGE_BRONZE_EXPANSION))
     nominal = Parts(bearing, cage, materials)
+    fe = resolve_fe(table.get("fe"), hinge, origin)
     with _building():
         scene = Scene(
             name=name,
@@ -443,11 +480,11 @@ def resolve(table: dict, origin: str = "<table>") -> Scene:
             load=build(Load, table["load"], "load"),
             speed=build(Speed, table["speed"], "speed"),
             hinge=hinge,
-            fe=resolve_fe(table.get("fe"), hinge),
+            fe=fe,
             solver=build(SolverSettings, table.get("solver", {}), "solver"),
             physics=physics,
             output=build(Output, table.get("output", {}), "output"),
-            raw=table,
+            raw=_with_mesh_file(table, fe),
             operating=nominal,  # until grown below: the checks that follow read the parts as drawn
             temperatures=temperatures,
             expansion=expansion,
@@ -470,6 +507,14 @@ def variant(scene: Scene, **fields: Any) -> Scene:
     tolerance stack's grown parts, a compile-only hinge), never for user input (`Scene.replace`)."""
     with _building():
         return dataclasses.replace(scene, **fields)
+
+
+def _with_mesh_file(table: dict, fe) -> dict:
+    """The scene table with fe.mesh_file as resolved (absolute): the run directory's scene.toml,
+    sweep points and `bearingsim render` then find the mesh wherever they run."""
+    if fe is None or getattr(fe, "model", None) != "mesh" or table.get("fe", {}).get("mesh_file") == fe.mesh_file:
+        return table
+    return {**table, "fe": {**table["fe"], "mesh_file": fe.mesh_file}}
 
 
 def _alpha(material: Material | None, default: float) -> float:

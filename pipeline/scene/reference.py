@@ -74,7 +74,14 @@ def _sections():
         ("[load]", Load, ""),
         ("[speed]", Speed, ""),
         ("[hinge]", Hinge, "The viscoelastic hinge tying the inner race to its static frame (docs/model.md §5)."),
-        ("[fe]", None, "Read only when `hinge.source = \"fe\"`; defaults suit the reference bearing."),
+        ("[fe]", None, "Read only when `hinge.source = \"fe\"`; defaults suit the reference bearing. Two "
+                       "models: `model = \"axisymmetric\"` (the parametric housing: the `shaft_`, `support_`, "
+                       "`housing_` keys, `mesh_size`, `edge_refinement`, `load_reaction`) and `model = \"mesh\"`, "
+                       "the engineer's own tetrahedral mesh (`mesh_file`, `mesh_unit`, `inner_seat`, `outer_seat`, "
+                       "`fixed`, `[fe.materials]`; docs/housing-mesh.md); a key of the other model is refused."),
+        ("[fe.materials.<region>]", "materials", "`model = \"mesh\"`: one table per volume region of the "
+                                                 "mesh, named as the region, e.g. `housing = { youngs_modulus = "
+                                                 "71e9, poisson_ratio = 0.33 }`; every tetrahedron needs one."),
         ("[solver]", SolverSettings, "Numerical settings of the dynamic run (docs/model.md §9)."),
         ("[physics]", Physics, "Which laws the contacts use and their parameters (docs/model.md §6–§8)."),
         ("[output]", Output, ""),
@@ -131,7 +138,7 @@ def section_table(cls) -> str:
     hints = typing.get_type_hints(cls)
     rows = ["| key | type | unit | allowed | default | meaning |", "| --- | --- | --- | --- | --- | --- |"]
     for f in dataclasses.fields(cls):
-        if not f.init or f.name in ("thresholds", "vary", "points"):
+        if not f.init or f.name in ("thresholds", "vary", "points") or (f.name == "region" and cls.__name__ == "RegionMaterial"):
             continue
         meta = dict(f.metadata)
         if dataclasses.is_dataclass(hints.get(f.name)):
@@ -201,6 +208,10 @@ def render() -> str:
         parts.append(f"## {title}\n")
         if note:
             parts.append(note + "\n")
+        if cls == "materials":
+            from ...fe_model.config import RegionMaterial
+
+            cls = RegionMaterial
         parts.append(section_table(cls if cls is not None else fe()) + "\n")
     parts.append(tolerance_section())
     parts.append(builtin_lubricants_section())

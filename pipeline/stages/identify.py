@@ -1,7 +1,9 @@
 """Stage `identify`: FE identification of the inner-race hinge stiffness (docs/model.md §3).
 
 Only scenes with `hinge.source = "fe"` need it; its key hashes the `[fe]` table and the
-ring dimensions the FE geometry is built from, nothing else.
+ring dimensions the FE geometry is built from, nothing else. With `fe.model = "mesh"` the key
+holds the mesh file's content (its SHA-256), not its path. A mesh that cannot be used as the
+scene says is a SceneError naming the key and the region, raised before anything is solved.
 """
 
 from __future__ import annotations
@@ -39,7 +41,12 @@ def ring_seat(scene: Scene):
 
 def identify_inputs(scene: Scene) -> dict:
     b = scene.bearing
-    return {"fe": dataclasses.asdict(scene.fe) if scene.fe is not None else None,
+    fe = dataclasses.asdict(scene.fe) if scene.fe is not None else None
+    if fe is not None and scene.fe.model == "mesh":
+        from ..scene.mesh_files import mesh_identity
+
+        fe["mesh_file"] = mesh_identity(scene.fe.mesh_file)
+    return {"fe": fe,
             "ring": {k: getattr(b, k) for k in RING_KEYS},
             "pitch_diameter": b.pitch_diameter}
 
@@ -49,19 +56,32 @@ def compute(ctx: StageContext) -> dict:
 
     from ..machine.system_libraries import require_libraries
 
-    require_libraries("gmsh")
+    from ...fe_model.mesh_checks import MeshInputError
+
+    fe = ctx.scene.fe
+    if fe.model != "mesh":
+        require_libraries("gmsh")
     ring = ring_seat(ctx.scene)
     try:
-        ctx.scene.fe.validate(ring)
+        fe.validate(ring)
     except ValueError as exc:
         raise SceneError("fe", str(exc)) from exc
-    result = identify_hinge(ctx.scene.fe, ring, ctx.out_dir, progress=ctx.progress)
+    if fe.model == "mesh":
+        from ..scene.mesh_files import ensure_example
+
+        if ensure_example(fe.mesh_file):  # a built-in scene's example: written once, then cached
+            ctx.progress("wrote the example mesh", 0.0)
+    try:
+        result = identify_hinge(fe, ring, ctx.out_dir, progress=ctx.progress)
+    except MeshInputError as exc:
+        raise SceneError(exc.key, str(exc)) from None
     return {
         "H_u_N_per_m": result.H_u.tolist(), "H_psi_Nm_per_rad": result.H_psi.tolist(),
         "fit_relative_residual": float(result.residual),
         "condition_number": float(result.condition_number),
         "mesh": {k: (float(v) if isinstance(v, float) else v) for k, v in result.mesh_stats.items()},
         "timings_s": {k: float(v) for k, v in result.timings.items()},
+        "warnings": result.mesh_stats.get("warnings", []),
     }
 
 

@@ -23,6 +23,8 @@ RESULT_FILES = {"quasistatic": "quasistatic.json", "simulate": "summary.json"}
 
 def stage_findings(stage: str, scene, stage_dir: Path) -> list[Finding]:
     """Findings on a finished stage's result file (none for stages without checks)."""
+    if stage == "identify":
+        return identify_findings(Path(stage_dir) / "hinge.toml")
     name = RESULT_FILES.get(stage)
     if name is None:
         return []
@@ -38,6 +40,21 @@ def stage_findings(stage: str, scene, stage_dir: Path) -> list[Finding]:
     if stage == "quasistatic":
         return quasistatic_findings(scene, payload)
     return simulation_findings(scene, payload)
+
+
+def identify_findings(path: Path) -> list[Finding]:
+    """The doubts the FE stage found on the engineer's mesh (hinge.toml [mesh] warnings:
+    a seat in pieces or of another length than the ring, no outer seat), as warnings."""
+    import tomllib
+
+    if not path.is_file():
+        return []
+    try:
+        doc = tomllib.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return [error("", "the identify stage wrote an unreadable hinge.toml")]
+    found = doc.get("mesh", {}).get("warnings", [])
+    return [warning(str(w.get("key", "")), str(w.get("message", ""))) for w in found if isinstance(w, dict)]
 
 
 def annotate(stage: str, stage_dir: Path, findings: list[Finding]) -> None:

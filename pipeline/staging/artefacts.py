@@ -26,7 +26,7 @@ from dataclasses import asdict, is_dataclass
 from pathlib import Path
 from typing import Any, Iterator
 
-from .no_follow import OutputRefused, open_no_follow, out_name  # noqa: F401 - OutputRefused is re-exported
+from .no_follow import OutputRefused, out_name, refused_special_file  # noqa: F401 - OutputRefused is re-exported
 
 MANIFEST = "stage.json"
 RUN_MARKER = ".bearingsim-run"
@@ -379,28 +379,22 @@ def run_directory_lock(run_dir: Path) -> Iterator[None]:
     """Hold an exclusive lock on `run_dir` (file `.lock` inside) while a pipeline writes it.
 
     Two runs writing one directory would swap their stage results over each other; the
-    second is refused at once with RunDirectoryBusy. The lock is an advisory flock, released
-    when the process ends however it ends. Where fcntl does not exist (Windows) no lock is
-    taken.
+    second is refused at once with RunDirectoryBusy. The lock (pipeline.machine.file_lock) is
+    released when the process ends however it ends; a link or a special file in its place is
+    refused with OutputRefused, and a link's target is never created.
     """
-    try:
-        import fcntl
-    except ImportError:  # pragma: no cover - not POSIX
-        yield
-        return
+    from ..machine.file_lock import LockBusy, NotALockFile, exclusive_lock
 
     run_dir.mkdir(parents=True, exist_ok=True)
-    with open_no_follow(run_dir / ".lock") as handle:
-        try:
-            fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except BlockingIOError:
-            raise RunDirectoryBusy(
-                f"another bearingsim process is writing {run_dir}/; wait for it to finish or give "
-                f"this run its own directory with {out_name()}") from None
-        try:
+    try:
+        with exclusive_lock(run_dir / ".lock", wait=False):
             yield
-        finally:
-            fcntl.flock(handle, fcntl.LOCK_UN)
+    except LockBusy:
+        raise RunDirectoryBusy(
+            f"another bearingsim process is writing {run_dir}/; wait for it to finish or give "
+            f"this run its own directory with {out_name()}") from None
+    except NotALockFile as exc:
+        raise refused_special_file(exc.path, exc.what) from None
 
 
 # Stages worth sharing between run directories by default: the FE identification (costly, and

@@ -56,11 +56,11 @@ def open_no_follow(path: Path, text: bool = True):
         fd = os.open(path, _FLAGS | getattr(os, "O_NONBLOCK", 0), 0o666)
     except OSError as exc:
         if path.is_symlink():
-            raise _refused(path, "is a symbolic link") from None
+            raise refused_special_file(path, "is a symbolic link") from None
         raise
     try:
         if not stat.S_ISREG(os.fstat(fd).st_mode):
-            raise _refused(path, "is not a regular file")
+            raise refused_special_file(path, "is not a regular file")
         os.set_blocking(fd, True)
         return os.fdopen(fd, "a+" if text else "a+b", encoding="utf-8" if text else None)
     except BaseException:
@@ -68,6 +68,7 @@ def open_no_follow(path: Path, text: bool = True):
         raise
 
 
-def _refused(path: Path, what: str) -> OutputRefused:
+def refused_special_file(path: Path, what: str) -> OutputRefused:
+    """The refusal of a link or a special file where bearingsim appends or locks."""
     return OutputRefused(f"{path} {what}; bearingsim never writes through a link or into a special "
                          f"file: remove it, or give the run its own directory with {out_name()}")

@@ -18,7 +18,7 @@ from .artefacts import SCENE_HEADER, OutputRefused, atomic_write_json, atomic_wr
 from .no_follow import out_name
 
 PACKAGES = ("bearingsim", "numpy", "scipy", "numba", "scikit-fem", "gmsh", "meshio",
-            "pyvista", "vtk", "matplotlib", "h5py", "typer", "rich", "pypardiso")
+            "pyvista", "vtk", "matplotlib", "h5py", "typer", "rich", "filelock", "pypardiso")
 # the folders installed as bearingsim.* (pyproject.toml); their sources are the model
 SOURCE_FOLDERS = ("pipeline", "dynamics", "fe_model", "meshes")
 SOURCE_SUFFIXES = (".py", ".toml")

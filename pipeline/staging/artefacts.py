@@ -127,16 +127,25 @@ def atomic_write_json(path: Path, obj: Any) -> None:
 
 # --- cache keys and manifests ----------------------------------------------------------
 def canonical(obj: Any) -> Any:
-    """The value a cache key hashes: numbers compare by value (430 == 430.0, -0.0 == 0.0),
-    so writing a number differently never recomputes a stage."""
+    """The value a cache key hashes: numbers compare by their exact value (430 == 430.0,
+    -0.0 == 0.0), so writing a number differently never recomputes a stage, and two different
+    numbers never share a key: an integer that no float holds exactly (2**53 + 1, a seed)
+    stays an integer."""
     obj = to_jsonable(obj)
     if isinstance(obj, dict):
         return {k: canonical(v) for k, v in obj.items()}
     if isinstance(obj, list):
         return [canonical(v) for v in obj]
-    if isinstance(obj, (int, float)) and not isinstance(obj, bool):
-        value = float(obj)
-        return 0.0 if value == 0.0 else value
+    if isinstance(obj, bool):
+        return obj
+    if isinstance(obj, int):
+        try:
+            value = float(obj)
+        except OverflowError:
+            return obj
+        return (0.0 if value == 0.0 else value) if int(value) == obj else obj
+    if isinstance(obj, float):
+        return 0.0 if obj == 0.0 else obj
     return obj
 
 

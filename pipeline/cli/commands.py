@@ -19,7 +19,7 @@ from typing import Annotated, Optional
 import typer
 
 from .options import flat_options
-from ..console import escape, explain, finding_lines, make_console
+from ..console import explain, finding_lines, make_console, styled
 from ..machine.numba_cache import configure_numba_cache
 
 # before any kernel is compiled or loaded: the cache keyed by the dynamics sources
@@ -61,6 +61,8 @@ def _root(version: Annotated[bool, typer.Option("--version", is_eager=True, call
 def _literal(text: str) -> str:
     """Help text shown as written: typer renders help as rich markup, which swallows units and
     defaults in square brackets ("[s]", "[default: ...]")."""
+    from rich.markup import escape
+
     return escape(text)
 
 
@@ -86,7 +88,7 @@ def _run_dir(scene, out: Path | None) -> Path:
 
 
 def _fail(code: int, message: str) -> None:
-    err_console.print(f"[bold red]error:[/] {escape(message)}", highlight=False, soft_wrap=True)
+    err_console.print(styled(("error:", "bold red"), f" {message}"), highlight=False, soft_wrap=True)
     raise typer.Exit(code)
 
 
@@ -132,7 +134,7 @@ def _pipeline(scene_arg: str, overrides, out, targets: list[str], force: set[str
     for o in outcomes:
         _print_findings(o.warnings, f"{o.name}: ")
     if not quiet:
-        err_console.print(f"results: {escape(str(run_dir))}/", highlight=False)
+        err_console.print(f"results: {run_dir}/", highlight=False, soft_wrap=True)
     return scene, run_dir, outcomes
 
 
@@ -300,7 +302,7 @@ def check(scene: SceneArg, set_: SetOpt = None) -> None:
     refusals = [f for f in run_findings(resolved, {"simulate"}) if f.level == "error"]
     if refusals:  # first, before the tables: what a user about to simulate must know
         err_console.print("simulate and run would refuse this scene (the quasi-static stage runs): "
-                          + escape("; ".join(f.text for f in refusals)), highlight=False, soft_wrap=True)
+                          + "; ".join(f.text for f in refusals), highlight=False, soft_wrap=True)
     print_scene(resolved, out_console)
     _print_findings(notes)
     if refusals:
@@ -382,8 +384,8 @@ def tolerances(scene: SceneArg,
         sys.stdout.write(dumps_json(result["crush_probability"]) + "\n")
         return
     print_tolerances(result, out_console)
-    err_console.print(f"written: {escape(str(run_dir / 'quasistatic' / SAMPLES_FILE))}, "
-                      f"{escape(str(run_dir / 'quasistatic' / TOLERANCE_FIGURE))}", highlight=False)
+    err_console.print(f"written: {run_dir / 'quasistatic' / SAMPLES_FILE}, "
+                      f"{run_dir / 'quasistatic' / TOLERANCE_FIGURE}", highlight=False, soft_wrap=True)
 
 
 @app.command()
@@ -401,7 +403,7 @@ def warmup(scenes: Annotated[Optional[list[str]], typer.Argument(
         warm_up(scenes, report)
     except SceneError as exc:
         _fail(EXIT_SCENE, f"scene: {explain(exc)}")
-    err_console.print(f"kernels cached in {escape(str(cache_directory()))}/", highlight=False)
+    err_console.print(f"kernels cached in {cache_directory()}/", highlight=False, soft_wrap=True)
 
 
 @app.command()
@@ -694,7 +696,7 @@ def sweep(scene: SceneArg, options: SweepOptions) -> None:
     except OutputRefused as exc:
         _fail(EXIT_SCENE, str(exc))
     if replaced:
-        err_console.print(f"[bold yellow]warning:[/] {escape(replaced)}", highlight=False, soft_wrap=True)
+        err_console.print(styled(("warning:", "bold yellow"), f" {replaced}"), highlight=False, soft_wrap=True)
     err_console.print(f"sweep {plan.name}: {len(plan.points)} points on "
                       f"{o.scheduler or f'a local cluster of {o.workers} workers'}", highlight=False)
     records = _run_sweep_points(plan, o)
@@ -704,8 +706,8 @@ def sweep(scene: SceneArg, options: SweepOptions) -> None:
     err_console.print(f"classes: {class_counts(rows)}\nresults: {paths['table']}\nmap: {paths['map']}", highlight=False, markup=False)
     failed = [r for r in records if r is not None and r.get("status") == "failed" and not r.get("lost")]
     if failed:  # failed points are results (their error is in the table): exit 0, said plainly
-        err_console.print(f"[bold yellow]warning:[/] {len(failed)} of {len(records)} points failed (column "
-                          f"error of {paths['table']}); rerun with --retry-failed to run them again",
+        err_console.print(styled(("warning:", "bold yellow"), f" {len(failed)} of {len(records)} points failed "
+                                 f"(column error of {paths['table']}); rerun with --retry-failed to run them again"),
                           highlight=False, soft_wrap=True)
     unfinished = [r for r in records if r is None or r.get("lost")]
     if unfinished:

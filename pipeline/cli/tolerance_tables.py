@@ -8,6 +8,7 @@ from pathlib import Path
 from rich.console import Console
 from rich.table import Table
 
+from ..console import styled
 from ..scene.schema import SceneError
 
 
@@ -43,8 +44,8 @@ def print_tolerances(result: dict, console: Console) -> None:
     t = result["crush_probability"]
     screen = result.get("cage_screen", {})
     probs = t["regime_probability"]
-    console.print(f"[bold]crush probability over {t['samples']} tolerance stacks[/] (seed {t['seed']}, operating "
-                  "temperatures; docs/model.md §10.2)")
+    console.print(styled((f"crush probability over {t['samples']} tolerance stacks", "bold"),
+                         f" (seed {t['seed']}, operating temperatures; docs/model.md §10.2)"))
     for name in ("free", "pressed", "crushed"):
         p = probs[name]
         console.print(f"  P({name:<7}) = {100 * p['probability']:6.2f} % ± {100 * p['standard_error']:.2f} %")

@@ -619,11 +619,13 @@ def stability(cases: Annotated[Optional[list[str]], typer.Argument(help=_literal
               wall_budget: Annotated[float, typer.Option("--wall-budget", help=_literal("Wall-clock budget per case [s]."))] = 180.0,
               out: Annotated[Path, typer.Option("--out", help="Where the table and plot go.")] = Path("runs/stability")) -> None:
     """Stability suite: stiff and extreme cases, each a pass or a clearly reported refusal."""
-    from ..studies.stability import case_names, markdown_table, run_suite, write_suite
+    from ..studies.stability import MIN_SAMPLES, MIN_WINDOW, case_names, markdown_table, run_suite, write_suite
 
-    for option, value, example in (("--window", window, "0.01"), ("--wall-budget", wall_budget, "180")):
-        if not (math.isfinite(value) and value > 0.0):
-            _fail(EXIT_SCENE, f"{option}: is {value} s; give a positive finite time in seconds, e.g. "
+    for option, value, least, example in (("--window", window, MIN_WINDOW, "0.01"),
+                                          ("--wall-budget", wall_budget, 0.0, "180")):
+        if not (math.isfinite(value) and value > least) or value > 1e30:
+            floor = f" longer than {least:g} s ({MIN_SAMPLES} samples)" if least else ""
+            _fail(EXIT_SCENE, f"{option}: is {value:g} s; give a positive finite time in seconds{floor}, e.g. "
                               f"{option} {example}")
     unknown = [c for c in cases or [] if c not in case_names()]
     if unknown:
@@ -672,10 +674,16 @@ class SweepOptions:
 def sweep(scene: SceneArg, options: SweepOptions) -> None:
     """Parameter sweep on Dask: one pipeline run per point, a results table and a cage-stability map."""
     from ..sweep.console import class_counts, print_results
-    from ..sweep.driver import claim_sweep_directory, gather, plan_sweep, replaced_sweep, table_rows, unfinished
+    from ..sweep.driver import (check_scheduler_address, claim_sweep_directory, gather, plan_sweep, replaced_sweep,
+                                table_rows, unfinished)
     from ..sweep.table import read_table
 
     o = options
+    try:
+        if o.scheduler is not None:
+            check_scheduler_address(o.scheduler)
+    except SceneError as exc:  # a bad option, not a bad scene
+        _fail(EXIT_SCENE, str(exc))
     try:
         plan = plan_sweep(scene, o.set_, o.vary, mode=o.mode, name=o.name, out=o.out, store=o.store,
                           max_points=o.max_points, figures=o.figures)

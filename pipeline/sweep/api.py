@@ -143,9 +143,12 @@ def sweep(scene, vary: Mapping[str, Any] | Iterable[str] | str, *,
     """
     from ..scene.load import override_strings
     from ..staging.no_follow import named_in_python
-    from .driver import dask_client, gather, plan_sweep, replaced_sweep, run_in_process, run_sweep, unfinished
+    from .driver import (check_scheduler_address, dask_client, gather, plan_sweep, replaced_sweep, run_in_process,
+                         run_sweep, unfinished)
     from .table import read_table
 
+    if scheduler is not None:
+        check_scheduler_address(scheduler)
     plan = plan_sweep(scene, override_strings(overrides), vary_strings(vary), mode=mode, name=name,
                       out=Path(out) if out is not None else None, figures=figures)
     with named_in_python("out"):  # messages about the sweep folder name this function's argument

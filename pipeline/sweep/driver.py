@@ -342,6 +342,28 @@ def _write_plan(plan: SweepPlan) -> None:
 
 
 @contextmanager
+def check_scheduler_address(address: str) -> None:
+    """SceneError (key `--scheduler`) unless `address` reads as a Dask scheduler address,
+    `[tcp|tls|ws|wss|ucx]://host:port` or `host:port`: checked before any point is planned,
+    instead of a ValueError from inside the client."""
+    from ..scene.schema import SceneError
+
+    try:
+        from distributed.comm import get_address_host_port
+    except ImportError:
+        return  # dask_client says how to install the extra
+    try:
+        host, port = get_address_host_port(address)
+    except (ValueError, TypeError) as exc:
+        reason = str(exc)
+    else:
+        if host and 0 < port < 65536:
+            return
+        reason = f"port {port} is not 1 to 65535" if host else "no host"
+    raise SceneError("--scheduler", f"{address!r} is not a Dask scheduler address ({reason}); give the address "
+                                    "the scheduler printed, e.g. tcp://host:8786")
+
+
 def dask_client(scheduler: str | None = None, workers: int = 2):
     """A client of the scheduler at `scheduler`, or of a local cluster of `workers`
     single-threaded worker processes (numba kernels hold the GIL)."""

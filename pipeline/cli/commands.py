@@ -80,7 +80,34 @@ SetOpt = Annotated[Optional[list[str]], typer.Option(
 def _load(scene: str, overrides: list[str] | None):
     from ..scene.load import load_scene
 
+    _print_cache_notes()
     return load_scene(scene, overrides or [])
+
+
+def _print_cache_notes() -> None:
+    """What checking the kernel cache found (pipeline.machine.numba_cache): damaged files removed,
+    a cache folder that could not be made."""
+    from ..machine.numba_cache import cache_notes
+
+    for note in cache_notes():
+        err_console.print(styled(("warning:", "yellow"), f" {note}"), highlight=False, soft_wrap=True)
+
+
+def _kernel_cache_failure(exc: BaseException) -> str | None:
+    """The message for a failure while numba read its cache (a damaged file the start-up check did
+    not catch), naming the cache and what to do; None for any other failure. The next start reads
+    every cache file again."""
+    from ..machine.kernel_cache import cache_directory
+    from ..machine.numba_cache import forget_checks, from_kernel_cache, is_own_cache
+
+    cache = cache_directory()
+    if cache is None or not from_kernel_cache(exc):
+        return None
+    forget_checks(cache)
+    again = "run the command again: damaged files are then found and removed" if is_own_cache(cache) else \
+        "delete the folder (NUMBA_CACHE_DIR): the kernels then compile again"
+    return (f"the kernel cache {cache} cannot be read ({type(exc).__name__}: {exc}); {again} (about a minute of "
+            f"compiling)")
 
 
 def _run_dir(scene, out: Path | None) -> Path:
@@ -196,19 +223,23 @@ def _run_stages_with_exit_codes(scene, scene_arg, run_dir, targets, force, quiet
         _fail(EXIT_SCENE, f"scene: {explain(exc)}")
     except (RuntimeError, ValueError, ArithmeticError) as exc:
         log.exception("stage failed")
-        _fail(EXIT_FAILED, f"{type(exc).__name__}: {explain(exc)}{hint}\n(full log: {run_dir / 'run.log'})")
+        _fail(EXIT_FAILED, _kernel_cache_failure(exc) or
+              f"{type(exc).__name__}: {explain(exc)}{hint}\n(full log: {run_dir / 'run.log'})")
     except MemoryError:
+        from .os_errors import MEMORY_HINT
+
         log.exception("out of memory")
-        _fail(EXIT_FAILED, f"out of memory{hint}; shorten solver.duration or raise output.sample_interval "
-                           f"(full log: {run_dir / 'run.log'})")
+        _fail(EXIT_FAILED, f"out of memory{hint}; {MEMORY_HINT} (full log: {run_dir / 'run.log'})")
     except OSError as exc:
+        from .os_errors import describe_os_error
+
         log.exception("file error")
-        _fail(EXIT_FAILED, f"cannot write the results: {exc}; check the space and permissions of {run_dir}/ "
-                           f"(full log: {run_dir / 'run.log'})")
+        _fail(EXIT_FAILED, f"{describe_os_error(exc, run_dir)}{hint}\n(full log: {run_dir / 'run.log'})")
     except Exception as exc:  # noqa: BLE001 - a defect: the traceback goes to run.log, not the screen
-        log.exception("internal error")
-        _fail(EXIT_FAILED, f"internal error {type(exc).__name__}: {exc} (a defect of bearingsim; the "
-                           f"traceback is in {run_dir / 'run.log'})")
+        cache_failure = _kernel_cache_failure(exc)
+        log.exception("kernel cache unreadable" if cache_failure else "internal error")
+        _fail(EXIT_FAILED, cache_failure or f"internal error {type(exc).__name__}: {exc} (a defect of bearingsim; "
+                                            f"the traceback is in {run_dir / 'run.log'})")
 
 
 class _StageProgress:
@@ -303,7 +334,13 @@ def check(scene: SceneArg, set_: SetOpt = None) -> None:
     if refusals:  # first, before the tables: what a user about to simulate must know
         err_console.print("simulate and run would refuse this scene (the quasi-static stage runs): "
                           + "; ".join(f.text for f in refusals), highlight=False, soft_wrap=True)
-    print_scene(resolved, out_console)
+    try:
+        print_scene(resolved, out_console)  # the lubricant's viscosity is a compiled kernel's
+    except Exception as exc:  # noqa: BLE001 - only a damaged kernel cache is answered here
+        message = _kernel_cache_failure(exc)
+        if message is None:
+            raise
+        _fail(EXIT_FAILED, message)
     _print_findings(notes)
     if refusals:
         raise typer.Exit(EXIT_NOT_SIMULABLE)
@@ -550,7 +587,12 @@ def render(run_dir: Annotated[Path, typer.Argument(help="A run directory written
         log.error("render failed: %s", exc)
         _fail(EXIT_SCENE, f"{run_dir}: cannot write the report there ({exc.strerror or exc}); render needs a "
                           f"run directory it may write: copy it, e.g. cp -r {run_dir} {run_dir}-copy")
-    except (RuntimeError, ValueError, ArithmeticError, OSError) as exc:
+    except OSError as exc:
+        from .os_errors import describe_os_error
+
+        log.exception("render failed")
+        _fail(EXIT_FAILED, f"{describe_os_error(exc, run_dir)}\n(full log: {run_dir / 'run.log'})")
+    except (RuntimeError, ValueError, ArithmeticError) as exc:
         log.exception("render failed")
         _fail(EXIT_FAILED, f"{type(exc).__name__}: {exc}\n(full log: {run_dir / 'run.log'})")
     finally:

@@ -260,11 +260,36 @@ def sample_bytes(scene) -> float:
 
 
 def memory_limit() -> float:
-    """Half the machine's physical memory [bytes] (8 GiB where it cannot be read)."""
+    """What the dynamic run may allocate [bytes]: half the machine's physical memory (8 GiB
+    where it cannot be read), and no more than the process's address-space limit (ulimit -v,
+    RLIMIT_AS) leaves beyond what the process maps already."""
     try:
-        return 0.5 * os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+        limit = 0.5 * os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
     except (ValueError, OSError, AttributeError):
-        return 8.0 * 2**30
+        limit = 8.0 * 2**30
+    address_space = _address_space_left()
+    return limit if address_space is None else min(limit, address_space)
+
+
+def _address_space_left() -> float | None:
+    """RLIMIT_AS minus the process's mapped size (VmSize) [bytes]; None without a limit."""
+    try:
+        import resource
+
+        soft = resource.getrlimit(resource.RLIMIT_AS)[0]
+    except (ImportError, OSError, ValueError, AttributeError):  # not POSIX
+        return None
+    if soft == resource.RLIM_INFINITY or soft <= 0:
+        return None
+    mapped = 0.0
+    try:
+        with open("/proc/self/status", encoding="ascii") as fh:
+            for line in fh:
+                if line.startswith("VmSize:"):
+                    mapped = float(line.split()[1]) * 1024.0
+    except (OSError, ValueError):
+        pass
+    return max(float(soft) - mapped, 0.0)
 
 
 def _resources(scene) -> list[Finding]:
@@ -294,8 +319,9 @@ def _resources(scene) -> list[Finding]:
         per = sample_bytes(scene)
         out.append(error("output.sample_interval",
                          f"{_g(o.sample_interval)} s over solver.duration = {_g(s.duration)} s is {_g(ratio)} samples "
-                         f"of the time series, about {need / 2**30:.3g} GiB of memory (this machine allows "
-                         f"{limit / 2**30:.3g} GiB); allowed >= {_g(s.duration * per / limit)} [s], or a shorter "
+                         f"of the time series, about {need / 2**30:.3g} GiB of memory (this process may use "
+                         f"{limit / 2**30:.3g} GiB: half the machine's memory, or what its address-space limit, "
+                         f"ulimit -v, leaves); allowed >= {_g(s.duration * per / limit)} [s], or a shorter "
                          f"solver.duration"))
     return out
 

@@ -8,6 +8,7 @@ with the run's verdict (`summary.json` `verdict`) on stderr, after the stage lin
 from __future__ import annotations
 
 import contextlib
+import errno
 import json
 import logging
 import math
@@ -148,7 +149,9 @@ def _pipeline(scene_arg: str, overrides, out, targets: list[str], force: set[str
         except RunDirectoryBusy as exc:
             _fail(EXIT_FAILED, str(exc))
         except OSError as exc:
-            _fail(EXIT_FAILED, f"cannot lock {run_dir}/: {exc.strerror or exc}")
+            from .os_errors import describe_os_error
+
+            _fail(EXIT_FAILED, f"cannot claim {run_dir}/: {describe_os_error(exc, run_dir)}")
         outcomes = _run_locked(scene, scene_arg, run_dir, targets, force, quiet, notes, shared)
     if not quiet:
         for o in outcomes:
@@ -175,6 +178,10 @@ def _run_locked(scene, scene_arg, run_dir, targets, force, quiet, notes=(), shar
         except OutputRefused as exc:
             _fail(EXIT_SCENE, str(exc))
         except OSError as exc:
+            from .os_errors import describe_os_error
+
+            if exc.errno in (errno.ENOSPC, getattr(errno, "EDQUOT", errno.ENOSPC)):
+                _fail(EXIT_FAILED, describe_os_error(exc, run_dir))
             _fail(EXIT_SCENE, f"--out {run_dir}: cannot write run.log there ({exc.strerror or exc}); give a "
                               "writable directory")
         return _run_stages_reported(scene, scene_arg, run_dir, targets, force, quiet, notes, shared)
@@ -665,8 +672,8 @@ def stability(cases: Annotated[Optional[list[str]], typer.Argument(help=_literal
 
     for option, value, least, example in (("--window", window, MIN_WINDOW, "0.01"),
                                           ("--wall-budget", wall_budget, 0.0, "180")):
-        if not (math.isfinite(value) and value > least) or value > 1e30:
-            floor = f" longer than {least:g} s ({MIN_SAMPLES} samples)" if least else ""
+        if not (math.isfinite(value) and value >= least and value > 0.0) or value > 1e30:
+            floor = f" of at least {least:g} s ({MIN_SAMPLES} samples)" if least else ""
             _fail(EXIT_SCENE, f"{option}: is {value:g} s; give a positive finite time in seconds{floor}, e.g. "
                               f"{option} {example}")
     unknown = [c for c in cases or [] if c not in case_names()]

@@ -25,6 +25,9 @@ def describe_os_error(exc: OSError, run_dir: Path | None = None) -> str:
         return (f"no space left on the device{f' of {path}' if path else ''} ({reason}){where}: free space "
                 f"there{' or give --out on another file system' if run_dir is not None else ''}; "
                 "nothing half-written is kept")
+    if exc.errno == errno.EFBIG:
+        return (f"{path or 'a file'}: {reason}{where}: larger than the file system or the process's file-size "
+                "limit (ulimit -f) allows; nothing half-written is kept")
     if exc.errno in (errno.EACCES, errno.EPERM, errno.EROFS):
         return f"{path or 'a file'}: {reason}{where}; give a place this user may write"
     if exc.errno in (errno.ENOTDIR, errno.EISDIR, errno.EEXIST):

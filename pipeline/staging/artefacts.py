@@ -13,6 +13,8 @@ Files and folders follow the process umask like any other program's output.
 
 from __future__ import annotations
 
+import contextlib
+import errno
 import hashlib
 import json
 import math
@@ -89,8 +91,10 @@ def atomic_write_bytes(path: Path, data: bytes) -> None:
             os.fchmod(fh.fileno(), file_mode())
             os.fsync(fh.fileno())
         os.replace(tmp, path)
-    except BaseException:
+    except BaseException as exc:
         Path(tmp).unlink(missing_ok=True)
+        if isinstance(exc, OSError) and exc.filename is None:  # a write: name the file it was for
+            raise type(exc)(exc.errno, exc.strerror, str(path)) from exc
         raise
 
 
@@ -330,10 +334,18 @@ def refused_unless_usable(out: Path, example: str = "") -> Iterator[None]:
         yield
     except OutputRefused:
         raise
-    except (OSError, ValueError) as exc:  # ValueError: a NUL byte in the path
-        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
-        raise OutputRefused(f"{out_name(out)}: cannot use this directory ({reason}); give a writable "
-                            f"directory{', e.g. ' + out_name(example) if example else ''}") from None
+    except OSError as exc:
+        if exc.errno in (errno.ENOSPC, getattr(errno, "EDQUOT", errno.ENOSPC)):
+            raise  # a full disk is no fault of the directory: the caller names it (exit 1)
+        _refuse_unusable(out, example, exc)
+    except ValueError as exc:  # a NUL byte in the path
+        _refuse_unusable(out, example, exc)
+
+
+def _refuse_unusable(out: Path, example: str, exc: Exception) -> None:
+    reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
+    raise OutputRefused(f"{out_name(out)}: cannot use this directory ({reason}); give a writable "
+                        f"directory{', e.g. ' + out_name(example) if example else ''}") from None
 
 
 def mark_directory(directory: Path, marker: str, note: str) -> None:
@@ -364,19 +376,31 @@ def claim_run_directory(run_dir: Path) -> None:
                                 f"(new or empty), e.g. {out_name('runs/my-run')}")
         if not exists:
             run_dir.mkdir(parents=True, exist_ok=True)  # exist_ok: a concurrent run made it
-        if not is_own_run_dir(run_dir):
-            if any(p.name not in (RUN_MARKER, ".lock") and not p.name.startswith(f"{RUN_MARKER}.")
-                   for p in run_dir.iterdir()):  # (a concurrent run writing the marker)
-                raise OutputRefused(
-                    f"{out_name(shown)}: the directory holds files that are not a bearingsim run "
-                    f"(no {RUN_MARKER} marker); bearingsim never writes into a folder of yours, "
-                    f"so that none of your files is overwritten. Give a new or empty directory, "
-                    f"e.g. {out_name(run_dir / 'run')}")
-        if not os.access(run_dir, os.W_OK | os.X_OK):
-            raise OutputRefused(f"{out_name(shown)}: the directory is not writable by this user; "
-                                "give a directory you may write to")
-        mark_directory(run_dir, RUN_MARKER, "bearingsim run directory: stage folders here are replaced "
-                                            "and removed by bearingsim")
+            try:
+                _claim_existing(run_dir, shown)
+            except BaseException:
+                with contextlib.suppress(OSError):
+                    run_dir.rmdir()  # made here, and empty unless a concurrent run writes it
+                raise
+        else:
+            _claim_existing(run_dir, shown)
+
+
+def _claim_existing(run_dir: Path, shown: str) -> None:
+    """The part of `claim_run_directory` after `run_dir` exists."""
+    if not is_own_run_dir(run_dir):
+        if any(p.name not in (RUN_MARKER, ".lock") and not p.name.startswith(f"{RUN_MARKER}.")
+               for p in run_dir.iterdir()):  # (a concurrent run writing the marker)
+            raise OutputRefused(
+                f"{out_name(shown)}: the directory holds files that are not a bearingsim run "
+                f"(no {RUN_MARKER} marker); bearingsim never writes into a folder of yours, "
+                f"so that none of your files is overwritten. Give a new or empty directory, "
+                f"e.g. {out_name(run_dir / 'run')}")
+    if not os.access(run_dir, os.W_OK | os.X_OK):
+        raise OutputRefused(f"{out_name(shown)}: the directory is not writable by this user; "
+                            "give a directory you may write to")
+    mark_directory(run_dir, RUN_MARKER, "bearingsim run directory: stage folders here are replaced "
+                                        "and removed by bearingsim")
 
 
 class RunDirectoryBusy(RuntimeError):

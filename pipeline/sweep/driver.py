@@ -341,7 +341,6 @@ def _write_plan(plan: SweepPlan) -> None:
     })
 
 
-@contextmanager
 def check_scheduler_address(address: str) -> None:
     """SceneError (key `--scheduler`) unless `address` reads as a Dask scheduler address,
     `[tcp|tls|ws|wss|ucx]://host:port` or `host:port`: checked before any point is planned,
@@ -364,6 +363,7 @@ def check_scheduler_address(address: str) -> None:
                                     "the scheduler printed, e.g. tcp://host:8786")
 
 
+@contextmanager
 def dask_client(scheduler: str | None = None, workers: int = 2):
     """A client of the scheduler at `scheduler`, or of a local cluster of `workers`
     single-threaded worker processes (numba kernels hold the GIL)."""

@@ -69,7 +69,6 @@ def check_number(key: str, value: Any, meta: dict, *, integer: bool = False) -> 
         raise SceneError(key, f"expected an integer{unit}, got {value!r}")
     if isinstance(value, float) and not math.isfinite(value):
         raise SceneError(key, f"must be a finite number{unit}, got {value!r}")
-    bounds = describe_bounds(meta)
     ok = (
         ("gt" not in meta or value > meta["gt"])
         and ("ge" not in meta or value >= meta["ge"])
@@ -77,17 +76,23 @@ def check_number(key: str, value: Any, meta: dict, *, integer: bool = False) -> 
         and ("le" not in meta or value <= meta["le"])
     )
     if not ok:
-        raise SceneError(key, f"{shown_number(value)} is out of range: allowed {bounds}{unit}")
+        raise SceneError(key, f"{shown_number(value)} is out of range: allowed {describe_bounds(meta)}{unit}")
     if integer:
         if abs(value) > INTEGER_LIMIT:
-            raise SceneError(key, f"{shown_number(value)} is out of range: allowed {_joined(bounds, 'at most 2**63 - 1 in size')}{unit}")
+            allowed = _joined(describe_bounds(meta), "at most 2**63 - 1 in size")
+            raise SceneError(key, f"{shown_number(value)} is out of range: allowed {allowed}{unit}")
         return value
-    small, large = MAGNITUDE
-    if value != 0 and not small <= abs(value) <= large:
+    if not _within(value):
+        small, large = MAGNITUDE
         zero = " (or 0)" if _allows_zero(meta) else ""
         limit = f"{_e(small)} <= |value| <= {_e(large)}{zero}, the sizes of a bearing's quantities in SI units"
-        raise SceneError(key, f"{shown_number(value)} is out of range: allowed {_joined(bounds, limit)}{unit}")
+        raise SceneError(key, f"{shown_number(value)} is out of range: allowed {_joined(describe_bounds(meta), limit)}{unit}")
     return float(value)
+
+
+def _within(value: float) -> bool:
+    """Zero, or a size inside MAGNITUDE."""
+    return value == 0 or MAGNITUDE[0] <= abs(value) <= MAGNITUDE[1]
 
 
 def _e(x: float) -> str:

@@ -120,6 +120,12 @@ def scene_findings(scene) -> list[Finding]:
     return out
 
 
+def geometry_findings(scene) -> list[Finding]:
+    """The geometry checks of `scene_findings` on the parts as the scene holds them (clearance,
+    lands, cage fit): what a tolerance stack must pass (pipeline.scene.tolerance_stacks)."""
+    return _clearance(scene) + _lands(scene) + _cage_fit(scene)
+
+
 def _as_drawn(scene):
     """The scene: its bearing, cage and materials are as drawn (`operating` holds them grown)."""
     return scene

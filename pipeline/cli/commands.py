@@ -560,40 +560,63 @@ def render(run_dir: Annotated[Path, typer.Argument(help="A run directory written
                "Also write the cage orbit with the balls in their pockets as an animation: <run>/animation/"
                "cage_orbit.gif (.mp4 too when ffmpeg is installed)."))] = False) -> None:
     """Regenerate renders and the report from saved results (never re-solves)."""
-    from ..staging.provenance import attach_run_log
     from ..render.offscreen import display_available
-    from ..stages.report import StageResultsDamaged, render_run
+    from ..staging.artefacts import RUN_MARKER, is_own_run_dir, run_directory_lock
 
-    if not (run_dir / "scene.toml").is_file():
-        _fail(EXIT_SCENE, f"{run_dir} is not a run directory (no scene.toml); give the directory "
+    if not is_own_run_dir(run_dir):  # checked before anything is written: not even run.log or .lock
+        _fail(EXIT_SCENE, f"{run_dir} is not a run directory bearingsim wrote (no {RUN_MARKER} marker, no resolved "
+                          "scene.toml beside versions.json); nothing was written there. Give the directory "
                           "`bearingsim run SCENE` printed, e.g. runs/helicopter-b")
     if show and not display_available():
         err_console.print("no display (DISPLAY / WAYLAND_DISPLAY unset): rendering off-screen only", highlight=False)
         show = False
     elif not show:
         err_console.print("rendering off-screen", highlight=False)
+    with contextlib.ExitStack() as held:
+        try:  # as a run holds it: no stage is replaced while the report is drawn from it
+            held.enter_context(run_directory_lock(run_dir))
+        except RunDirectoryBusy as exc:
+            _fail(EXIT_FAILED, str(exc))
+        except OutputRefused as exc:
+            _fail(EXIT_SCENE, str(exc))
+        except OSError as exc:
+            _fail(EXIT_SCENE, _render_cannot_write(run_dir, exc))
+        outcome = _render_locked(run_dir, show)
+        err_console.print(f"  report       computed in {outcome.wall_time:.2f} s", highlight=False)
+        err_console.print(f"report: {run_dir / 'report' / outcome.info['report']}", highlight=False, markup=False)
+        if animate:
+            _write_animation(run_dir)
+
+
+def _render_cannot_write(run_dir: Path, exc: OSError) -> str:
+    return (f"{run_dir}: cannot write the report there ({exc.strerror or exc}); render needs a run directory it "
+            f"may write (its report/ is redrawn): copy it, e.g. cp -r {run_dir} {run_dir}-copy")
+
+
+def _render_locked(run_dir: Path, show: bool):
+    """`render` while it holds the run directory's lock: run.log, then the report stage."""
+    from ..staging.provenance import attach_run_log
+    from ..stages.report import SceneNotOfResults, StageResultsDamaged, render_run
+
     log = logging.getLogger("bearingsim")
     try:
         handler = attach_run_log(run_dir)
     except OSError as exc:  # OutputRefused too: a link or a special file in run.log's place
-        _fail(EXIT_SCENE, str(exc) if isinstance(exc, OutputRefused) else
-              f"{run_dir}: cannot write run.log there ({exc.strerror or exc}); render needs a run directory "
-              f"it may write (its report/ is redrawn): copy it, e.g. cp -r {run_dir} {run_dir}-copy")
+        _fail(EXIT_SCENE, str(exc) if isinstance(exc, OutputRefused) else _render_cannot_write(run_dir, exc))
     try:
-        outcome = render_run(run_dir, show=show)
+        return render_run(run_dir, show=show)
     except KeyboardInterrupt as exc:
         how, code = interruption(exc)
         log.warning("render interrupted (%s); the report was left as it was", how)
         _fail(code, f"interrupted ({how}): {run_dir / 'report'}/ is left as it was; run render again")
     except SceneError as exc:
         _fail(EXIT_SCENE, f"scene: {explain(exc)}")
-    except (FileNotFoundError, OutputRefused, StageResultsDamaged) as exc:
+    except (FileNotFoundError, OutputRefused, StageResultsDamaged, SceneNotOfResults) as exc:
         log.error("render refused: %s", exc)
         _fail(EXIT_SCENE, str(exc))
     except PermissionError as exc:
         log.error("render failed: %s", exc)
-        _fail(EXIT_SCENE, f"{run_dir}: cannot write the report there ({exc.strerror or exc}); render needs a "
-                          f"run directory it may write: copy it, e.g. cp -r {run_dir} {run_dir}-copy")
+        _fail(EXIT_SCENE, _render_cannot_write(run_dir, exc))
     except OSError as exc:
         from .os_errors import describe_os_error
 
@@ -605,10 +628,6 @@ def render(run_dir: Annotated[Path, typer.Argument(help="A run directory written
     finally:
         log.removeHandler(handler)
         handler.close()
-    err_console.print(f"  report       computed in {outcome.wall_time:.2f} s", highlight=False)
-    err_console.print(f"report: {run_dir / 'report' / outcome.info['report']}", highlight=False, markup=False)
-    if animate:
-        _write_animation(run_dir)
 
 
 def _write_animation(run_dir: Path) -> None:

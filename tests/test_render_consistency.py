@@ -137,3 +137,10 @@ def test_render_writes_nothing_into_a_folder_that_is_not_a_run(tmp_path):
     result = runner.invoke(app, ["render", str(folder)])
     assert result.exit_code == 2 and "not a run directory" in " ".join(result.stderr.split())
     assert {p.name: p.read_bytes() for p in folder.iterdir()} == before  # not even a .lock
+
+
+def test_a_corrupt_stage_manifest_is_refused_not_left_out(run):
+    """A simulate/stage.json that cannot be read made the report leave the dynamics out, silently."""
+    (run / "simulate" / "stage.json").write_text("{ not json")
+    result = runner.invoke(app, ["render", str(run)])
+    assert result.exit_code == 2 and "stage.json (unreadable or missing)" in " ".join(result.stderr.split())

@@ -465,9 +465,12 @@ def stiffness(scene: SceneArg,
         speed_list = parse_speeds(speeds) if speeds else None
     except SceneError as exc:
         _fail(EXIT_SCENE, f"scene: {explain(exc)}")
+    from ..staging.no_follow import named_on_command_line
+
     run_dir = _run_dir(resolved, out)
     try:
-        table = export_stiffness(resolved, run_dir, speed_list)
+        with named_on_command_line():
+            table = export_stiffness(resolved, run_dir, speed_list)
     except SceneError as exc:
         _fail(EXIT_SCENE, f"scene: {explain(exc)}")
     except OutputRefused as exc:
@@ -742,7 +745,7 @@ class SweepOptions:
 def sweep(scene: SceneArg, options: SweepOptions) -> None:
     """Parameter sweep on Dask: one pipeline run per point, a results table and a cage-stability map."""
     from ..sweep.console import class_counts, print_results
-    from ..sweep.driver import (check_scheduler_address, claim_sweep_directory, gather, plan_sweep, replaced_sweep,
+    from ..sweep.driver import (check_scheduler_address, gather, plan_sweep, replaced_sweep, sweep_directory_lock,
                                 table_rows, unfinished)
     from ..sweep.table import read_table
 
@@ -754,7 +757,8 @@ def sweep(scene: SceneArg, options: SweepOptions) -> None:
         _fail(EXIT_SCENE, str(exc))
     try:
         plan = plan_sweep(scene, o.set_, o.vary, mode=o.mode, name=o.name, out=o.out, store=o.store,
-                          max_points=o.max_points, figures=o.figures)
+                          max_points=o.max_points, figures=o.figures,
+                          progress=lambda text: err_console.print(f"sweep: {text}", highlight=False))
     except SceneError as exc:
         _fail(EXIT_SCENE, f"scene: {explain(exc)}")
     replaced = replaced_sweep(plan)
@@ -767,16 +771,19 @@ def sweep(scene: SceneArg, options: SweepOptions) -> None:
         if replaced:
             err_console.print(f"warning: {replaced}", highlight=False, markup=False, soft_wrap=True)
         return
-    try:
-        claim_sweep_directory(plan.sweep_dir)
-    except OutputRefused as exc:
-        _fail(EXIT_SCENE, str(exc))
-    if replaced:
-        err_console.print(styled(("warning:", "bold yellow"), f" {replaced}"), highlight=False, soft_wrap=True)
-    err_console.print(f"sweep {plan.name}: {len(plan.points)} points on "
-                      f"{o.scheduler or f'a local cluster of {o.workers} workers'}", highlight=False)
-    records = _run_sweep_points(plan, o)
-    paths = gather(plan, records, warn=False)  # the table below prints the short-run warning
+    with contextlib.ExitStack() as held:
+        try:
+            held.enter_context(sweep_directory_lock(plan))
+        except OutputRefused as exc:
+            _fail(EXIT_SCENE, str(exc))
+        except RunDirectoryBusy as exc:
+            _fail(EXIT_FAILED, str(exc))
+        if replaced:
+            err_console.print(styled(("warning:", "bold yellow"), f" {replaced}"), highlight=False, soft_wrap=True)
+        err_console.print(f"sweep {plan.name}: {len(plan.points)} points on "
+                          f"{o.scheduler or f'a local cluster of {o.workers} workers'}", highlight=False, soft_wrap=True)
+        records = _run_sweep_points(plan, o)
+        paths = gather(plan, records, warn=False)  # the table below prints the short-run warning
     rows = read_table(paths["table"])
     print_results(rows, plan.varied, out_console)
     err_console.print(f"classes: {class_counts(rows)}\nresults: {paths['table']}\nmap: {paths['map']}", highlight=False, markup=False)

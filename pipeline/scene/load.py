@@ -165,6 +165,9 @@ def read_scene_table(scene: str | Path) -> tuple[dict, str]:
     """Read a scene path or built-in name into a TOML table; returns (table, origin).
     Every way a file can be unreadable is a SceneError naming the file and what to do."""
     text_arg = str(scene)
+    if not text_arg.strip():
+        raise SceneError("", "the scene argument is empty; give a scene file (.toml) or the name of a built-in "
+                             "scene (bearingsim scenes lists them)")
     if "\0" in text_arg:
         raise SceneError("", f"the scene argument {text_arg!r} contains a NUL byte; give a scene file "
                              "path or a built-in scene name")

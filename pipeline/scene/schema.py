@@ -49,7 +49,9 @@ INTEGER_LIMIT = 2**63 - 1
 def shown_number(value: Any) -> str:
     """A number as a message shows it: an integer too long to read (or to print: Python
     refuses beyond 4300 digits) by its size."""
-    if isinstance(value, int) and not isinstance(value, bool) and abs(value) >= 10**20:
+    if isinstance(value, bool):  # as the scene file writes it
+        return "true" if value else "false"
+    if isinstance(value, int) and abs(value) >= 10**20:
         try:
             digits = f"{len(str(abs(value)))}"
         except ValueError:  # longer than Python prints

@@ -83,11 +83,11 @@ def build_tolerance_spec(table: Any, scene=None) -> ToleranceSpec:
         raise SceneError("tolerances", f"expected a table, got {table!r}")
     samples = table.get("samples", 10_000)
     if isinstance(samples, bool) or not isinstance(samples, int) or not 100 <= samples <= MAX_SAMPLES:
-        raise SceneError("tolerances.samples", f"{samples!r} is out of range: allowed an integer from 100 to "
+        raise SceneError("tolerances.samples", f"{shown_number(samples)} is out of range: allowed an integer from 100 to "
                                                f"{MAX_SAMPLES} [-]")
     seed = table.get("seed", 0)
     if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
-        raise SceneError("tolerances.seed", f"{seed!r}: expected a whole number >= 0 [-]")
+        raise SceneError("tolerances.seed", f"{shown_number(seed)}: expected a whole number >= 0 [-]")
     out = []
     for name, spec in table.items():
         if name in ("samples", "seed"):

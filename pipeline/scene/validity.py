@@ -359,6 +359,7 @@ def _plausibility(scene) -> list[Finding]:
             ("youngs_modulus", 1e9, 1.5e12, "Pa", "steel: 2.08e11 Pa", "Pa, not GPa or MPa"),
             ("density", 10.0, 25000.0, "kg/m^3", "steel: 7850", "kg/m^3, not g/cm^3")))
     out += _load_plausibility(scene)
+    out += _sub_nanometre(scene)
     ndm = max(abs(scene.speed.inner_rpm), abs(scene.speed.outer_rpm)) * b.pitch_diameter * 1e3
     if ndm > 4e6:
         out.append(warning("speed.inner_rpm" if abs(scene.speed.inner_rpm) >= abs(scene.speed.outer_rpm)
@@ -371,6 +372,27 @@ def _plausibility(scene) -> list[Finding]:
                            f"{_g(lub.temperature_degC)} degC is hotter than any bearing oil survives; the unit is "
                            f"degC, not K [degC]"))
     out += _lubricant_plausibility(scene)
+    return out
+
+
+# A length of a solid part below this is smaller than a few atoms (steel's lattice spacing is
+# 0.29 nm): no width, diameter, radius or roughness of a bearing, most likely a unit slip.
+SMALLEST_PART_LENGTH = 1e-9  # m
+
+
+def _sub_nanometre(scene) -> list[Finding]:
+    """Warnings for [bearing] and [cage] lengths (the positive ones: sizes, not clearances or
+    run-outs) below SMALLEST_PART_LENGTH."""
+    out = []
+    for section, obj in (("bearing", scene.bearing), ("cage", scene.cage)):
+        if obj is None:
+            continue
+        for f in dataclasses.fields(obj):
+            value = getattr(obj, f.name)
+            if (f.metadata.get("unit") == "m" and "gt" in f.metadata and isinstance(value, float)
+                    and 0.0 < value < SMALLEST_PART_LENGTH):
+                out.append(warning(f"{section}.{f.name}", f"{_g(value)} m is smaller than a few atoms (below "
+                                                          f"{SMALLEST_PART_LENGTH:g} m): scene lengths are in metres [m]"))
     return out
 
 

@@ -50,7 +50,11 @@ def check_run_directory(run_dir: Path, scene) -> list[StageCheck]:
         if stage.needed(scene):
             expected = stage_key(stage, scene, {d: keys[d] for d in stage.depends if d in keys})
             keys[stage.name] = expected
-        manifest = read_manifest(Path(run_dir) / stage.name)
+        stage_dir = Path(run_dir) / stage.name
+        manifest = read_manifest(stage_dir)
+        if manifest is None and stage_dir.is_dir():  # a stage folder always holds its manifest
+            out.append(StageCheck(stage.name, "", expected, damaged_data=["stage.json (unreadable or missing)"]))
+            continue
         if not manifest or manifest.get("status") != "done" or not manifest.get("key"):
             continue
         check = StageCheck(stage.name, manifest["key"], expected)
@@ -101,7 +105,7 @@ def _shown(value) -> str:
 
 def mismatch_message(run_dir: Path, checks: list[StageCheck]) -> str | None:
     """The refusal for a scene.toml that does not describe the stages (None when it does)."""
-    wrong = [c for c in checks if not c.of_the_scene and c.name != "report"]
+    wrong = [c for c in checks if not c.of_the_scene and c.key and c.name != "report"]
     if not wrong:
         return None
     first = wrong[0]

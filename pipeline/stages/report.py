@@ -84,7 +84,7 @@ def finished_upstream(run_dir: Path, scene, progress=None) -> dict[str, str]:
             drawn = redraw_figures(check.name, Path(run_dir) / check.name, scene, check.damaged_figures)
             logging.getLogger("bearingsim").info("render: drew %s of %s again (%s were missing or changed)",
                                                  ", ".join(drawn), check.name, ", ".join(check.damaged_figures))
-    return {c.name: c.key for c in checks}
+    return {c.name: c.key for c in checks if c.key}
 
 
 def render_run(run_dir: Path, show: bool = False, progress=None) -> StageOutcome:

@@ -306,6 +306,9 @@ def sweep_stale_temporaries(directory: Path, max_age_s: float = STALE_TEMPORARY_
     return removed
 
 
+SWEEP_POINT_RECORD = "point.json"  # what makes a run directory a point of a sweep
+
+
 def is_own_run_dir(run_dir: Path) -> bool:
     """A directory bearingsim made a run directory: its marker, or (runs of older versions)
     a resolved scene.toml beside versions.json."""
@@ -388,6 +391,11 @@ def claim_run_directory(run_dir: Path) -> None:
 
 def _claim_existing(run_dir: Path, shown: str) -> None:
     """The part of `claim_run_directory` after `run_dir` exists."""
+    if (run_dir / SWEEP_POINT_RECORD).is_file():
+        raise OutputRefused(
+            f"{out_name(shown)}: is a point of a sweep ({SWEEP_POINT_RECORD}); its results are a row of the "
+            f"sweep's table, which a run with other inputs would leave stale. Run the sweep again (its finished "
+            f"points are kept), or give this run its own directory, e.g. {out_name('runs/my-run')}")
     if not is_own_run_dir(run_dir):
         if any(p.name not in (RUN_MARKER, ".lock") and not p.name.startswith(f"{RUN_MARKER}.")
                for p in run_dir.iterdir()):  # (a concurrent run writing the marker)
@@ -428,6 +436,33 @@ def run_directory_lock(run_dir: Path) -> Iterator[None]:
             f"this run its own directory with {out_name()}") from None
     except NotALockFile as exc:
         raise refused_special_file(exc.path, exc.what) from None
+
+
+STORE_MARKER = ".bearingsim-store"
+STAGE_FOLDERS = ("identify", "quasistatic", "simulate", "report")
+
+
+def claim_store_directory(store: Path) -> None:
+    """Make sure the stage store `store` is bearingsim's to write, and mark it: a new or empty
+    folder, one it marked, or a store of an older version (only stage folders and their locks);
+    OutputRefused otherwise (`--store /` would fill the root with stage folders)."""
+    store = Path(store)
+    if (store / STORE_MARKER).is_file():
+        return
+    if store.is_symlink() and not store.exists():
+        raise OutputRefused(f"{store}: is a link to {os.readlink(store)}, which does not exist; give the stage "
+                            "store a folder of its own")
+    if store.exists():
+        if not store.is_dir():
+            raise OutputRefused(f"{store}: exists and is not a folder; give the stage store a folder of its own")
+        foreign = [p.name for p in store.iterdir() if p.name not in STAGE_FOLDERS and not p.name.startswith(STORE_MARKER)]
+        if foreign:
+            raise OutputRefused(f"{store}: holds {', '.join(sorted(foreign)[:3])}{' and more' if len(foreign) > 3 else ''}, "
+                                "which are not a bearingsim stage store's; bearingsim never writes into a folder of "
+                                f"yours: give the stage store a new or empty folder, e.g. {store / 'bearingsim-stages'}")
+    store.mkdir(parents=True, exist_ok=True)
+    mark_directory(store, STORE_MARKER, "bearingsim stage store: stage results shared by run directories, "
+                                        "by the hash of their inputs; delete it to reclaim the space")
 
 
 # Stages worth sharing between run directories by default: the FE identification (costly, and

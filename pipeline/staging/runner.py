@@ -19,14 +19,15 @@ import logging
 import os
 import shutil
 import time
+from contextvars import ContextVar
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
 from . import result_checks
 from ..scene import validity
-from .artefacts import (atomic_write_json, cache_state, foreign_files, input_key, read_manifest,
-                        remove_stage_dir, stage_files, staged_directory)
+from .artefacts import (atomic_write_json, cache_state, claim_store_directory, foreign_files, input_key,
+                        read_manifest, remove_stage_dir, stage_files, staged_directory)
 from .provenance import code_version
 from ..scene.load import Scene
 
@@ -235,9 +236,11 @@ def _via_store(stage, scene, run_dir, key, up, progress, store: Path, force: boo
     """Link a finished stage from the content-addressed store `store/<stage>/<key>/`, or
     compute it and publish it there. One lock per key: runs on several workers that need
     the same stage (e.g. one FE identification for a whole sweep) compute it once; the
-    others wait for the lock and then link the published result."""
+    others wait for the lock and then link the published result. A store that is not
+    bearingsim's (`claim_store_directory`) is not used."""
     entry = store / stage.name / key
     try:
+        claim_store_directory(store)
         entry.parent.mkdir(parents=True, exist_ok=True)
         if not os.access(entry.parent, os.W_OK | os.X_OK):
             raise PermissionError(13, "not writable by this user")
@@ -270,10 +273,15 @@ def _without_store(outcome: StageOutcome, store: Path, exc: OSError) -> StageOut
     unusable store and what to do."""
     reason = (f"{exc.filename} {exc.strerror}" if exc.filename and exc.strerror else exc.strerror or str(exc))
     message = (f"the stage store {store} cannot be used ({reason}): {outcome.name} was computed in this "
-               f"run directory only; set BEARINGSIM_STAGE_STORE to a writable directory, or pass --no-store")
+               f"run directory only; {STORE_ADVICE.get()}")
     log.warning("stage %s: %s", outcome.name, message)
     outcome.warnings.insert(0, {"level": "warning", "key": "", "message": message})
     return outcome
+
+
+# what to do about an unusable store, in the words of whoever chose it (the sweep: --store)
+STORE_ADVICE: ContextVar[str] = ContextVar(
+    "store_advice", default="set BEARINGSIM_STAGE_STORE to a writable directory, or pass --no-store")
 
 
 def _link_or_copy(src, dst) -> None:

@@ -37,6 +37,7 @@ from .table import result_row, short_run_warning, write_table
 
 PLAN_FILE, MAP_FILE = "sweep.json", "stability_map.png"
 SWEEP_MARKER = ".bearingsim-sweep"
+PLAN_PROGRESS_POINTS = 1000  # points between two progress lines of the planning (about 5 s)
 
 
 @dataclass(frozen=True)
@@ -73,11 +74,12 @@ class SweepStatus:
 def plan_sweep(scene, sets: list[str] | None = None, vary: list[str] | None = None, *,
                mode: str | None = None, name: str | None = None, out: Path | None = None,
                store: Path | None = None, max_points: int = MAX_POINTS,
-               figures: bool | None = None) -> SweepPlan:
+               figures: bool | None = None, progress: Callable[[str], None] | None = None) -> SweepPlan:
     """Validate the scene (a path, a built-in name or a Scene of the Python API), the sweep
     definition and every point; nothing is computed. A sweep of more than `max_points`
     points is refused before its points are built. `figures` (`--figures/--no-figures`)
-    overrides the scene's `[sweep] figures`."""
+    overrides the scene's `[sweep] figures`. `progress(text)` hears how the validation of a
+    large sweep's points goes (a few milliseconds a point)."""
     from ..scene.load import Scene
 
     if isinstance(scene, Scene):
@@ -96,7 +98,9 @@ def plan_sweep(scene, sets: list[str] | None = None, vary: list[str] | None = No
     store = Path(store).resolve() if store is not None else sweep_dir / "store"
     points = tuple(expand(section))
     requests = []
-    for p in points:
+    for n, p in enumerate(points):
+        if progress and len(points) >= PLAN_PROGRESS_POINTS and n % PLAN_PROGRESS_POINTS == 0:
+            progress(f"validating the scene of every point: {n} of {len(points)}")
         t = point_table(base, p)
         requests.append(PointRequest(p.id, p.label, p.overrides, t, scene_hash(t, section.target),
                                      str(sweep_dir / "points" / p.id), str(store), section.target,
@@ -312,6 +316,29 @@ def claim_sweep_directory(sweep_dir: Path) -> None:
                 f"directory, e.g. {out_name(sweep_dir / 'sweep')}")
         mark_directory(sweep_dir, SWEEP_MARKER, "bearingsim sweep directory: its plan, table, map and points "
                                                 "are replaced by bearingsim")
+
+
+@contextmanager
+def sweep_directory_lock(plan: SweepPlan):
+    """Claim the sweep's folder and its stage store (OutputRefused when either is not
+    bearingsim's) and hold the sweep folder's lock while the block runs: two sweeps writing one
+    folder would write their tables over each other (RunDirectoryBusy for the second)."""
+    from ..machine.file_lock import LockBusy, NotALockFile, exclusive_lock
+    from ..staging.artefacts import RunDirectoryBusy, claim_store_directory
+    from ..staging.no_follow import refused_special_file
+
+    claim_sweep_directory(plan.sweep_dir)
+    if plan.requests and plan.requests[0].store:
+        with refused_unless_usable(Path(plan.requests[0].store)):
+            claim_store_directory(Path(plan.requests[0].store))
+    try:
+        with exclusive_lock(plan.sweep_dir / ".lock", wait=False):
+            yield
+    except LockBusy:
+        raise RunDirectoryBusy(f"another bearingsim sweep is writing {plan.sweep_dir}/; wait for it to finish, "
+                               f"or give this sweep its own directory with {out_name()}") from None
+    except NotALockFile as exc:
+        raise refused_special_file(exc.path, exc.what) from None
 
 
 def replaced_sweep(plan: SweepPlan) -> str | None:

@@ -236,9 +236,10 @@ class Run:
         """What makes the directory's results other than its scene's, as computed: a stage computed
         from other inputs than scene.toml's, a stage file changed or missing since the stage wrote it
         (a missing figure is drawn again by `bearingsim render`). Empty when all is as computed."""
+        from .stages import STAGES
         from .stages.consistency import check_run_directory, mismatch_message
 
-        checks = check_run_directory(self.run_dir, self.scene)
+        checks = check_run_directory(self.run_dir, self.scene, STAGES)
         out = [m for m in [mismatch_message(self.run_dir, checks)] if m]
         for c in checks:
             if c.damaged_data:

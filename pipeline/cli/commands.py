@@ -238,9 +238,13 @@ def _run_stages_with_exit_codes(scene, scene_arg, run_dir, targets, force, quiet
         log.exception("out of memory")
         _fail(EXIT_FAILED, f"out of memory{hint}; {MEMORY_HINT} (full log: {run_dir / 'run.log'})")
     except OSError as exc:
+        from ..machine.kernel_cache import cache_directory
+        from ..machine.numba_cache import from_kernel_cache
         from .os_errors import describe_os_error
 
         log.exception("file error")
+        if exc.filename is None and from_kernel_cache(exc):  # numba writing a compiled kernel
+            exc.filename = str(cache_directory())
         _fail(EXIT_FAILED, f"{describe_os_error(exc, run_dir)}{hint}\n(full log: {run_dir / 'run.log'})")
     except Exception as exc:  # noqa: BLE001 - a defect: the traceback goes to run.log, not the screen
         cache_failure = _kernel_cache_failure(exc)

@@ -120,7 +120,7 @@ def build_tolerance_spec(table: Any, scene=None) -> ToleranceSpec:
         from .tolerance_stacks import range_problem
 
         for deviation in out:
-            problem = range_problem(scene, deviation)
+            problem = range_problem(scene, deviation, QUANTITIES[deviation.name][0])
             if problem is not None:
                 raise problem
     return ToleranceSpec(samples=samples, seed=seed, deviations=tuple(out))

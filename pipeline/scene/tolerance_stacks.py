@@ -143,12 +143,13 @@ def _drawn_parts(scene, values: dict[str, float]):
     return b, c
 
 
-def range_problem(scene, deviation) -> SceneError | None:
+def range_problem(scene, deviation, unit: str) -> SceneError | None:
     """A SceneError when the range of one tolerance (a `tolerance_section.Deviation`), the other
     quantities at their nominal values, reaches values the scene refuses: a uniform range at
     either end, a normal one at +-NORMAL_REACH sd. It names the end, what fails there and the
-    allowed end (where the stacks stop being bearings, found by bisection)."""
-    name, unit = deviation.name, _unit(deviation.name)
+    allowed end (where the stacks stop being bearings, found by bisection); `unit` is the
+    quantity's."""
+    name = deviation.name
     ends = ([("lower", deviation.lower), ("upper", deviation.upper)] if deviation.kind == "uniform"
             else [("sd", -NORMAL_REACH * deviation.sd), ("sd", NORMAL_REACH * deviation.sd)])
     for label, end in ends:
@@ -179,12 +180,6 @@ def _edge(scene, name: str, end: float, steps: int = 60) -> tuple[float, tuple[s
         else:
             bad, problem = mid, found
     return good, problem
-
-
-def _unit(name: str) -> str:
-    from .tolerance_section import QUANTITIES
-
-    return QUANTITIES[name][0]
 
 
 def invalid_stacks(scene, deviations: dict[str, Any], n: int) -> tuple[list[bool], dict[str, int]]:

@@ -36,16 +36,15 @@ class StageCheck:
         return self.expected == self.key
 
 
-def check_run_directory(run_dir: Path, scene) -> list[StageCheck]:
-    """Every finished stage of `run_dir` (identify, quasistatic, simulate, report), in order,
-    checked against `scene` (the directory's scene.toml) and against its manifest's checksums."""
+def check_run_directory(run_dir: Path, scene, stages) -> list[StageCheck]:
+    """Every finished stage of `run_dir` among `stages` (the pipeline's, in order), checked
+    against `scene` (the directory's scene.toml) and against its manifest's checksums."""
     from ..staging.artefacts import damaged_files, read_manifest
     from ..staging.runner import stage_key
-    from . import STAGES
 
     keys: dict[str, str] = {}
     out = []
-    for stage in STAGES:
+    for stage in stages:
         expected = None
         if stage.needed(scene):
             expected = stage_key(stage, scene, {d: keys[d] for d in stage.depends if d in keys})

@@ -66,7 +66,7 @@ def finished_upstream(run_dir: Path, scene, progress=None) -> dict[str, str]:
     from ..render.stage_figures import redraw_figures
     from .consistency import check_run_directory, mismatch_message
 
-    checks = [c for c in check_run_directory(run_dir, scene) if c.name in STAGE.depends]
+    checks = [c for c in check_run_directory(run_dir, scene, _upstream_stages()) if c.name in STAGE.depends]
     mismatch = mismatch_message(run_dir, checks)
     if mismatch:
         raise SceneNotOfResults(mismatch)
@@ -85,6 +85,15 @@ def finished_upstream(run_dir: Path, scene, progress=None) -> dict[str, str]:
             logging.getLogger("bearingsim").info("render: drew %s of %s again (%s were missing or changed)",
                                                  ", ".join(drawn), check.name, ", ".join(check.damaged_figures))
     return {c.name: c.key for c in checks if c.key}
+
+
+def _upstream_stages() -> list[Stage]:
+    """The stages the report reads, in pipeline order."""
+    from .identify import STAGE as IDENTIFY
+    from .quasistatic import STAGE as QUASISTATIC
+    from .simulate import STAGE as SIMULATE
+
+    return [IDENTIFY, QUASISTATIC, SIMULATE]
 
 
 def render_run(run_dir: Path, show: bool = False, progress=None) -> StageOutcome:

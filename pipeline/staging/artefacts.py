@@ -439,12 +439,20 @@ def run_directory_lock(run_dir: Path) -> Iterator[None]:
 
 
 STORE_MARKER = ".bearingsim-store"
-STAGE_FOLDERS = ("identify", "quasistatic", "simulate", "report")
+# what a stage folder of a store holds: results by the sha256 of their inputs, their locks, temporaries
+_STORE_ENTRY = re.compile(r"^\.?[0-9a-f]{64}(\.lock|\..+\.tmp|\.old-\d+)?$")
+
+
+def _is_store_stage_folder(path: Path) -> bool:
+    try:
+        return path.is_dir() and not path.is_symlink() and all(_STORE_ENTRY.match(p.name) for p in path.iterdir())
+    except OSError:
+        return False
 
 
 def claim_store_directory(store: Path) -> None:
     """Make sure the stage store `store` is bearingsim's to write, and mark it: a new or empty
-    folder, one it marked, or a store of an older version (only stage folders and their locks);
+    folder, one it marked, or a store of an older version (only stage folders of results by key);
     OutputRefused otherwise (`--store /` would fill the root with stage folders)."""
     store = Path(store)
     if (store / STORE_MARKER).is_file():
@@ -455,7 +463,8 @@ def claim_store_directory(store: Path) -> None:
     if store.exists():
         if not store.is_dir():
             raise OutputRefused(f"{store}: exists and is not a folder; give the stage store a folder of its own")
-        foreign = [p.name for p in store.iterdir() if p.name not in STAGE_FOLDERS and not p.name.startswith(STORE_MARKER)]
+        foreign = [p.name for p in store.iterdir()
+                   if not p.name.startswith(STORE_MARKER) and not _is_store_stage_folder(p)]
         if foreign:
             raise OutputRefused(f"{store}: holds {', '.join(sorted(foreign)[:3])}{' and more' if len(foreign) > 3 else ''}, "
                                 "which are not a bearingsim stage store's; bearingsim never writes into a folder of "

@@ -144,3 +144,29 @@ def test_a_corrupt_stage_manifest_is_refused_not_left_out(run):
     (run / "simulate" / "stage.json").write_text("{ not json")
     result = runner.invoke(app, ["render", str(run)])
     assert result.exit_code == 2 and "stage.json (unreadable or missing)" in " ".join(result.stderr.split())
+
+
+def test_a_run_of_another_version_renders(run):
+    """Stage keys hash the code version too: a run computed by another version (an upgrade, or
+    an edited checkout) has other keys for the same inputs, and is of its scene all the same."""
+    renamed = {}
+    for stage in ("quasistatic", "simulate", "report"):
+        manifest = json.loads((run / stage / "stage.json").read_text())
+        renamed[manifest["key"]] = "0" * 63 + str(len(renamed))
+        manifest["key"] = renamed[manifest["key"]]
+        manifest["upstream"] = {d: renamed.get(k, k) for d, k in manifest.get("upstream", {}).items()}
+        (run / stage / "stage.json").write_text(json.dumps(manifest))
+    result = runner.invoke(app, ["render", str(run)])
+    assert result.exit_code == 0, result.output
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        bearingsim.open_run(run)
+
+
+def test_a_stage_computed_from_another_upstream_result_is_refused(run):
+    manifest = json.loads((run / "simulate" / "stage.json").read_text())
+    manifest["upstream"]["quasistatic"] = "f" * 64
+    (run / "simulate" / "stage.json").write_text(json.dumps(manifest))
+    (run / "simulate" / "stage.json").chmod(0o644)
+    result = runner.invoke(app, ["render", str(run)])
+    assert result.exit_code == 2 and "computed from another quasistatic result" in " ".join(result.stderr.split())

@@ -179,7 +179,11 @@ def _edge(scene, name: str, end: float, steps: int = 60) -> tuple[float, tuple[s
             good = mid
         else:
             bad, problem = mid, found
-    return good, problem
+    # the failure shown at a round deviation just past the edge (-200.1, not -200.00000000000003)
+    shown = float(f"{bad:.4g}")
+    if stack_problem(scene, stack_values(scene, {name: shown})) is None:
+        shown += math.copysign(10.0 ** (math.floor(math.log10(abs(shown))) - 3), end) if shown else end
+    return good, stack_problem(scene, stack_values(scene, {name: shown})) or problem
 
 
 def invalid_stacks(scene, deviations: dict[str, Any], n: int) -> tuple[list[bool], dict[str, int]]:

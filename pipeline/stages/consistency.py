@@ -1,8 +1,8 @@
 """Whether a run directory's scene.toml describes its results, and which of their files changed.
 
-Each finished stage's manifest records the key of the inputs it was computed from. The scene in
-scene.toml gives, stage by stage, the keys a run of it would compute (as the runner chains them,
-each stage's key holding its upstream stages'); a stage whose recorded key differs was computed
+Each finished stage's manifest records the inputs it was computed from and the keys of the
+upstream results it read. A stage whose recorded inputs are not the ones the directory's
+scene.toml gives, or which read another upstream result than the directory holds, was computed
 from other inputs: scene.toml was edited by hand, or written by a later command with other
 `--set` values that did not recompute that stage (`stiffness`, an interrupted `simulate`).
 `render` refuses such a directory and `open_run` flags it (docs/reliability.md).
@@ -25,42 +25,54 @@ class StageCheck:
     """One finished stage of a run directory against the directory's scene."""
 
     name: str
-    key: str  # recorded in its manifest
-    expected: str | None  # what the scene gives (None: the scene does not need the stage)
+    key: str  # recorded in its manifest ("" when the manifest cannot be read)
     differences: list[str] = field(default_factory=list)  # "load.moment: 430 computed, 100 in scene.toml"
     damaged_data: list[str] = field(default_factory=list)
     damaged_figures: list[str] = field(default_factory=list)
 
     @property
     def of_the_scene(self) -> bool:
-        return self.expected == self.key
+        return not self.differences
 
 
 def check_run_directory(run_dir: Path, scene, stages) -> list[StageCheck]:
     """Every finished stage of `run_dir` among `stages` (the pipeline's, in order), checked
-    against `scene` (the directory's scene.toml) and against its manifest's checksums."""
-    from ..staging.artefacts import damaged_files, read_manifest
+    against `scene` (the directory's scene.toml) and against its manifest's checksums.
+
+    A stage is of the scene when the inputs its manifest records are the scene's (whatever
+    version of bearingsim computed it: the key also hashes the code version), and when it was
+    computed from the upstream results the directory holds (the upstream keys it records). A
+    manifest of an older version without recorded inputs is held to the key alone."""
+    from ..staging.artefacts import canonical, damaged_files, read_manifest
     from ..staging.runner import stage_key
 
-    keys: dict[str, str] = {}
+    manifests: dict[str, dict] = {}
     out = []
     for stage in stages:
-        expected = None
-        if stage.needed(scene):
-            expected = stage_key(stage, scene, {d: keys[d] for d in stage.depends if d in keys})
-            keys[stage.name] = expected
         stage_dir = Path(run_dir) / stage.name
         manifest = read_manifest(stage_dir)
         if manifest is None and stage_dir.is_dir():  # a stage folder always holds its manifest
-            out.append(StageCheck(stage.name, "", expected, damaged_data=["stage.json (unreadable or missing)"]))
+            out.append(StageCheck(stage.name, "", damaged_data=["stage.json (unreadable or missing)"]))
             continue
         if not manifest or manifest.get("status") != "done" or not manifest.get("key"):
             continue
-        check = StageCheck(stage.name, manifest["key"], expected)
-        if not check.of_the_scene:
-            check.differences = input_differences(manifest.get("inputs"), stage.inputs(scene) if expected else None)
-        for name in damaged_files(Path(run_dir) / stage.name, manifest):
+        check = StageCheck(stage.name, manifest["key"])
+        recorded = manifest.get("inputs")
+        if not stage.needed(scene):
+            check.differences = ["the scene does not need this stage (hinge.source or the [cage] differ)"]
+        elif recorded is not None:
+            if canonical(recorded) != canonical(stage.inputs(scene)):
+                check.differences = input_differences(recorded, stage.inputs(scene)) or ["its recorded inputs differ"]
+        else:
+            upstream = {d: manifests[d]["key"] for d in stage.depends if d in manifests}
+            if stage_key(stage, scene, upstream) != manifest["key"]:
+                check.differences = ["its recorded key differs (a manifest of an older version, without inputs)"]
+        for d, k in (manifest.get("upstream") or {}).items():
+            if d in manifests and manifests[d]["key"] != k:
+                check.differences.append(f"computed from another {d} result than the one in {d}/")
+        for name in damaged_files(stage_dir, manifest):
             (check.damaged_figures if name.endswith(FIGURE_SUFFIX) else check.damaged_data).append(name)
+        manifests[stage.name] = manifest
         out.append(check)
     return out
 
@@ -68,10 +80,6 @@ def check_run_directory(run_dir: Path, scene, stages) -> list[StageCheck]:
 def input_differences(recorded, current, limit: int = 5) -> list[str]:
     """The dotted inputs that differ between a manifest's `inputs` and the scene's, as
     "key: <recorded> computed, <current> in scene.toml" (at most `limit`)."""
-    if current is None:
-        return ["the scene does not need this stage (hinge.source or the [cage] differ)"]
-    if recorded is None:
-        return []  # a manifest of an older version: the key alone says they differ
     from ..staging.artefacts import canonical
 
     a, b = _flat(canonical(recorded)), _flat(canonical(current))

@@ -281,6 +281,11 @@ def remove_stage_dir(path: Path) -> bool:
     return False
 
 
+def is_temporary(name: str) -> bool:
+    """A file or folder name of what atomic writes and staged directories leave behind."""
+    return bool(_TEMPORARY.match(name))
+
+
 def sweep_stale_temporaries(directory: Path, max_age_s: float = STALE_TEMPORARY_AGE_S) -> list[str]:
     """Remove what a killed run left in `directory` (`.<name>.*.tmp`, `.<name>.old-<pid>`)
     when older than `max_age_s`; a live run's temporaries are younger. Returns the names."""
@@ -436,42 +441,6 @@ def run_directory_lock(run_dir: Path) -> Iterator[None]:
             f"this run its own directory with {out_name()}") from None
     except NotALockFile as exc:
         raise refused_special_file(exc.path, exc.what) from None
-
-
-STORE_MARKER = ".bearingsim-store"
-# what a stage folder of a store holds: results by the sha256 of their inputs, their locks, temporaries
-_STORE_ENTRY = re.compile(r"^\.?[0-9a-f]{64}(\.lock|\..+\.tmp|\.old-\d+)?$")
-
-
-def _is_store_stage_folder(path: Path) -> bool:
-    try:
-        return path.is_dir() and not path.is_symlink() and all(_STORE_ENTRY.match(p.name) for p in path.iterdir())
-    except OSError:
-        return False
-
-
-def claim_store_directory(store: Path) -> None:
-    """Make sure the stage store `store` is bearingsim's to write, and mark it: a new or empty
-    folder, one it marked, or a store of an older version (only stage folders of results by key);
-    OutputRefused otherwise (`--store /` would fill the root with stage folders)."""
-    store = Path(store)
-    if (store / STORE_MARKER).is_file():
-        return
-    if store.is_symlink() and not store.exists():
-        raise OutputRefused(f"{store}: is a link to {os.readlink(store)}, which does not exist; give the stage "
-                            "store a folder of its own")
-    if store.exists():
-        if not store.is_dir():
-            raise OutputRefused(f"{store}: exists and is not a folder; give the stage store a folder of its own")
-        foreign = [p.name for p in store.iterdir()  # (a concurrent run writing the marker: a temporary)
-                   if not _TEMPORARY.match(p.name) and not _is_store_stage_folder(p)]
-        if foreign:
-            raise OutputRefused(f"{store}: holds {', '.join(sorted(foreign)[:3])}{' and more' if len(foreign) > 3 else ''}, "
-                                "which are not a bearingsim stage store's; bearingsim never writes into a folder of "
-                                f"yours: give the stage store a new or empty folder, e.g. {store / 'bearingsim-stages'}")
-    store.mkdir(parents=True, exist_ok=True)
-    mark_directory(store, STORE_MARKER, "bearingsim stage store: stage results shared by run directories, "
-                                        "by the hash of their inputs; delete it to reclaim the space")
 
 
 # Stages worth sharing between run directories by default: the FE identification (costly, and

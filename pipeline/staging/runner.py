@@ -26,8 +26,9 @@ from typing import Callable
 
 from . import result_checks
 from ..scene import validity
-from .artefacts import (atomic_write_json, cache_state, claim_store_directory, foreign_files, input_key,
-                        read_manifest, remove_stage_dir, stage_files, staged_directory)
+from .artefacts import (atomic_write_json, cache_state, foreign_files, input_key, read_manifest,
+                        remove_stage_dir, stage_files, staged_directory)
+from .stage_store import claim_store_directory
 from .provenance import code_version
 from ..scene.load import Scene
 

@@ -324,7 +324,8 @@ def sweep_directory_lock(plan: SweepPlan):
     bearingsim's) and hold the sweep folder's lock while the block runs: two sweeps writing one
     folder would write their tables over each other (RunDirectoryBusy for the second)."""
     from ..machine.file_lock import LockBusy, NotALockFile, exclusive_lock
-    from ..staging.artefacts import RunDirectoryBusy, claim_store_directory
+    from ..staging.artefacts import RunDirectoryBusy
+    from ..staging.stage_store import claim_store_directory
     from ..staging.no_follow import refused_special_file
 
     claim_sweep_directory(plan.sweep_dir)
@@ -372,8 +373,6 @@ def check_scheduler_address(address: str) -> None:
     """SceneError (key `--scheduler`) unless `address` reads as a Dask scheduler address,
     `[tcp|tls|ws|wss|ucx]://host:port` or `host:port`: checked before any point is planned,
     instead of a ValueError from inside the client."""
-    from ..scene.schema import SceneError
-
     try:
         from distributed.comm import get_address_host_port
     except ImportError:

@@ -232,6 +232,25 @@ class Run:
         return RunPlots(self)
 
     @property
+    def problems(self) -> list[str]:
+        """What makes the directory's results other than its scene's, as computed: a stage computed
+        from other inputs than scene.toml's, a stage file changed or missing since the stage wrote it
+        (a missing figure is drawn again by `bearingsim render`). Empty when all is as computed."""
+        from .stages import STAGES
+        from .stages.consistency import check_run_directory, mismatch_message
+
+        checks = check_run_directory(self.run_dir, self.scene, STAGES)
+        out = [m for m in [mismatch_message(self.run_dir, checks)] if m]
+        for c in checks:
+            if c.damaged_data:
+                out.append(f"{self.stage_dir(c.name)}: {', '.join(c.damaged_data[:5])} changed or went missing since the "
+                           f"{c.name} stage wrote it: not the results as computed")
+            if c.damaged_figures:
+                out.append(f"{self.stage_dir(c.name)}: figures {', '.join(c.damaged_figures[:5])} changed or went "
+                           f"missing; `bearingsim render {self.run_dir}` draws them again")
+        return out
+
+    @property
     def stages(self) -> dict[str, str]:
         """Stage name -> "done" for every finished stage in the directory, plus the status of
         this call's outcomes ("computed", "cached", "not needed", ...)."""
@@ -408,12 +427,17 @@ def _drawn(fig, what: str):
 
 
 def open_run(run_dir: str | Path) -> Run:
-    """A `Run` of an existing run directory (its scene from `<run_dir>/scene.toml`)."""
+    """A `Run` of an existing run directory (its scene from `<run_dir>/scene.toml`). When
+    scene.toml does not describe the results (edited, or written by a later command with other
+    inputs) or a stage's files changed since it wrote them, a UserWarning says so (`Run.problems`)."""
     run_dir = Path(run_dir)
     scene_file = run_dir / "scene.toml"
     if not scene_file.is_file():
         raise FileNotFoundError(f"{run_dir} is not a run directory: it has no scene.toml")
-    return Run(load_scene(scene_file), run_dir.absolute())
+    run = Run(load_scene(scene_file), run_dir.absolute())
+    for problem in run.problems:
+        warnings.warn(problem, stacklevel=2)
+    return run
 
 
 # --- stiffness export ----------------------------------------------------------------------

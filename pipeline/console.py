@@ -1,8 +1,10 @@
-"""What the user reads on the terminal: consoles that never eat text, and advice in scene keys.
+"""What the user reads on the terminal: consoles that show text as written, and advice in scene keys.
 
-Rich treats `[m]`, `[s]`, `[rev/min]` or `[lubricant]` as markup and `:smile:` as an emoji;
-units and scene text would vanish from messages. Every message built from user or scene
-text goes through `escape`, and the consoles have emoji replacement off.
+Rich would read `[m]`, `[s]`, `[rev/min]` or `[lubricant]` as markup (and a description holding
+`[/]` would stop the program), `:smile:` as an emoji, and pass an ESC byte of a scene file to the
+terminal as a control sequence. The consoles of `make_console` do none of this, for every string
+they print, whoever built it (a table cell too): no markup, no emoji codes, and control
+characters shown escaped (`\\x1b`). Styling is explicit: `styled("error:", "bold red")`.
 
 The solvers' own hints speak of their settings (`tol`, `max_newton_iter`, ...), which are
 not scene keys; `explain` turns a failure into a message whose advice names only keys
@@ -14,15 +16,40 @@ from __future__ import annotations
 import re
 
 from rich.console import Console
-from rich.markup import escape
+from rich.text import Text
 
-__all__ = ["escape", "make_console", "explain", "finding_lines", "INTEGRATION_HINTS", "PHRASES"]
+__all__ = ["make_console", "styled", "visible", "explain", "finding_lines", "INTEGRATION_HINTS", "PHRASES"]
+
+# C0 and C1 control characters but line feed and tab: an ESC starts a terminal control sequence
+_CONTROL = re.compile(r"[\x00-\x08\x0b-\x1f\x7f-\x9f]")
+
+
+def visible(text: str) -> str:
+    """`text` with its control characters (ESC, carriage return, bell, ...) written as escapes."""
+    return _CONTROL.sub(lambda m: f"\\x{ord(m.group()):02x}", text)
+
+
+class LiteralConsole(Console):
+    """A rich console that renders every string as written (module docstring)."""
+
+    def render_str(self, text: str, **kwargs) -> Text:
+        kwargs.update(markup=False, emoji=False)
+        return super().render_str(visible(text), **kwargs)
 
 
 def make_console(stderr: bool = False) -> Console:
     """stderr's lines are soft-wrapped: a path or a message is printed whole, never broken at
     the console's width (80 columns when stderr is not a terminal), so it can be copied."""
-    return Console(stderr=stderr, emoji=False, soft_wrap=stderr)
+    return LiteralConsole(stderr=stderr, emoji=False, markup=False, soft_wrap=stderr)
+
+
+def styled(*parts: str | tuple[str, str]) -> Text:
+    """One line of text from plain strings and (text, style) pairs, control characters escaped."""
+    line = Text()
+    for part in parts:
+        text, style = part if isinstance(part, tuple) else (part, "")
+        line.append(visible(text), style=style)
+    return line
 
 
 # The integrator's failure reasons (dynamics/multibody/results.py, Result.value) -> what to
@@ -80,8 +107,8 @@ def explain(exc: BaseException) -> str:
     return text
 
 
-def finding_lines(findings, prefix: str = "") -> list[str]:
-    """Console lines (markup, user text escaped) for validity findings (Finding or dicts)."""
+def finding_lines(findings, prefix: str = "") -> list[Text]:
+    """Console lines for validity findings (Finding or dicts): the level styled, the text as written."""
     lines = []
     for f in findings:
         level = f.get("level") if isinstance(f, dict) else f.level
@@ -89,5 +116,5 @@ def finding_lines(findings, prefix: str = "") -> list[str]:
         message = f.get("message") if isinstance(f, dict) else f.message
         text = f"{key}: {message}" if key else str(message)
         style = "bold red" if level == "error" else "yellow"
-        lines.append(f"[{style}]{level}:[/] {escape(prefix + text)}")
+        lines.append(styled((f"{level}:", style), f" {prefix}{text}"))
     return lines

@@ -77,3 +77,107 @@ def test_a_negative_thrust_is_said_to_be_mirrored():
     result = runner.invoke(app, ["check", "helicopter-b-given-hinge", "--set", "load.axial=-34000"])
     assert result.exit_code == 0 and "thrust along -z" in result.stderr
     assert "thrust along -z" not in runner.invoke(app, ["check", "helicopter-b-given-hinge"]).stderr
+
+
+# --- the questionable cases of the second reliability probe (docs/reliability.md) ---------------
+def test_duplicate_sweep_values_are_one_point():
+    """100, 100.0 and 1e2 (or -0.0, 0.0 and 0) are one value for the stages' keys: one point."""
+    from bearingsim.pipeline.scene.sweep_section import build_sweep_section
+    from bearingsim.pipeline.sweep.points import expand
+
+    section = build_sweep_section({"vary": {"load.moment": [100, 100.0, 1e2, 0, -0.0, 0.0, 200]}})
+    points = expand(section)
+    assert [p.overrides for p in points] == [(("load.moment", 100),), (("load.moment", 0),), (("load.moment", 200),)]
+
+
+def test_a_run_into_a_sweep_point_folder_is_refused(tmp_path):
+    point = tmp_path / "sweep" / "points" / "0123456789ab"
+    point.mkdir(parents=True)
+    (point / ".bearingsim-run").write_text("run\n")
+    (point / "point.json").write_text('{"status": "done"}')
+    result = runner.invoke(app, ["quasistatic", "deep-groove-209", "--out", str(point)])
+    assert result.exit_code == 2 and "is a point of a sweep" in " ".join(result.stderr.split())
+    assert sorted(p.name for p in point.iterdir()) == [".bearingsim-run", "point.json"]
+
+
+def test_a_second_sweep_on_one_folder_is_refused(tmp_path):
+    from bearingsim.pipeline.machine.file_lock import exclusive_lock
+
+    out = tmp_path / "sweep"
+    out.mkdir()
+    (out / ".bearingsim-sweep").write_text("sweep\n")
+    with exclusive_lock(out / ".lock"):
+        result = runner.invoke(app, ["sweep", "deep-groove-209", "--vary", "load.radial=1000,2000",
+                                     "--out", str(out)])
+    assert result.exit_code == 1 and "another bearingsim sweep is writing" in " ".join(result.stderr.split())
+
+
+def test_a_stage_store_that_is_a_folder_of_yours_is_refused(tmp_path):
+    """`--store /` would fill the root with stage folders: a store must be new, empty or a
+    store bearingsim marked (a folder of the user's stands in for / here)."""
+    mine = tmp_path / "mine"
+    mine.mkdir()
+    (mine / "notes.txt").write_text("mine\n")
+    result = runner.invoke(app, ["sweep", "deep-groove-209", "--vary", "load.radial=1000,2000",
+                                 "--out", str(tmp_path / "sweep"), "--store", str(mine)])
+    assert result.exit_code == 2 and "not a bearingsim stage store" in " ".join(result.stderr.split())
+    assert sorted(p.name for p in mine.iterdir()) == ["notes.txt"]
+
+
+def test_an_unusable_store_in_a_sweep_names_its_option(tmp_path, monkeypatch):
+    from bearingsim.pipeline.staging.runner import STORE_ADVICE, Stage, run_stages
+
+    stage = Stage("toy", (), lambda s: True, lambda s: {}, lambda ctx: {}, "a stage")
+    afile = tmp_path / "afile"
+    afile.write_text("x")
+    token = STORE_ADVICE.set("give the sweep a writable stage store with --store (store= in Python)")
+    try:
+        outcome = run_stages(load_scene("deep-groove-209"), tmp_path / "run", [stage], ["toy"], store=afile)[0]
+    finally:
+        STORE_ADVICE.reset(token)
+    assert "--store" in outcome.warnings[0]["message"] and "--no-store" not in outcome.warnings[0]["message"]
+
+
+def test_a_large_sweep_says_it_is_validating(monkeypatch):
+    from bearingsim.pipeline.sweep import driver
+
+    monkeypatch.setattr(driver, "PLAN_PROGRESS_POINTS", 2)
+    heard = []
+    driver.plan_sweep("deep-groove-209", vary=["load.radial=1000:4000:4"], progress=heard.append)
+    assert heard == ["validating the scene of every point: 0 of 4", "validating the scene of every point: 2 of 4"]
+
+
+def test_stiffness_messages_name_the_command_line_option(tmp_path):
+    mine = tmp_path / "mine"
+    mine.mkdir()
+    (mine / "notes.txt").write_text("mine\n")
+    result = runner.invoke(app, ["stiffness", "helicopter-b-given-hinge", "--out", str(mine)])
+    assert result.exit_code == 2 and f"--out {mine}" in result.stderr and "run_dir=" not in result.stderr
+    huge = runner.invoke(app, ["stiffness", "helicopter-b-given-hinge", "--speeds", "1e308", "--out", str(tmp_path / "s")])
+    assert huge.exit_code == 2 and "speed.inner_rpm" in huge.stderr
+
+
+def test_a_near_conforming_groove_is_named_instead_of_the_load(tmp_path):
+    result = runner.invoke(app, ["quasistatic", "deep-groove-209", "--out", str(tmp_path),
+                                 "--set", "bearing.inner_conformity=0.5000000001"])
+    assert result.exit_code == 2 and "bearing.inner_conformity = 0.5000000001" in " ".join(result.stderr.split())
+
+
+def test_sub_nanometre_part_lengths_are_flagged():
+    result = runner.invoke(app, ["check", "helicopter-b-given-hinge", "--set", "cage.land_roughness=1e-20",
+                                 "--set", "bearing.width=1e-12"])
+    text = " ".join(result.stderr.split())
+    assert result.exit_code == 0 and "cage.land_roughness: 1e-20 m is smaller than a few atoms" in text
+    assert "bearing.width: 1e-12 m is smaller than a few atoms" in text
+
+
+def test_an_empty_scene_argument_is_named():
+    result = runner.invoke(app, ["run", ""])
+    assert result.exit_code == 2 and "the scene argument is empty" in result.stderr
+
+
+def test_tolerance_values_are_shown_as_toml(tmp_path):
+    path = tmp_path / "tol.toml"
+    path.write_text("[tolerances]\nsamples = true\nmoment = { sd = 1.0 }\n")
+    result = runner.invoke(app, ["tolerances", "helicopter-b-given-hinge", "--tolerances", str(path)])
+    assert result.exit_code == 2 and "tolerances.samples: true is out of range" in result.stderr

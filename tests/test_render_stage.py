@@ -83,7 +83,8 @@ def run_dir(tmp_path_factory):
     scene = load_scene("helicopter-b")
     run = tmp_path_factory.mktemp("run") / "helicopter-b"
     run.mkdir()
-    (run / "scene.toml").write_text("# resolved\n" + tomli_w.dumps(scene.raw))
+    (run / "scene.toml").write_text("# Resolved scene (synthetic)\n" + tomli_w.dumps(scene.raw))
+    (run / ".bearingsim-run").write_text("a run directory\n")
     (run / "versions.json").write_text(json.dumps({"bearingsim": "test", "numpy": np.__version__}))
     keys = {"identify": stage_key(IDENTIFY, scene, {}), "quasistatic": stage_key(QUASISTATIC, scene, {})}
     keys["simulate"] = stage_key(SIMULATE, scene, dict(keys))

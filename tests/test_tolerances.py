@@ -99,3 +99,85 @@ def test_bad_tolerance_tables_name_key_range_and_unit(table, match):
 def test_scene_tolerances_are_validated_on_load():
     with pytest.raises(SceneError, match="tolerances.moment"):
         load_scene("helicopter-b-given-hinge", ["tolerances.moment={sd = 0.0}"])
+
+
+# --- every stack is a bearing the scene allows, or it is counted and left out ------------------
+@pytest.mark.parametrize("table, key, allowed", [
+    ({"pocket_diameter": {"lower": -1.0, "upper": -0.5}}, "tolerances.pocket_diameter", "allowed lower > -0.00118 [m]"),
+    ({"cage_temperature": {"lower": -500.0, "upper": 500.0}}, "tolerances.cage_temperature", "allowed lower > -200 [K]"),
+    ({"pocket_diameter": {"sd": 1e-3}}, "tolerances.pocket_diameter", "allowed sd < 0.0003933 [m]"),
+])
+def test_a_tolerance_range_reaching_impossible_parts_is_refused_up_front(scene, table, key, allowed):
+    """The issue's repros: a pocket of -1 .. -0.5 m made P(crushed) 100 %, a cage at -400 °C
+    41 %. The allowed end is where the stacks stop being bearings (pocket = ball diameter
+    0.01905 m of 0.02023 m drawn; the cage's -100 °C at 100 °C operating)."""
+    with pytest.raises(SceneError) as info:
+        tol.build_tolerance_spec({"samples": 1000, **table}, scene)
+    assert info.value.key == key and allowed in str(info.value)
+
+
+def test_the_command_refuses_an_impossible_range_with_exit_2(tmp_path):
+    from typer.testing import CliRunner
+
+    from bearingsim.pipeline.cli.commands import app
+
+    path = tmp_path / "tol.toml"
+    path.write_text("[tolerances]\nsamples = 1000\npocket_diameter = { lower = -1, upper = -0.5 }\n")
+    result = CliRunner().invoke(app, ["tolerances", "helicopter-b-given-hinge", "--tolerances", str(path),
+                                      "--out", str(tmp_path / "run")])
+    assert result.exit_code == 2 and "tolerances.pocket_diameter" in result.stderr
+    assert not (tmp_path / "run").exists()
+
+
+def test_stacks_beyond_three_sd_that_are_no_bearing_are_counted_and_left_out(scene, tmp_path):
+    """sd = 0.38 mm on a pocket 1.18 mm wider than the ball: 3.1 sd to the ball, so a few of
+    5000 Latin-hypercube stacks (whose extreme strata reach 3.7 sd) have no room for the ball."""
+    spec = tol.build_tolerance_spec({"samples": 5000, "seed": 4, "pocket_diameter": {"sd": 3.8e-4}}, scene)
+    result = tol.analyse(scene, spec)
+    bad = ~result.valid_mask
+    assert 0 < bad.sum() < 20 and result.invalid == {"cage.pocket_diameter": int(bad.sum())}
+    assert np.all(result.deviations["pocket_diameter"][bad] < -(POCKET - BALL))  # exactly those
+    assert np.all(np.isnan(result.margin[bad])) and np.all(result.regime[bad] == tol.INVALID)
+    s = tol.summary(result, scene)
+    assert s["invalid_stacks"]["count"] == bad.sum() and s["valid_samples"] == 5000 - bad.sum()
+    assert sum(p["probability"] for p in s["regime_probability"].values()) == pytest.approx(1.0)
+    load_scene("helicopter-b-given-hinge", s["stack_at_p5_overrides"])  # a stack the scene accepts
+    tol.write_samples_csv(tmp_path / "s.csv", result)
+    rows = (tmp_path / "s.csv").read_text().splitlines()[1:]
+    assert sum(r.endswith(",invalid") for r in rows) == bad.sum()
+
+
+def test_the_stack_check_agrees_with_loading_the_stacks_scene(scene):
+    """The fast per-stack validation against its slow twin: each stack's scene loaded in full
+    (--set overrides through every check of the scene), over stacks that break several rules."""
+    from bearingsim.pipeline.scene.tolerance_stacks import stack_problem, stack_values
+
+    rng = np.random.default_rng(1)
+    widths = {"pocket_diameter": 1.5e-3, "cage_outside_diameter": 1.5e-3, "cage_bore_diameter": 1.5e-3,
+              "outer_land_diameter": 1.5e-3, "ball_diameter": 1.5e-3, "diametral_clearance": 3e-4,
+              "cage_temperature": 300.0, "outer_ring_temperature": 300.0, "moment": 500.0}
+    outcomes = set()
+    for _ in range(60):
+        names = rng.choice(list(widths), size=3, replace=False)
+        stack = {str(k): float(rng.uniform(-1, 1) * widths[k]) for k in names}
+        fast = stack_problem(scene, stack_values(scene, stack)) is None
+        try:
+            load_scene("helicopter-b-given-hinge", tol.stack_overrides(scene, stack))
+            full = True
+        except SceneError:
+            full = False
+        assert fast == full, stack
+        outcomes.add(fast)
+    assert outcomes == {True, False}  # both kinds of stack were drawn
+
+
+def test_each_deviation_is_a_latin_hypercube(scene):
+    """One stack in each of n equally likely strata, for uniform and for normal deviations."""
+    from scipy.stats import norm
+
+    spec = tol.build_tolerance_spec({"samples": 1000, "seed": 9, "moment": {"lower": -50.0, "upper": 50.0},
+                                     "axial": {"sd": 100.0}}, scene)
+    dev = tol.sample_deviations(spec)
+    n = 1000
+    assert np.array_equal(np.sort(np.floor((dev["moment"] + 50.0) / 100.0 * n)), np.arange(n))
+    assert np.array_equal(np.sort(np.floor(norm.cdf(dev["axial"] / 100.0) * n)), np.arange(n))

@@ -217,6 +217,20 @@ def test_cache_keys_compare_numbers_by_value():
         assert stage_key(stage, a, {}) == stage_key(stage, b, {}), stage.name
 
 
+def test_cache_keys_keep_integers_exact():
+    """Numbers hash by their exact value: an integer a float cannot hold stays an integer, so
+    seeds 2**53 and 2**53 + 1 are two keys (as floats they are one)."""
+    assert float(2**53) == float(2**53 + 1)  # why the key must not go through float
+    assert input_key("s", {"seed": 2**53}, "v") != input_key("s", {"seed": 2**53 + 1}, "v")
+    assert input_key("s", {"n": 2**53 + 1}, "v") != input_key("s", {"n": 2**53 + 2}, "v")
+    assert input_key("s", {"n": 2**53}, "v") == input_key("s", {"n": float(2**53)}, "v")  # one value
+    assert input_key("s", {"n": 10**30}, "v") != input_key("s", {"n": float(10**30)}, "v")  # 1e30 != 10**30
+    tolerances = "tolerances={samples = 100, moment = { sd = 10 }, seed = %d}"
+    a, b = (load_scene("helicopter-b-given-hinge", [tolerances % s]) for s in (2**53, 2**53 + 1))
+    quasistatic = next(s for s in STAGES if s.name == "quasistatic")
+    assert stage_key(quasistatic, a, {}) != stage_key(quasistatic, b, {})
+
+
 def test_temporaries_of_a_killed_run_are_swept_when_old(tmp_path):
     old_dir, old_file = tmp_path / ".simulate.k1ll3d.tmp", tmp_path / ".scene.toml.abc123.tmp"
     young, old_swap = tmp_path / ".quasistatic.l1v3.tmp", tmp_path / ".report.old-4242"

@@ -8,6 +8,7 @@ with the run's verdict (`summary.json` `verdict`) on stderr, after the stage lin
 from __future__ import annotations
 
 import contextlib
+import errno
 import json
 import logging
 import math
@@ -19,7 +20,7 @@ from typing import Annotated, Optional
 import typer
 
 from .options import flat_options
-from ..console import escape, explain, finding_lines, make_console
+from ..console import explain, finding_lines, make_console, styled
 from ..machine.numba_cache import configure_numba_cache
 
 # before any kernel is compiled or loaded: the cache keyed by the dynamics sources
@@ -61,6 +62,8 @@ def _root(version: Annotated[bool, typer.Option("--version", is_eager=True, call
 def _literal(text: str) -> str:
     """Help text shown as written: typer renders help as rich markup, which swallows units and
     defaults in square brackets ("[s]", "[default: ...]")."""
+    from rich.markup import escape
+
     return escape(text)
 
 
@@ -78,7 +81,34 @@ SetOpt = Annotated[Optional[list[str]], typer.Option(
 def _load(scene: str, overrides: list[str] | None):
     from ..scene.load import load_scene
 
+    _print_cache_notes()
     return load_scene(scene, overrides or [])
+
+
+def _print_cache_notes() -> None:
+    """What checking the kernel cache found (pipeline.machine.numba_cache): damaged files removed,
+    a cache folder that could not be made."""
+    from ..machine.numba_cache import cache_notes
+
+    for note in cache_notes():
+        err_console.print(styled(("warning:", "yellow"), f" {note}"), highlight=False, soft_wrap=True)
+
+
+def _kernel_cache_failure(exc: BaseException) -> str | None:
+    """The message for a failure while numba read its cache (a damaged file the start-up check did
+    not catch), naming the cache and what to do; None for any other failure. The next start reads
+    every cache file again."""
+    from ..machine.kernel_cache import cache_directory
+    from ..machine.numba_cache import forget_checks, from_kernel_cache, is_own_cache
+
+    cache = cache_directory()
+    if cache is None or not from_kernel_cache(exc):
+        return None
+    forget_checks(cache)
+    again = "run the command again: damaged files are then found and removed" if is_own_cache(cache) else \
+        "delete the folder (NUMBA_CACHE_DIR): the kernels then compile again"
+    return (f"the kernel cache {cache} cannot be read ({type(exc).__name__}: {exc}); {again} (about a minute of "
+            f"compiling)")
 
 
 def _run_dir(scene, out: Path | None) -> Path:
@@ -86,7 +116,7 @@ def _run_dir(scene, out: Path | None) -> Path:
 
 
 def _fail(code: int, message: str) -> None:
-    err_console.print(f"[bold red]error:[/] {escape(message)}", highlight=False, soft_wrap=True)
+    err_console.print(styled(("error:", "bold red"), f" {message}"), highlight=False, soft_wrap=True)
     raise typer.Exit(code)
 
 
@@ -119,7 +149,9 @@ def _pipeline(scene_arg: str, overrides, out, targets: list[str], force: set[str
         except RunDirectoryBusy as exc:
             _fail(EXIT_FAILED, str(exc))
         except OSError as exc:
-            _fail(EXIT_FAILED, f"cannot lock {run_dir}/: {exc.strerror or exc}")
+            from .os_errors import describe_os_error
+
+            _fail(EXIT_FAILED, f"cannot claim {run_dir}/: {describe_os_error(exc, run_dir)}")
         outcomes = _run_locked(scene, scene_arg, run_dir, targets, force, quiet, notes, shared)
     if not quiet:
         for o in outcomes:
@@ -132,7 +164,7 @@ def _pipeline(scene_arg: str, overrides, out, targets: list[str], force: set[str
     for o in outcomes:
         _print_findings(o.warnings, f"{o.name}: ")
     if not quiet:
-        err_console.print(f"results: {escape(str(run_dir))}/", highlight=False)
+        err_console.print(f"results: {run_dir}/", highlight=False, soft_wrap=True)
     return scene, run_dir, outcomes
 
 
@@ -146,6 +178,10 @@ def _run_locked(scene, scene_arg, run_dir, targets, force, quiet, notes=(), shar
         except OutputRefused as exc:
             _fail(EXIT_SCENE, str(exc))
         except OSError as exc:
+            from .os_errors import describe_os_error
+
+            if exc.errno in (errno.ENOSPC, getattr(errno, "EDQUOT", errno.ENOSPC)):
+                _fail(EXIT_FAILED, describe_os_error(exc, run_dir))
             _fail(EXIT_SCENE, f"--out {run_dir}: cannot write run.log there ({exc.strerror or exc}); give a "
                               "writable directory")
         return _run_stages_reported(scene, scene_arg, run_dir, targets, force, quiet, notes, shared)
@@ -194,19 +230,27 @@ def _run_stages_with_exit_codes(scene, scene_arg, run_dir, targets, force, quiet
         _fail(EXIT_SCENE, f"scene: {explain(exc)}")
     except (RuntimeError, ValueError, ArithmeticError) as exc:
         log.exception("stage failed")
-        _fail(EXIT_FAILED, f"{type(exc).__name__}: {explain(exc)}{hint}\n(full log: {run_dir / 'run.log'})")
+        _fail(EXIT_FAILED, _kernel_cache_failure(exc) or
+              f"{type(exc).__name__}: {explain(exc)}{hint}\n(full log: {run_dir / 'run.log'})")
     except MemoryError:
+        from .os_errors import MEMORY_HINT
+
         log.exception("out of memory")
-        _fail(EXIT_FAILED, f"out of memory{hint}; shorten solver.duration or raise output.sample_interval "
-                           f"(full log: {run_dir / 'run.log'})")
+        _fail(EXIT_FAILED, f"out of memory{hint}; {MEMORY_HINT} (full log: {run_dir / 'run.log'})")
     except OSError as exc:
+        from ..machine.kernel_cache import cache_directory
+        from ..machine.numba_cache import from_kernel_cache
+        from .os_errors import describe_os_error
+
         log.exception("file error")
-        _fail(EXIT_FAILED, f"cannot write the results: {exc}; check the space and permissions of {run_dir}/ "
-                           f"(full log: {run_dir / 'run.log'})")
+        if exc.filename is None and from_kernel_cache(exc):  # numba writing a compiled kernel
+            exc.filename = str(cache_directory())
+        _fail(EXIT_FAILED, f"{describe_os_error(exc, run_dir)}{hint}\n(full log: {run_dir / 'run.log'})")
     except Exception as exc:  # noqa: BLE001 - a defect: the traceback goes to run.log, not the screen
-        log.exception("internal error")
-        _fail(EXIT_FAILED, f"internal error {type(exc).__name__}: {exc} (a defect of bearingsim; the "
-                           f"traceback is in {run_dir / 'run.log'})")
+        cache_failure = _kernel_cache_failure(exc)
+        log.exception("kernel cache unreadable" if cache_failure else "internal error")
+        _fail(EXIT_FAILED, cache_failure or f"internal error {type(exc).__name__}: {exc} (a defect of bearingsim; "
+                                            f"the traceback is in {run_dir / 'run.log'})")
 
 
 class _StageProgress:
@@ -300,8 +344,14 @@ def check(scene: SceneArg, set_: SetOpt = None) -> None:
     refusals = [f for f in run_findings(resolved, {"simulate"}) if f.level == "error"]
     if refusals:  # first, before the tables: what a user about to simulate must know
         err_console.print("simulate and run would refuse this scene (the quasi-static stage runs): "
-                          + escape("; ".join(f.text for f in refusals)), highlight=False, soft_wrap=True)
-    print_scene(resolved, out_console)
+                          + "; ".join(f.text for f in refusals), highlight=False, soft_wrap=True)
+    try:
+        print_scene(resolved, out_console)  # the lubricant's viscosity is a compiled kernel's
+    except Exception as exc:  # noqa: BLE001 - only a damaged kernel cache is answered here
+        message = _kernel_cache_failure(exc)
+        if message is None:
+            raise
+        _fail(EXIT_FAILED, message)
     _print_findings(notes)
     if refusals:
         raise typer.Exit(EXIT_NOT_SIMULABLE)
@@ -382,8 +432,8 @@ def tolerances(scene: SceneArg,
         sys.stdout.write(dumps_json(result["crush_probability"]) + "\n")
         return
     print_tolerances(result, out_console)
-    err_console.print(f"written: {escape(str(run_dir / 'quasistatic' / SAMPLES_FILE))}, "
-                      f"{escape(str(run_dir / 'quasistatic' / TOLERANCE_FIGURE))}", highlight=False)
+    err_console.print(f"written: {run_dir / 'quasistatic' / SAMPLES_FILE}, "
+                      f"{run_dir / 'quasistatic' / TOLERANCE_FIGURE}", highlight=False, soft_wrap=True)
 
 
 @app.command()
@@ -401,7 +451,7 @@ def warmup(scenes: Annotated[Optional[list[str]], typer.Argument(
         warm_up(scenes, report)
     except SceneError as exc:
         _fail(EXIT_SCENE, f"scene: {explain(exc)}")
-    err_console.print(f"kernels cached in {escape(str(cache_directory()))}/", highlight=False)
+    err_console.print(f"kernels cached in {cache_directory()}/", highlight=False, soft_wrap=True)
 
 
 @app.command()
@@ -419,9 +469,12 @@ def stiffness(scene: SceneArg,
         speed_list = parse_speeds(speeds) if speeds else None
     except SceneError as exc:
         _fail(EXIT_SCENE, f"scene: {explain(exc)}")
+    from ..staging.no_follow import named_on_command_line
+
     run_dir = _run_dir(resolved, out)
     try:
-        table = export_stiffness(resolved, run_dir, speed_list)
+        with named_on_command_line():
+            table = export_stiffness(resolved, run_dir, speed_list)
     except SceneError as exc:
         _fail(EXIT_SCENE, f"scene: {explain(exc)}")
     except OutputRefused as exc:
@@ -514,50 +567,74 @@ def render(run_dir: Annotated[Path, typer.Argument(help="A run directory written
                "Also write the cage orbit with the balls in their pockets as an animation: <run>/animation/"
                "cage_orbit.gif (.mp4 too when ffmpeg is installed)."))] = False) -> None:
     """Regenerate renders and the report from saved results (never re-solves)."""
-    from ..staging.provenance import attach_run_log
     from ..render.offscreen import display_available
-    from ..stages.report import StageResultsDamaged, render_run
+    from ..staging.artefacts import RUN_MARKER, is_own_run_dir, run_directory_lock
 
-    if not (run_dir / "scene.toml").is_file():
-        _fail(EXIT_SCENE, f"{run_dir} is not a run directory (no scene.toml); give the directory "
+    if not is_own_run_dir(run_dir):  # checked before anything is written: not even run.log or .lock
+        _fail(EXIT_SCENE, f"{run_dir} is not a run directory bearingsim wrote (no {RUN_MARKER} marker, no resolved "
+                          "scene.toml beside versions.json); nothing was written there. Give the directory "
                           "`bearingsim run SCENE` printed, e.g. runs/helicopter-b")
     if show and not display_available():
         err_console.print("no display (DISPLAY / WAYLAND_DISPLAY unset): rendering off-screen only", highlight=False)
         show = False
     elif not show:
         err_console.print("rendering off-screen", highlight=False)
+    with contextlib.ExitStack() as held:
+        try:  # as a run holds it: no stage is replaced while the report is drawn from it
+            held.enter_context(run_directory_lock(run_dir))
+        except RunDirectoryBusy as exc:
+            _fail(EXIT_FAILED, str(exc))
+        except OutputRefused as exc:
+            _fail(EXIT_SCENE, str(exc))
+        except OSError as exc:
+            _fail(EXIT_SCENE, _render_cannot_write(run_dir, exc))
+        outcome = _render_locked(run_dir, show)
+        err_console.print(f"  report       computed in {outcome.wall_time:.2f} s", highlight=False)
+        err_console.print(f"report: {run_dir / 'report' / outcome.info['report']}", highlight=False, markup=False)
+        if animate:
+            _write_animation(run_dir)
+
+
+def _render_cannot_write(run_dir: Path, exc: OSError) -> str:
+    return (f"{run_dir}: cannot write the report there ({exc.strerror or exc}); render needs a run directory it "
+            f"may write (its report/ is redrawn): copy it, e.g. cp -r {run_dir} {run_dir}-copy")
+
+
+def _render_locked(run_dir: Path, show: bool):
+    """`render` while it holds the run directory's lock: run.log, then the report stage."""
+    from ..staging.provenance import attach_run_log
+    from ..stages.report import SceneNotOfResults, StageResultsDamaged, render_run
+
     log = logging.getLogger("bearingsim")
     try:
         handler = attach_run_log(run_dir)
     except OSError as exc:  # OutputRefused too: a link or a special file in run.log's place
-        _fail(EXIT_SCENE, str(exc) if isinstance(exc, OutputRefused) else
-              f"{run_dir}: cannot write run.log there ({exc.strerror or exc}); render needs a run directory "
-              f"it may write (its report/ is redrawn): copy it, e.g. cp -r {run_dir} {run_dir}-copy")
+        _fail(EXIT_SCENE, str(exc) if isinstance(exc, OutputRefused) else _render_cannot_write(run_dir, exc))
     try:
-        outcome = render_run(run_dir, show=show)
+        return render_run(run_dir, show=show)
     except KeyboardInterrupt as exc:
         how, code = interruption(exc)
         log.warning("render interrupted (%s); the report was left as it was", how)
         _fail(code, f"interrupted ({how}): {run_dir / 'report'}/ is left as it was; run render again")
     except SceneError as exc:
         _fail(EXIT_SCENE, f"scene: {explain(exc)}")
-    except (FileNotFoundError, OutputRefused, StageResultsDamaged) as exc:
+    except (FileNotFoundError, OutputRefused, StageResultsDamaged, SceneNotOfResults) as exc:
         log.error("render refused: %s", exc)
         _fail(EXIT_SCENE, str(exc))
     except PermissionError as exc:
         log.error("render failed: %s", exc)
-        _fail(EXIT_SCENE, f"{run_dir}: cannot write the report there ({exc.strerror or exc}); render needs a "
-                          f"run directory it may write: copy it, e.g. cp -r {run_dir} {run_dir}-copy")
-    except (RuntimeError, ValueError, ArithmeticError, OSError) as exc:
+        _fail(EXIT_SCENE, _render_cannot_write(run_dir, exc))
+    except OSError as exc:
+        from .os_errors import describe_os_error
+
+        log.exception("render failed")
+        _fail(EXIT_FAILED, f"{describe_os_error(exc, run_dir)}\n(full log: {run_dir / 'run.log'})")
+    except (RuntimeError, ValueError, ArithmeticError) as exc:
         log.exception("render failed")
         _fail(EXIT_FAILED, f"{type(exc).__name__}: {exc}\n(full log: {run_dir / 'run.log'})")
     finally:
         log.removeHandler(handler)
         handler.close()
-    err_console.print(f"  report       computed in {outcome.wall_time:.2f} s", highlight=False)
-    err_console.print(f"report: {run_dir / 'report' / outcome.info['report']}", highlight=False, markup=False)
-    if animate:
-        _write_animation(run_dir)
 
 
 def _write_animation(run_dir: Path) -> None:
@@ -617,11 +694,13 @@ def stability(cases: Annotated[Optional[list[str]], typer.Argument(help=_literal
               wall_budget: Annotated[float, typer.Option("--wall-budget", help=_literal("Wall-clock budget per case [s]."))] = 180.0,
               out: Annotated[Path, typer.Option("--out", help="Where the table and plot go.")] = Path("runs/stability")) -> None:
     """Stability suite: stiff and extreme cases, each a pass or a clearly reported refusal."""
-    from ..studies.stability import case_names, markdown_table, run_suite, write_suite
+    from ..studies.stability import MIN_SAMPLES, MIN_WINDOW, case_names, markdown_table, run_suite, write_suite
 
-    for option, value, example in (("--window", window, "0.01"), ("--wall-budget", wall_budget, "180")):
-        if not (math.isfinite(value) and value > 0.0):
-            _fail(EXIT_SCENE, f"{option}: is {value} s; give a positive finite time in seconds, e.g. "
+    for option, value, least, example in (("--window", window, MIN_WINDOW, "0.01"),
+                                          ("--wall-budget", wall_budget, 0.0, "180")):
+        if not (math.isfinite(value) and value >= least and value > 0.0) or value > 1e30:
+            floor = f" of at least {least:g} s ({MIN_SAMPLES} samples)" if least else ""
+            _fail(EXIT_SCENE, f"{option}: is {value:g} s; give a positive finite time in seconds{floor}, e.g. "
                               f"{option} {example}")
     unknown = [c for c in cases or [] if c not in case_names()]
     if unknown:
@@ -670,13 +749,20 @@ class SweepOptions:
 def sweep(scene: SceneArg, options: SweepOptions) -> None:
     """Parameter sweep on Dask: one pipeline run per point, a results table and a cage-stability map."""
     from ..sweep.console import class_counts, print_results
-    from ..sweep.driver import claim_sweep_directory, gather, plan_sweep, replaced_sweep, table_rows, unfinished
+    from ..sweep.driver import (check_scheduler_address, gather, plan_sweep, replaced_sweep, sweep_directory_lock,
+                                table_rows, unfinished)
     from ..sweep.table import read_table
 
     o = options
     try:
+        if o.scheduler is not None:
+            check_scheduler_address(o.scheduler)
+    except SceneError as exc:  # a bad option, not a bad scene
+        _fail(EXIT_SCENE, str(exc))
+    try:
         plan = plan_sweep(scene, o.set_, o.vary, mode=o.mode, name=o.name, out=o.out, store=o.store,
-                          max_points=o.max_points, figures=o.figures)
+                          max_points=o.max_points, figures=o.figures,
+                          progress=lambda text: err_console.print(f"sweep: {text}", highlight=False))
     except SceneError as exc:
         _fail(EXIT_SCENE, f"scene: {explain(exc)}")
     replaced = replaced_sweep(plan)
@@ -689,23 +775,26 @@ def sweep(scene: SceneArg, options: SweepOptions) -> None:
         if replaced:
             err_console.print(f"warning: {replaced}", highlight=False, markup=False, soft_wrap=True)
         return
-    try:
-        claim_sweep_directory(plan.sweep_dir)
-    except OutputRefused as exc:
-        _fail(EXIT_SCENE, str(exc))
-    if replaced:
-        err_console.print(f"[bold yellow]warning:[/] {escape(replaced)}", highlight=False, soft_wrap=True)
-    err_console.print(f"sweep {plan.name}: {len(plan.points)} points on "
-                      f"{o.scheduler or f'a local cluster of {o.workers} workers'}", highlight=False)
-    records = _run_sweep_points(plan, o)
-    paths = gather(plan, records, warn=False)  # the table below prints the short-run warning
+    with contextlib.ExitStack() as held:
+        try:
+            held.enter_context(sweep_directory_lock(plan))
+        except OutputRefused as exc:
+            _fail(EXIT_SCENE, str(exc))
+        except RunDirectoryBusy as exc:
+            _fail(EXIT_FAILED, str(exc))
+        if replaced:
+            err_console.print(styled(("warning:", "bold yellow"), f" {replaced}"), highlight=False, soft_wrap=True)
+        err_console.print(f"sweep {plan.name}: {len(plan.points)} points on "
+                          f"{o.scheduler or f'a local cluster of {o.workers} workers'}", highlight=False, soft_wrap=True)
+        records = _run_sweep_points(plan, o)
+        paths = gather(plan, records, warn=False)  # the table below prints the short-run warning
     rows = read_table(paths["table"])
     print_results(rows, plan.varied, out_console)
     err_console.print(f"classes: {class_counts(rows)}\nresults: {paths['table']}\nmap: {paths['map']}", highlight=False, markup=False)
     failed = [r for r in records if r is not None and r.get("status") == "failed" and not r.get("lost")]
     if failed:  # failed points are results (their error is in the table): exit 0, said plainly
-        err_console.print(f"[bold yellow]warning:[/] {len(failed)} of {len(records)} points failed (column "
-                          f"error of {paths['table']}); rerun with --retry-failed to run them again",
+        err_console.print(styled(("warning:", "bold yellow"), f" {len(failed)} of {len(records)} points failed "
+                                 f"(column error of {paths['table']}); rerun with --retry-failed to run them again"),
                           highlight=False, soft_wrap=True)
     unfinished = [r for r in records if r is None or r.get("lost")]
     if unfinished:

@@ -4,7 +4,6 @@
 from __future__ import annotations
 
 from rich.console import Console
-from rich.markup import escape
 from rich.table import Table
 
 _TEMPERATURES_DEGC = (40.0, 100.0)
@@ -30,8 +29,8 @@ def lubricant_rows() -> list[dict]:
 def print_lubricants(console: Console) -> None:
     rows = lubricant_rows()
     table = Table("lubricant", "model", "η 40 °C", "ν 40 °C", "η 100 °C", "ν 100 °C", "α* 40 °C", "α* 100 °C",
-                  box=None, title=escape("built-in lubricants: [lubricant] name = \"...\" (any other key refines "
-                                         "the set); η in mPa·s, ν in cSt (mm²/s), α* in 1e-8 1/Pa"),
+                  box=None, title=("built-in lubricants: [lubricant] name = \"...\" (any other key refines "
+                                   "the set); η in mPa·s, ν in cSt (mm²/s), α* in 1e-8 1/Pa"),
                   title_justify="left")
     for r in rows:
         table.add_row(r["name"], r["model"], f"{r['eta_40'] * 1e3:.3g}", f"{r['nu_40'] * 1e6:.3g}",
@@ -44,15 +43,15 @@ def print_lubricants(console: Console) -> None:
 def _print_sources(console: Console, items) -> None:
     """What each set is and where its numbers come from (the data file has them number by number)."""
     for name, description, source in items:
-        console.print(escape(f"  {name}: {description}. Source: {source}"), highlight=False, soft_wrap=True)
+        console.print(f"  {name}: {description}. Source: {source}", highlight=False, soft_wrap=True)
 
 
 def print_materials(console: Console) -> None:
     from ...dynamics.materials.library import builtin_material_names, load_builtin_material
 
     table = Table("material", "for", "E [GPa]", "ν", "ρ [kg/m³]", "α [1e-6/K]", "max [°C]", box=None,
-                  title=escape("built-in materials: [materials] cage = \"name\", or { name = \"...\", key = value } "
-                               "to refine one; max: continuous operating temperature"), title_justify="left")
+                  title=("built-in materials: [materials] cage = \"name\", or { name = \"...\", key = value } "
+                         "to refine one; max: continuous operating temperature"), title_justify="left")
     named = [load_builtin_material(name) for name in builtin_material_names()]
     for m in named:
         mat = m.material

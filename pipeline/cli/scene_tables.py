@@ -6,10 +6,13 @@ import dataclasses
 import math
 
 from rich.console import Console
-from rich.markup import escape
 from rich.table import Table
 
+from ..console import styled
 from ..scene.load import Scene
+
+# a text value longer than this is shown shortened in the tables (the scene file holds it whole)
+TABLE_TEXT = 80
 
 
 def _unit(f: dataclasses.Field) -> str:
@@ -22,7 +25,8 @@ def _fmt(value) -> str:
         return f"{value:.6g}"
     if isinstance(value, tuple):
         return "[" + ", ".join(_fmt(v) for v in value) + "]"
-    return str(value)
+    text = str(value)
+    return text if len(text) <= TABLE_TEXT else f"{text[:TABLE_TEXT - 20]}… ({len(text)} characters)"
 
 
 def _fixed(value: float, digits: int) -> str:
@@ -31,7 +35,7 @@ def _fixed(value: float, digits: int) -> str:
 
 
 def _section(table: Table, title: str, obj, skip: tuple[str, ...] = ()) -> None:
-    table.add_row(f"[bold]\\[{title}][/]", "", "")
+    table.add_row(styled((f"[{title}]", "bold")), "", "")
     tables = []  # [fe.materials.<region>], after the section's own keys
     for f in dataclasses.fields(obj):
         value = getattr(obj, f.name)
@@ -44,7 +48,7 @@ def _section(table: Table, title: str, obj, skip: tuple[str, ...] = ()) -> None:
         else:
             shown = _fmt(value) if value is not None else "—"
             if value is None and f.name == "thermal_expansion":
-                shown = "default (\\[thermal] below)"
+                shown = "default ([thermal] below)"
             table.add_row(f"  {f.name}", shown, _unit(f))
     for name, item in tables:
         _section(table, name, item, skip=("region",))
@@ -94,7 +98,7 @@ def _resolved_thermal(table: Table, scene: Scene) -> None:
     thermal.parts_degC, else the oil's) and the expansion coefficient each part grows by (a
     material's thermal_expansion, else the default of its kind)."""
     t, e = scene.temperatures, scene.expansion
-    table.add_row("[bold]\\[thermal][/] (resolved)", "", "")
+    table.add_row(styled(("[thermal]", "bold"), " (resolved)"), "", "")
     for name in ("reference", "inner_ring", "outer_ring", "ball", "cage"):
         table.add_row(f"  {name}_degC", _fmt(float(getattr(t, name))), "degC")
     for name in ("race", "ball", "cage"):
@@ -102,7 +106,8 @@ def _resolved_thermal(table: Table, scene: Scene) -> None:
 
 
 def print_scene(scene: Scene, console: Console) -> None:
-    console.print(f"[bold]{scene.name}[/] — {scene.description}")
+    # soft wrap: the terminal wraps a long description (rich's word wrap is quadratic in a long word)
+    console.print(styled((scene.name, "bold"), f" — {scene.description}"), soft_wrap=True)
     table = Table("key", "value", "unit", box=None, pad_edge=False)
     for name in ("bearing", "cage", "materials", "load", "speed", "hinge", "solver", "physics", "output"):
         # the scene's own values (as drawn); the operating ones follow in the clearance table
@@ -113,7 +118,7 @@ def print_scene(scene: Scene, console: Console) -> None:
             from ..scene.named_materials import material_rows
 
             for row in material_rows(scene):
-                table.add_row(*(escape(text) for text in row))
+                table.add_row(*row)
     if scene.lubricant is not None:
         _section(table, "lubricant", scene.lubricant)
     if scene.fe is not None:
@@ -139,17 +144,16 @@ def print_scene(scene: Scene, console: Console) -> None:
     if scene.hinge.source != "fe":
         skipped.append("FE identification (hinge not identified)")
     if scene.cage is None:
-        skipped.append("cage and its contacts (no \\[cage])")
+        skipped.append("cage and its contacts (no [cage])")
     if scene.lubricant is None:
-        skipped.append("EHD film and traction (no \\[lubricant]: dry contacts)")
+        skipped.append("EHD film and traction (no [lubricant]: dry contacts)")
     if skipped:
         console.print("not computed for this scene: " + "; ".join(skipped))
 
 
 def print_quasistatic(result: dict, console: Console) -> None:
     """Per-ball table plus inner-race displacement and tilt."""
-    # "\\[" keeps a unit in brackets as text: rich reads [deg] as a style tag and drops it
-    table = Table("ball", "azimuth \\[deg]", "Q_i \\[N]", "Q_o \\[N]", "alpha_i \\[deg]", "alpha_o \\[deg]",
+    table = Table("ball", "azimuth [deg]", "Q_i [N]", "Q_o [N]", "alpha_i [deg]", "alpha_o [deg]",
                   title="quasi-static load distribution", box=None)
     for k, b in enumerate(result["balls"]):
         table.add_row(str(k), _fixed(math.degrees(b['azimuth']), 1), _fixed(b['inner_load'], 1),
@@ -159,7 +163,7 @@ def print_quasistatic(result: dict, console: Console) -> None:
     ir = result["inner_race"]
     d = ", ".join(f"{v * 1e6:.3f}" for v in ir["displacement"])
     t = ", ".join(f"{v * 1e3:.4f}" for v in ir["tilt"])
-    console.print(f"inner race displacement \\[µm]: ({d})   tilt \\[mrad]: ({t})   "
+    console.print(f"inner race displacement [µm]: ({d})   tilt [mrad]: ({t})   "
                   f"converged: {result.get('converged')}")
     stiffness = result.get("stiffness")
     if stiffness:

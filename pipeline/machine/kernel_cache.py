@@ -17,7 +17,6 @@ are run-time values and share the kernels.
 
 from __future__ import annotations
 
-import contextlib
 import dataclasses
 import hashlib
 import json
@@ -25,6 +24,8 @@ import logging
 import os
 import time
 from pathlib import Path
+
+from .file_lock import exclusive_lock
 
 log = logging.getLogger("bearingsim")
 LOG_FILE = "bearingsim-compile.log"
@@ -61,19 +62,6 @@ def compiled_marker(cache: Path, configuration: str) -> Path:
     return cache / f".compiled-{configuration}"
 
 
-@contextlib.contextmanager
-def _exclusive(path: Path):
-    import fcntl
-
-    fd = os.open(path, os.O_RDWR | os.O_CREAT | getattr(os, "O_NOFOLLOW", 0), 0o644)
-    try:
-        fcntl.flock(fd, fcntl.LOCK_EX)
-        yield
-    finally:
-        fcntl.flock(fd, fcntl.LOCK_UN)
-        os.close(fd)
-
-
 def ensure_compiled(scene, compile_kernels, configuration: str | None = None) -> float:
     """Call `compile_kernels()` (which compiles or loads the scene's kernels) under the cache's
     lock unless another process already did it for this configuration (default: the scene's
@@ -90,7 +78,7 @@ def ensure_compiled(scene, compile_kernels, configuration: str | None = None) ->
     if marker.exists():
         return 0.0
     cache.mkdir(parents=True, exist_ok=True)
-    with _exclusive(cache / f".bearingsim-compile-{key}.lock"):
+    with exclusive_lock(cache / f".bearingsim-compile-{key}.lock"):
         if not marker.exists():
             t1 = time.perf_counter()
             compile_kernels()

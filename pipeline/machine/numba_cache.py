@@ -1,4 +1,5 @@
-"""Where numba keeps compiled kernels: a directory keyed by a hash of the dynamics sources.
+"""Where numba keeps compiled kernels: a directory keyed by a hash of the dynamics sources,
+checked for damaged files before numba reads it.
 
 Called by the command line (and the test harness) before any kernel is imported; importing
 `bearingsim.dynamics` itself changes no process state.
@@ -7,15 +8,33 @@ numba's own cache (next to each source file) is invalidated only when the *defin
 changes, not when a kernel it calls from another file changes — an edited contact law could
 silently run with its old compiled caller. Keying the whole cache by the sources makes any
 edit start a fresh cache. A user's own NUMBA_CACHE_DIR is respected.
+
+numba trusts its cache files: a truncated data file (`.nbc`, a full disk, a killed copy) or an
+index (`.nbi`) overwritten with garbage stops every later run with EOFError or UnpicklingError.
+So every index and data file is read through as a pickle (without building its objects) once
+after it changes — a stamp of size and modification time records the files found whole — and a
+damaged one is removed, so that numba compiles its kernel again; `cache_notes()` says what was
+removed, naming the cache. In a NUMBA_CACHE_DIR of the user's own, nothing is removed: the note
+names the damaged files. A cache folder that cannot be made (XDG_CACHE_HOME naming a file) is
+replaced by a private one in the temporary directory, with a note naming the variable.
 """
 
 from __future__ import annotations
 
 import hashlib
 import importlib.util
+import io
+import json
 import os
+import pickletools
 import sys
+import tempfile
 from pathlib import Path
+
+CHECKED_FILE = ".bearingsim-checked.json"  # {file: [size, mtime_ns]} of the files found whole
+CACHE_SUFFIXES = (".nbi", ".nbc")
+_notes: list[str] = []
+_checked: set[str] = set()
 
 
 def source_fingerprint(root: Path) -> str:
@@ -33,16 +52,144 @@ def _dynamics_sources() -> Path:
 
 def configure_numba_cache() -> None:
     """Point numba's cache at ~/.cache/bearingsim/numba/<fingerprint> (or $XDG_CACHE_HOME),
-    unless the user set NUMBA_CACHE_DIR."""
-    if "NUMBA_CACHE_DIR" in os.environ:
-        return
-    base = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "bearingsim" / "numba"
-    os.environ["NUMBA_CACHE_DIR"] = str(base / source_fingerprint(_dynamics_sources()))
-    _prune(base, keep=os.environ["NUMBA_CACHE_DIR"])
-    if "numba" in sys.modules:  # numba read its configuration already: make it read again
-        from numba.core import config
+    unless the user set NUMBA_CACHE_DIR; then check it for damaged files (module docstring)."""
+    if "NUMBA_CACHE_DIR" not in os.environ:
+        base = _usable_base()
+        os.environ["NUMBA_CACHE_DIR"] = str(base / source_fingerprint(_dynamics_sources()))
+        _prune(base, keep=os.environ["NUMBA_CACHE_DIR"])
+        if "numba" in sys.modules:  # numba read its configuration already: make it read again
+            from numba.core import config
 
-        config.reload_config()
+            config.reload_config()
+    cache = os.environ["NUMBA_CACHE_DIR"]
+    if cache not in _checked:
+        _checked.add(cache)
+        _notes.extend(check_cache(Path(cache), remove=is_own_cache(Path(cache))))
+
+
+def is_own_cache(cache: Path) -> bool:
+    """A cache folder this module chose (`.../bearingsim*/numba/<fingerprint>`), also when a
+    parent process set NUMBA_CACHE_DIR to it; not a NUMBA_CACHE_DIR of the user's own."""
+    return cache.parent.name == "numba" and cache.parent.parent.name.startswith("bearingsim")
+
+
+def _usable_base() -> Path:
+    """~/.cache/bearingsim/numba (or under $XDG_CACHE_HOME), or a private folder in the
+    temporary directory when that cannot be a folder."""
+    xdg = os.environ.get("XDG_CACHE_HOME")
+    base = Path(xdg or Path.home() / ".cache") / "bearingsim" / "numba"
+    try:
+        base.mkdir(parents=True, exist_ok=True)
+        if os.access(base, os.W_OK | os.X_OK):
+            return base
+        reason = "not writable by this user"
+    except OSError as exc:
+        reason = exc.strerror or str(exc)
+    fallback = _private_temporary()
+    where = f"XDG_CACHE_HOME={xdg}" if xdg else f"{base}"
+    _notes.append(f"the kernel cache cannot be kept under {where} ({reason}): compiled kernels are kept in "
+                  f"{fallback} instead; set XDG_CACHE_HOME to a folder you may write (or unset it)")
+    return fallback
+
+
+def _private_temporary() -> Path:
+    """A folder of this user's only in the temporary directory (numba loads code from its cache:
+    never one another user could have made)."""
+    folder = Path(tempfile.gettempdir()) / f"bearingsim-{os.getuid() if hasattr(os, 'getuid') else 'user'}" / "numba"
+    folder.mkdir(parents=True, exist_ok=True, mode=0o700)
+    info = os.lstat(folder.parent)
+    if hasattr(os, "getuid") and (info.st_uid != os.getuid() or os.path.islink(folder.parent)):
+        return Path(tempfile.mkdtemp(prefix="bearingsim-numba-"))
+    return folder
+
+
+def cache_notes() -> list[str]:
+    """What configuring the cache found (damaged files removed, a cache folder moved), once each."""
+    out = list(_notes)
+    _notes.clear()
+    return out
+
+
+def whole_pickles(data: bytes) -> bool:
+    """True when `data` is one or more complete pickles (numba's index holds two), read opcode by
+    opcode without building any object."""
+    stream = io.BytesIO(data)
+    try:
+        while stream.tell() < len(data):
+            for opcode, _, _ in pickletools.genops(stream):
+                pass
+    except Exception:  # noqa: BLE001 - any way the bytes fail to read as pickles
+        return False
+    return len(data) > 0
+
+
+def check_cache(cache: Path, remove: bool = True) -> list[str]:
+    """Read the cache files of `cache` changed since their last check; remove the damaged ones
+    (with `remove`) and return a note naming them (none when all are whole)."""
+    stamp_path = cache / CHECKED_FILE
+    try:
+        stamps = json.loads(stamp_path.read_text(encoding="utf-8"))
+        stamps = stamps if isinstance(stamps, dict) else {}
+    except (OSError, ValueError):
+        stamps = {}
+    try:
+        files = [p for p in cache.rglob("*") if p.suffix in CACHE_SUFFIXES and p.is_file() and not p.is_symlink()]
+    except OSError:
+        return []
+    damaged, seen = [], {}
+    for path in files:
+        name = path.relative_to(cache).as_posix()
+        try:
+            info = path.stat()
+            stamp = [info.st_size, info.st_mtime_ns]
+            if stamps.get(name) != stamp and not whole_pickles(path.read_bytes()):
+                damaged.append(path)
+                continue
+        except OSError:
+            continue  # replaced meanwhile by numba (an atomic rename): checked next time
+        seen[name] = stamp
+    if damaged and remove:
+        for path in damaged:
+            path.unlink(missing_ok=True)
+        for marker in cache.glob(".compiled-*"):  # what they held compiles again, under the lock
+            marker.unlink(missing_ok=True)
+    if seen != stamps:
+        try:
+            tmp = stamp_path.with_name(f".{stamp_path.name}.{os.getpid()}.tmp")
+            tmp.write_text(json.dumps(seen), encoding="utf-8")
+            os.replace(tmp, stamp_path)
+        except OSError:
+            pass  # a read-only cache: checked again next time
+    if not damaged:
+        return []
+    names = ", ".join(p.relative_to(cache).as_posix() for p in damaged[:3]) + (
+        f" and {len(damaged) - 3} more" if len(damaged) > 3 else "")
+    if remove:
+        return [f"the kernel cache {cache} held {len(damaged)} damaged file(s) ({names}; a full disk or a killed "
+                f"copy leaves them): removed, the kernels they held compile again (about a minute)"]
+    return [f"the kernel cache {cache} (NUMBA_CACHE_DIR) holds {len(damaged)} damaged file(s) ({names}): numba "
+            f"cannot load them; delete them (or the folder) and the kernels compile again"]
+
+
+def forget_checks(cache: Path) -> None:
+    """Make the next start read every file of `cache` again (after numba failed on one)."""
+    Path(cache, CHECKED_FILE).unlink(missing_ok=True)
+    _checked.discard(str(cache))
+
+
+def from_kernel_cache(exc: BaseException) -> bool:
+    """True when `exc` was raised while numba read its cache (its traceback runs through
+    numba.core.caching)."""
+    seen = set()
+    while exc is not None and id(exc) not in seen:
+        seen.add(id(exc))
+        tb = exc.__traceback__
+        while tb is not None:
+            if tb.tb_frame.f_code.co_filename.replace("\\", "/").endswith("numba/core/caching.py"):
+                return True
+            tb = tb.tb_next
+        exc = exc.__cause__ or exc.__context__
+    return False
 
 
 def _prune(base: Path, keep: str, max_age_s: float = 86400.0) -> None:

@@ -16,7 +16,15 @@ excursion by several per cent), so the grid spans it; the other effects of the r
 dimensions (pitch diameter, conformity) are left at the nominal operating stack, and the test
 `test_tolerances.py::test_surrogate_against_full_screen` bounds the difference. What drives the margin is ranked by the squared standardised regression
 coefficient of each input (its share of the margin's variance for a near-linear response),
-with the Spearman rank correlation beside it.
+with the Spearman rank correlation beside it and the R^2 of the linear fit, which says how far
+the shares can be trusted (Sobol indices were weighed and not taken: docs/crush-probability.md).
+
+Each quantity is sampled by a Latin hypercube of its own seeded stream (scipy.stats.qmc): every
+one of n equally likely strata holds one stack, which spreads the stacks more evenly than
+independent draws, keeps the binomial standard error an upper bound, works for any n, and
+leaves the other quantities' samples as they were when one is added. Every stack goes through
+the scene's own validation first (pipeline.scene.tolerance_stacks): one that is no bearing the
+model covers is counted by the key it fails and left out of the probabilities, never screened.
 
 `[tolerances]` in a scene: `samples`, `seed`, and one table per varied quantity, as deviations
 from the scene's value: `{ lower = ..., upper = ... }` (uniform) or `{ sd = ... }` (normal,
@@ -143,19 +151,33 @@ def excursion_surrogate(scene, dev: dict[str, np.ndarray]):
 # --- the analysis ------------------------------------------------------------------------------
 @dataclass(frozen=True)
 class ToleranceResult:
+    """Every sampled stack; the screen's arrays hold NaN (margin, clearances) and INVALID (regime)
+    at the stacks that are no bearing the model covers (`valid` False; `invalid` counts them by
+    the scene key whose check they fail)."""
+
     deviations: dict[str, np.ndarray]
     margin: np.ndarray  # (C - e_req)/C at the worst cage orientation [-]
-    regime: np.ndarray  # 0 free, 1 pressed, 2 crushed
+    regime: np.ndarray  # 0 free, 1 pressed, 2 crushed, INVALID
     guide_clearance: np.ndarray  # [m]
     pocket_clearance: np.ndarray  # [m]
     non_guiding_gap: np.ndarray  # [m] (< 0: touching)
     spec: ToleranceSpec
+    valid: np.ndarray | None = None  # bool (n,); None: all valid
+    invalid: dict[str, int] = dataclasses.field(default_factory=dict)
+
+    @property
+    def valid_mask(self) -> np.ndarray:
+        return np.ones(self.margin.size, bool) if self.valid is None else self.valid
+
+
+INVALID = -1  # the regime code of a stack that is no bearing
 
 
 def analyse(scene, spec: ToleranceSpec | None = None, samples: int | None = None,
             seed: int | None = None) -> ToleranceResult:
-    """Sample the stacks of `spec` (default: the scene's [tolerances]) and screen each."""
-    from ...dynamics.quasistatic.crush_screen import margin_and_regime, non_guiding_gap, required_offset
+    """Sample the stacks of `spec` (default: the scene's [tolerances]), check each against the
+    scene's own validation (pipeline.scene.tolerance_stacks) and screen the valid ones."""
+    from ..scene.tolerance_stacks import invalid_stacks
 
     spec = spec or scene.tolerances
     if spec is None:
@@ -164,6 +186,36 @@ def analyse(scene, spec: ToleranceSpec | None = None, samples: int | None = None
         raise SceneError("tolerances", "the crush probability needs a [cage]")
     dev = sample_deviations(spec, samples, seed)
     n = len(next(iter(dev.values())))
+    bad, reasons = invalid_stacks(scene, dev, n)
+    valid = ~np.asarray(bad, dtype=bool)
+    if not valid.any():
+        raise SceneError("tolerances", f"none of the {n} sampled stacks is a bearing the model covers (they fail "
+                                       f"{_reasons(reasons)}): narrow the tolerances")
+    screened = _screen(scene, {k: v[valid] for k, v in dev.items()})
+
+    def spread(values: np.ndarray, fill: float) -> np.ndarray:
+        out = np.full(n, fill, dtype=np.asarray(values).dtype)
+        out[valid] = values
+        return out
+
+    return ToleranceResult(deviations=dev, margin=spread(screened["margin"], np.nan),
+                           regime=spread(screened["regime"], INVALID),
+                           guide_clearance=spread(screened["guide"], np.nan),
+                           pocket_clearance=spread(screened["pocket"], np.nan),
+                           non_guiding_gap=spread(screened["gap"], np.nan), spec=spec,
+                           valid=None if valid.all() else valid, invalid=reasons)
+
+
+def _reasons(reasons: dict[str, int]) -> str:
+    return ", ".join(f"{key} ({count})" for key, count in sorted(reasons.items(), key=lambda kv: -kv[1]))
+
+
+def _screen(scene, dev: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+    """The crush screen of every stack of `dev` (all valid): margin, regime code, guide and pocket
+    clearances, gap to the non-guiding land."""
+    from ...dynamics.quasistatic.crush_screen import margin_and_regime, non_guiding_gap, required_offset
+
+    n = len(next(iter(dev.values())))
     x = excursion_surrogate(scene, dev)
     s1, s_pp, shift = x[:, 0], x[:, 1], x[:, 4:].reshape(n, 2, 2)
     push = np.arctan2(x[:, 3], x[:, 2])
@@ -171,8 +223,8 @@ def analyse(scene, spec: ToleranceSpec | None = None, samples: int | None = None
     (_, worst), pressed = required_offset(s1, s_pp, clear)
     margin, code = margin_and_regime(worst, pressed, clear.guide)
     gap = non_guiding_gap(clear.non_guiding, np.minimum(worst, clear.guide), push, shift)
-    return ToleranceResult(deviations=dev, margin=margin, regime=code, guide_clearance=np.asarray(clear.guide),
-                           pocket_clearance=np.asarray(clear.pocket), non_guiding_gap=gap, spec=spec)
+    return {"margin": np.asarray(margin, float), "regime": np.asarray(code, int), "guide": np.asarray(clear.guide, float),
+            "pocket": np.asarray(clear.pocket, float), "gap": np.asarray(gap, float)}
 
 
 def drivers(result: ToleranceResult) -> list[dict]:
@@ -181,8 +233,9 @@ def drivers(result: ToleranceResult) -> list[dict]:
     from scipy.stats import spearmanr
 
     names = list(result.deviations)
-    X = np.column_stack([result.deviations[k] for k in names])
-    y = result.margin
+    ok = result.valid_mask
+    X = np.column_stack([result.deviations[k][ok] for k in names])
+    y = result.margin[ok]
     sx, sy = X.std(axis=0), y.std()
     rows = []
     if sy > 0.0:
@@ -195,67 +248,64 @@ def drivers(result: ToleranceResult) -> list[dict]:
     return sorted(rows, key=lambda r: -r["variance_share"])
 
 
+def linear_share(result: ToleranceResult) -> float | None:
+    """R^2 of the margin's linear regression on the deviations: how much of its variance the
+    drivers' shares (squared standardised coefficients) account for; near 1 they are the whole
+    story, well below 1 the margin responds non-linearly and the Spearman column ranks better."""
+    ok = result.valid_mask
+    X = np.column_stack([result.deviations[k][ok] for k in result.deviations] + [np.ones(int(ok.sum()))])
+    y = result.margin[ok]
+    if y.size < 3 or y.std() == 0.0:
+        return None
+    fit = X @ np.linalg.lstsq(X, y, rcond=None)[0]
+    return float(1.0 - np.sum((y - fit) ** 2) / np.sum((y - y.mean()) ** 2))
+
+
 def percentile_stack(result: ToleranceResult, q: float = 5.0) -> dict[str, float]:
     """The deviations of the stack whose margin sits at the q-th percentile."""
-    target = np.percentile(result.margin, q)
-    i = int(np.argmin(np.abs(result.margin - target)))
+    margin = np.where(result.valid_mask, result.margin, np.inf)
+    target = np.percentile(result.margin[result.valid_mask], q)
+    i = int(np.argmin(np.abs(margin - target)))
     return {name: float(v[i]) for name, v in result.deviations.items()} | {"margin": float(result.margin[i])}
 
 
 def stack_overrides(scene, stack: dict[str, float]) -> list[str]:
     """`--set` overrides that put one stack into the scene (dimensions as drawn, temperatures
-    in °C), so a dynamic run can confirm its regime."""
-    b, c, t = scene.nominal.bearing, scene.nominal.cage, scene.temperatures
-    out = []
+    in °C), so a dynamic run can confirm its regime (pipeline.scene.tolerance_stacks.stack_values)."""
+    from ..scene.tolerance_stacks import stack_values
 
-    def value(x: float) -> str:  # 9 digits: 0.1 nm on a diameter, readable on the command line
-        return f"{x:.9g}"
-
-    od = c.outside_diameter + stack.get("cage_outside_diameter", 0.0)
-    bore = c.bore_diameter + stack.get("cage_bore_diameter", 0.0)
-    if "cage_outside_diameter" in stack or "cage_bore_diameter" in stack:
-        out += [f"cage.mean_diameter={value(0.5 * (od + bore))}", f"cage.radial_thickness={value(0.5 * (od - bore))}"]
-    simple = {"pocket_diameter": ("cage.pocket_diameter", c.pocket_diameter),
-              "outer_land_diameter": ("bearing.outer_shoulder_diameter", b.outer_shoulder_diameter),
-              "inner_land_diameter": ("bearing.inner_shoulder_diameter", b.inner_shoulder_diameter),
-              "ball_diameter": ("bearing.ball_diameter", b.ball_diameter),
-              "diametral_clearance": ("bearing.outer_groove_center_diameter", b.outer_groove_center_diameter),
-              "moment": ("load.moment", scene.load.moment), "axial": ("load.axial", scene.load.axial)}
-    if "pitch_diameter" in scene.raw.get("bearing", {}):  # catalogue form: P_d is a key of its own
-        simple["diametral_clearance"] = ("bearing.diametral_clearance", b.diametral_clearance)
-    for name, (key, nominal) in simple.items():
-        if name in stack:
-            out.append(f"{key}={value(nominal + stack[name])}")
-    if "pocket_circle_eccentricity" in stack:
-        out.append(f"cage.pocket_circle_eccentricity={value(max(0.0, c.pocket_circle_eccentricity + stack['pocket_circle_eccentricity']))}")
-    for part in ("inner_ring", "outer_ring", "ball", "cage"):
-        name = f"{part}_temperature"
-        if name in stack:
-            out.append(f"thermal.{part}_degC={value(getattr(t, part) + stack[name])}")
-    return out
+    # 9 digits: 0.1 nm on a diameter, readable on the command line
+    return [f"{key}={value:.9g}" for key, value in stack_values(scene, stack).items()]
 
 
 def summary(result: ToleranceResult, scene) -> dict:
-    """The JSON of the analysis: probabilities with their standard errors, the margin's
-    distribution, the drivers and the 5th-percentile stack."""
-    n = result.margin.size
+    """The JSON of the analysis: probabilities over the valid stacks with their standard errors,
+    the stacks that are no bearing (counted by the key they fail), the margin's distribution, the
+    drivers and the 5th-percentile stack."""
+    ok = result.valid_mask
+    n, drawn = int(ok.sum()), result.margin.size
+    margin, regime = result.margin[ok], result.regime[ok]
     probs = {}
     for code, name in enumerate(("free", "pressed", "crushed")):
-        p = float(np.mean(result.regime == code))
+        p = float(np.mean(regime == code))
+        # the binomial error of independent samples: an upper bound for a Latin hypercube's
         probs[name] = {"probability": p, "standard_error": math.sqrt(max(p * (1 - p), 1.0 / n) / n)}
     q = (1, 5, 25, 50, 75, 95, 99)
     stack5 = percentile_stack(result, 5.0)
     return {
-        "samples": n, "seed": result.spec.seed,
+        "samples": drawn, "valid_samples": n, "seed": result.spec.seed,
+        "sampling": "Latin hypercube (scipy.stats.qmc), one stream per quantity",
         "tolerances": {d.name: d.describe() for d in result.spec.deviations},
+        "invalid_stacks": {"count": drawn - n, "fraction": (drawn - n) / drawn, "by_key": dict(result.invalid)},
         "regime_probability": probs,
         "crush_probability": probs["crushed"]["probability"],
-        "margin_percentiles": {f"p{k}": float(np.percentile(result.margin, k)) for k in q},
-        "margin_mean": float(result.margin.mean()),
-        "non_guiding_touch_probability": float(np.mean(result.non_guiding_gap < 0.0)),
-        "guide_clearance_percentiles_m": {f"p{k}": float(np.percentile(result.guide_clearance, k)) for k in (5, 50, 95)},
-        "pocket_clearance_percentiles_m": {f"p{k}": float(np.percentile(result.pocket_clearance, k)) for k in (5, 50, 95)},
+        "margin_percentiles": {f"p{k}": float(np.percentile(margin, k)) for k in q},
+        "margin_mean": float(margin.mean()),
+        "non_guiding_touch_probability": float(np.mean(result.non_guiding_gap[ok] < 0.0)),
+        "guide_clearance_percentiles_m": {f"p{k}": float(np.percentile(result.guide_clearance[ok], k)) for k in (5, 50, 95)},
+        "pocket_clearance_percentiles_m": {f"p{k}": float(np.percentile(result.pocket_clearance[ok], k)) for k in (5, 50, 95)},
         "drivers": drivers(result),
+        "drivers_linear_r2": linear_share(result),
         "stack_at_p5": stack5,
         "stack_at_p5_overrides": stack_overrides(scene, stack5),
         "units": {"margin": "1", "probability": "1", "deviations": {k: QUANTITIES[k][0] for k in result.deviations}},
@@ -263,7 +313,8 @@ def summary(result: ToleranceResult, scene) -> dict:
 
 
 def write_samples_csv(path, result: ToleranceResult) -> None:
-    """Every stack: its deviations, clearances, margin and regime; units in the headers."""
+    """Every stack drawn: its deviations, clearances, margin and regime ("invalid" with empty
+    cells for a stack that is no bearing); units in the headers."""
     import io
 
     from ..staging.artefacts import atomic_write_bytes
@@ -277,5 +328,7 @@ def write_samples_csv(path, result: ToleranceResult) -> None:
     buf.write(",".join(header) + "\n")
     regimes = ("free", "pressed", "crushed")
     for i in range(result.margin.size):
-        buf.write(",".join(f"{c[i]:.9g}" for c in cols) + f",{regimes[int(result.regime[i])]}\n")
+        code = int(result.regime[i])
+        cells = (f"{c[i]:.9g}" if math.isfinite(c[i]) else "" for c in cols)
+        buf.write(",".join(cells) + f",{regimes[code] if code != INVALID else 'invalid'}\n")
     atomic_write_bytes(path, buf.getvalue().encode())

@@ -27,6 +27,7 @@ from pathlib import Path
 import numpy as np
 
 from .offscreen import pyvista_offscreen, render_png
+from .vtk_files import save_xml
 
 WARP_FRACTION = 0.06  # largest warped displacement / bounding-box diagonal
 SECTION_NORMAL = {"fx": "y", "fz": "y", "my": "y", "mz": "y", "fy": "x", "mx": "x"}
@@ -182,9 +183,6 @@ def render_case(case: FECase, png_path: Path, vtu_path: Path | None, title: str 
 def write_case_surface(mesh, path: Path, scale: float, load: float | None) -> None:
     """The outer surface with SI fields, the warp scale and the load, for ParaView
     (numbers only in the field data: meshio cannot read string arrays). Atomic."""
-    import os
-    import tempfile
-
     surface = mesh.extract_surface(algorithm=None).cast_to_unstructured_grid()
     for name in list(surface.array_names):
         if name not in ("displacement", "displacement_magnitude", "von_mises", "material"):
@@ -193,12 +191,4 @@ def write_case_surface(mesh, path: Path, scale: float, load: float | None) -> No
     surface.field_data["warp_scale"] = [scale]
     if load is not None:
         surface.field_data["load"] = [load]  # N or N*m along the case's axis (file name)
-    path = Path(path)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.stem}.", suffix=".vtu")
-    os.close(fd)
-    try:
-        surface.save(tmp)
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
+    save_xml(surface, Path(path))  # atomic, and a full disk is an OSError (render.vtk_files)

@@ -32,6 +32,7 @@ from xml.sax.saxutils import quoteattr
 import numpy as np
 
 from ..results.named_arrays import udunits
+from .vtk_files import save_xml
 
 from .body_surfaces import (RevolvedSurface, axis_rotation, cage_surface, inner_race_surface,
                             outer_race_surface, spin_rotation)
@@ -155,7 +156,7 @@ def _write_inner_race(series: dict, scene, t: np.ndarray, out_dir: Path) -> str:
                       series["inner_race/angular_velocity"].data[i])
         _units(mesh, {"velocity": "m/s"})
         name = f"frames/inner_race_{i:05d}.vtp"
-        mesh.save(out_dir / name)
+        save_xml(mesh, out_dir / name)
         entries.append((t[i], name))
     write_pvd(out_dir / "inner_race.pvd", entries)
     return "inner_race.pvd"
@@ -173,7 +174,7 @@ def _write_balls(series: dict, scene, t: np.ndarray, out_dir: Path) -> str:
             mesh.point_data[field] = np.asarray(data[i], dtype=np.float32)
         _units(mesh, {"diameter": "m", "ball": "1", **{f: u for f, (_, u) in fields.items()}})
         name = f"frames/balls_{i:05d}.vtp"
-        mesh.save(out_dir / name)
+        save_xml(mesh, out_dir / name)
         entries.append((t[i], name))
     write_pvd(out_dir / "balls.pvd", entries)
     return "balls.pvd"
@@ -197,7 +198,7 @@ def _write_cage(series: dict, scene, t: np.ndarray, angle: np.ndarray, out_dir: 
         _units(mesh, {"velocity": "m/s", "sector": "1", "land_force": "N", "eccentricity_ratio": "1",
                       "friction_power": "W"})
         name = f"frames/cage_{i:05d}.vtp"
-        mesh.save(out_dir / name)
+        save_xml(mesh, out_dir / name)
         entries.append((t[i], name))
     series_file = "cage" + ".pvd"  # (two literals: "cage.<x>" reads as a scene key to the message checks)
     write_pvd(out_dir / series_file, entries)
@@ -233,7 +234,7 @@ def write_race(scene, out_dir: Path, burn_map=None, ring: str = "outer") -> str:
             units["window"] = "s"
     _units(mesh, units)
     name = "outer_race.vtp" if ring == "outer" else "inner_race_heat.vtp"
-    mesh.save(out_dir / name)
+    save_xml(mesh, out_dir / name)
     return name
 
 

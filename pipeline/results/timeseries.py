@@ -18,8 +18,6 @@ special: the filters are applied transparently.
 
 from __future__ import annotations
 
-import os
-import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Iterable
@@ -62,34 +60,42 @@ def storage_options(data: np.ndarray) -> dict:
 
 
 def write_timeseries(path: Path, series: dict[str, Series], attrs: dict | None = None) -> None:
-    """Write `series` (name -> Series; names may contain '/' for groups) to `path`."""
+    """Write `series` (name -> Series; names may contain '/' for groups) to `path`.
+
+    The file is built in memory (HDF5's core driver) and written by Python atomically: HDF5
+    writing to a full disk fails in its own way (a RuntimeError on close, then a segmentation
+    fault when Python collects the broken file object), a Python write raises OSError (ENOSPC)
+    and leaves nothing. The compressed image is smaller than the series it holds, which the
+    dynamic run's memory check counts (pipeline.scene.validity.SAMPLE_COPIES)."""
     import h5py
 
+    from ..staging.artefacts import atomic_write_bytes
+
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    os.close(fd)
-    try:
-        with h5py.File(tmp, "w") as h5:
-            for key, value in (attrs or {}).items():
-                h5.attrs[key] = value
-            written = {}
-            for name, s in series.items():
-                data = np.asarray(s.data)
-                if data.ndim != len(s.dims):
-                    raise ValueError(f"{name}: data has {data.ndim} dimensions but dims are {s.dims}")
-                if s.store_float32:
-                    data = data.astype(np.float32)
-                ds = h5.create_dataset(name, data=data, **storage_options(data))
-                ds.attrs["units"] = udunits(s.units)  # what netCDF and pint read (docs/outputs.md)
-                ds.attrs["description"] = s.description
-                ds.attrs["dims"] = ",".join(s.dims)
-                written[name] = (ds, s.dims)
-            attach_dimension_scales(h5, written)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    with h5py.File(path.name, "w", driver="core", backing_store=False) as h5:
+        _fill(h5, series, attrs)
+        h5.flush()
+        image = h5.id.get_file_image()
+    atomic_write_bytes(path, image)
+
+
+def _fill(h5, series: dict[str, Series], attrs: dict | None) -> None:
+    """The datasets of `series` and the file attributes `attrs` in the open file `h5`."""
+    for key, value in (attrs or {}).items():
+        h5.attrs[key] = value
+    written = {}
+    for name, s in series.items():
+        data = np.asarray(s.data)
+        if data.ndim != len(s.dims):
+            raise ValueError(f"{name}: data has {data.ndim} dimensions but dims are {s.dims}")
+        if s.store_float32:
+            data = data.astype(np.float32)
+        ds = h5.create_dataset(name, data=data, **storage_options(data))
+        ds.attrs["units"] = udunits(s.units)  # what netCDF and pint read (docs/outputs.md)
+        ds.attrs["description"] = s.description
+        ds.attrs["dims"] = ",".join(s.dims)
+        written[name] = (ds, s.dims)
+    attach_dimension_scales(h5, written)
 
 
 # coordinate values of the dimensions that are not a series of their own

@@ -165,6 +165,9 @@ def read_scene_table(scene: str | Path) -> tuple[dict, str]:
     """Read a scene path or built-in name into a TOML table; returns (table, origin).
     Every way a file can be unreadable is a SceneError naming the file and what to do."""
     text_arg = str(scene)
+    if not text_arg.strip():
+        raise SceneError("", "the scene argument is empty; give a scene file (.toml) or the name of a built-in "
+                             "scene (bearingsim scenes lists them)")
     if "\0" in text_arg:
         raise SceneError("", f"the scene argument {text_arg!r} contains a NUL byte; give a scene file "
                              "path or a built-in scene name")
@@ -202,6 +205,9 @@ def read_scene_table(scene: str | Path) -> tuple[dict, str]:
         return tomllib.loads(text), origin
     except tomllib.TOMLDecodeError as exc:
         raise SceneError("", f"{origin} is not valid TOML: {exc}") from exc
+    except ValueError:  # an integer of more digits than Python reads (4300)
+        raise SceneError("", f"{origin} holds an integer of more than 4300 digits; a scene's numbers are "
+                             "values in SI units") from None
     except RecursionError:
         raise SceneError("", f"{origin} nests arrays or tables too deeply to read; a scene needs at most "
                              "two levels (e.g. hinge.translational as a 3x3 matrix)") from None
@@ -246,6 +252,9 @@ def parse_override(text: str) -> tuple[list[str], Any]:
         value = tomllib.loads(f"v = {value_text}")["v"]
     except tomllib.TOMLDecodeError:
         value = value_text
+    except ValueError:  # an integer of more digits than Python reads (4300)
+        raise SceneError(key, f"--set: the value is an integer of {len(value_text)} digits; give a number "
+                              "of the key's unit") from None
     except RecursionError:
         raise SceneError(key, f"--set: the value nests arrays too deeply ({len(value_text)} characters)") from None
     return key.split("."), value

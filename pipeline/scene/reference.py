@@ -18,7 +18,10 @@ INTRO = """# Scene reference
 A scene is one TOML file (or a built-in name, `bearingsim scenes`); `--set KEY=VALUE` changes
 one key on the command line with the same checks. SI units throughout, except where the key
 says otherwise (`_rpm`, `_degC`). `bearingsim check SCENE` validates a scene and prints it
-resolved. This page is generated from the code (`python -m bearingsim.pipeline.scene.reference`);
+resolved. Besides each key's own range, every real number lies within 1e-30 .. 1e30 in size
+(or is zero where the key allows zero) and every integer within 64 bits: the sizes of a
+bearing's quantities in SI units, which the model's arithmetic holds (docs/reliability.md).
+This page is generated from the code (`python -m bearingsim.pipeline.scene.reference`);
 a test keeps it current. The model behind the keys is [docs/model.md](model.md).
 
 Top level: `name` (required; names the run directory `runs/<name>/`), `description`

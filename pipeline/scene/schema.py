@@ -35,17 +35,42 @@ def unit_suffix(meta: dict) -> str:
     return f" [{unit}]" if unit and unit != "-" else ""
 
 
+# Every number of a scene is one the model can compute with. A real number lies within
+# MAGNITUDE in size, or is zero where its key allows zero: no quantity of a bearing in SI units
+# comes within decades of these bounds (the smallest, a film floor or a solver tolerance, are
+# 1e-15 .. 1e-10; the largest, elastic moduli and stiffnesses, 1e12), and a product of ten such
+# numbers still fits a double (1e-308 .. 1e308), so no formula of the model overflows to
+# infinity or underflows to zero on a scene's input (docs/reliability.md). An integer fits the
+# 64 bits of the compiled kernels' integers.
+MAGNITUDE = (1e-30, 1e30)
+INTEGER_LIMIT = 2**63 - 1
+
+
+def shown_number(value: Any) -> str:
+    """A number as a message shows it: an integer too long to read (or to print: Python
+    refuses beyond 4300 digits) by its size."""
+    if isinstance(value, bool):  # as the scene file writes it
+        return "true" if value else "false"
+    if isinstance(value, int) and abs(value) >= 10**20:
+        try:
+            digits = f"{len(str(abs(value)))}"
+        except ValueError:  # longer than Python prints
+            digits = f"about {int(abs(value).bit_length() * math.log10(2)) + 1}"
+        return f"{'-' if value < 0 else ''}an integer of {digits} digits"
+    return repr(value)
+
+
 def check_number(key: str, value: Any, meta: dict, *, integer: bool = False) -> float | int:
-    """Type, finiteness and range check of one scalar."""
+    """Type, finiteness and range check of one scalar: the key's own bounds, then what the
+    model can compute with (MAGNITUDE, INTEGER_LIMIT)."""
     unit = unit_suffix(meta)
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         kind = "an integer" if integer else "a number"
-        raise SceneError(key, f"expected {kind}{unit}, got {value!r} ({type(value).__name__})")
+        raise SceneError(key, f"expected {kind}{unit}, got {shown_number(value)} ({type(value).__name__})")
     if integer and not isinstance(value, int):
         raise SceneError(key, f"expected an integer{unit}, got {value!r}")
     if isinstance(value, float) and not math.isfinite(value):
         raise SceneError(key, f"must be a finite number{unit}, got {value!r}")
-    bounds = describe_bounds(meta)
     ok = (
         ("gt" not in meta or value > meta["gt"])
         and ("ge" not in meta or value >= meta["ge"])
@@ -53,8 +78,36 @@ def check_number(key: str, value: Any, meta: dict, *, integer: bool = False) -> 
         and ("le" not in meta or value <= meta["le"])
     )
     if not ok:
-        raise SceneError(key, f"{value!r} is out of range: allowed {bounds}{unit}")
-    return value if integer else float(value)
+        raise SceneError(key, f"{shown_number(value)} is out of range: allowed {describe_bounds(meta)}{unit}")
+    if integer:
+        if abs(value) > INTEGER_LIMIT:
+            allowed = _joined(describe_bounds(meta), "at most 2**63 - 1 in size")
+            raise SceneError(key, f"{shown_number(value)} is out of range: allowed {allowed}{unit}")
+        return value
+    if not _within(value):
+        small, large = MAGNITUDE
+        zero = " (or 0)" if _allows_zero(meta) else ""
+        limit = f"{_e(small)} <= |value| <= {_e(large)}{zero}, the sizes of a bearing's quantities in SI units"
+        raise SceneError(key, f"{shown_number(value)} is out of range: allowed {_joined(describe_bounds(meta), limit)}{unit}")
+    return float(value)
+
+
+def _within(value: float) -> bool:
+    """Zero, or a size inside MAGNITUDE."""
+    return value == 0 or MAGNITUDE[0] <= abs(value) <= MAGNITUDE[1]
+
+
+def _e(x: float) -> str:
+    return f"{x:g}".replace("e+", "e")
+
+
+def _joined(bounds: str, limit: str) -> str:
+    return f"{bounds} and {limit}" if bounds else limit
+
+
+def _allows_zero(meta: dict) -> bool:
+    return (("gt" not in meta or 0 > meta["gt"]) and ("ge" not in meta or 0 >= meta["ge"])
+            and ("lt" not in meta or 0 < meta["lt"]) and ("le" not in meta or 0 <= meta["le"]))
 
 
 def _strip_optional(tp: Any) -> tuple[Any, bool]:

@@ -11,7 +11,7 @@ from typing import Any
 
 import numpy as np
 
-from .schema import SceneError
+from .schema import SceneError, check_number, shown_number
 
 # name -> (unit, description); a deviation is added to the scene's value
 QUANTITIES: dict[str, tuple[str, str]] = {
@@ -44,9 +44,18 @@ class Deviation:
     sd: float = 0.0
 
     def sample(self, rng: np.random.Generator, n: int) -> np.ndarray:
+        """n deviations, Latin hypercube: one in each of n equally likely strata, in random order
+        (scipy.stats.qmc, seeded by `rng`)."""
+        from scipy.stats import norm, qmc
+
+        try:
+            lhs = qmc.LatinHypercube(d=1, rng=rng)
+        except TypeError:  # scipy < 1.15 names it seed
+            lhs = qmc.LatinHypercube(d=1, seed=rng)
+        u = np.clip(lhs.random(n)[:, 0], 1e-12, 1.0 - 1e-12)  # inside (0, 1): a finite normal quantile
         if self.kind == "uniform":
-            return rng.uniform(self.lower, self.upper, n)
-        return rng.normal(0.0, self.sd, n)
+            return self.lower + (self.upper - self.lower) * u
+        return self.sd * norm.ppf(u)
 
     def describe(self) -> str:
         unit = QUANTITIES[self.name][0]
@@ -64,8 +73,8 @@ class ToleranceSpec:
 
 def _number(key: str, value: Any, unit: str) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise SceneError(key, f"expected a finite number [{unit}], got {value!r}")
-    return float(value)
+        raise SceneError(key, f"expected a finite number [{unit}], got {shown_number(value)}")
+    return check_number(key, value, {"unit": unit})  # the sizes the model computes with
 
 
 def build_tolerance_spec(table: Any, scene=None) -> ToleranceSpec:
@@ -74,11 +83,11 @@ def build_tolerance_spec(table: Any, scene=None) -> ToleranceSpec:
         raise SceneError("tolerances", f"expected a table, got {table!r}")
     samples = table.get("samples", 10_000)
     if isinstance(samples, bool) or not isinstance(samples, int) or not 100 <= samples <= MAX_SAMPLES:
-        raise SceneError("tolerances.samples", f"{samples!r} is out of range: allowed an integer from 100 to "
+        raise SceneError("tolerances.samples", f"{shown_number(samples)} is out of range: allowed an integer from 100 to "
                                                f"{MAX_SAMPLES} [-]")
     seed = table.get("seed", 0)
     if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
-        raise SceneError("tolerances.seed", f"{seed!r}: expected a whole number >= 0 [-]")
+        raise SceneError("tolerances.seed", f"{shown_number(seed)}: expected a whole number >= 0 [-]")
     out = []
     for name, spec in table.items():
         if name in ("samples", "seed"):
@@ -107,4 +116,11 @@ def build_tolerance_spec(table: Any, scene=None) -> ToleranceSpec:
         raise SceneError("tolerances", f"no quantity to vary; give at least one of {', '.join(QUANTITIES)}")
     if scene is not None and scene.cage is None:
         raise SceneError("tolerances", "the crush probability needs a [cage]")
+    if scene is not None:  # a range that reaches impossible parts: refused before any stack is drawn
+        from .tolerance_stacks import range_problem
+
+        for deviation in out:
+            problem = range_problem(scene, deviation, QUANTITIES[deviation.name][0])
+            if problem is not None:
+                raise problem
     return ToleranceSpec(samples=samples, seed=seed, deviations=tuple(out))

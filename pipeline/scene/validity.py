@@ -120,6 +120,12 @@ def scene_findings(scene) -> list[Finding]:
     return out
 
 
+def geometry_findings(scene) -> list[Finding]:
+    """The geometry checks of `scene_findings` on the parts as the scene holds them (clearance,
+    lands, cage fit): what a tolerance stack must pass (pipeline.scene.tolerance_stacks)."""
+    return _clearance(scene) + _lands(scene) + _cage_fit(scene)
+
+
 def _as_drawn(scene):
     """The scene: its bearing, cage and materials are as drawn (`operating` holds them grown)."""
     return scene
@@ -260,11 +266,36 @@ def sample_bytes(scene) -> float:
 
 
 def memory_limit() -> float:
-    """Half the machine's physical memory [bytes] (8 GiB where it cannot be read)."""
+    """What the dynamic run may allocate [bytes]: half the machine's physical memory (8 GiB
+    where it cannot be read), and no more than the process's address-space limit (ulimit -v,
+    RLIMIT_AS) leaves beyond what the process maps already."""
     try:
-        return 0.5 * os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+        limit = 0.5 * os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
     except (ValueError, OSError, AttributeError):
-        return 8.0 * 2**30
+        limit = 8.0 * 2**30
+    address_space = _address_space_left()
+    return limit if address_space is None else min(limit, address_space)
+
+
+def _address_space_left() -> float | None:
+    """RLIMIT_AS minus the process's mapped size (VmSize) [bytes]; None without a limit."""
+    try:
+        import resource
+
+        soft = resource.getrlimit(resource.RLIMIT_AS)[0]
+    except (ImportError, OSError, ValueError, AttributeError):  # not POSIX
+        return None
+    if soft == resource.RLIM_INFINITY or soft <= 0:
+        return None
+    mapped = 0.0
+    try:
+        with open("/proc/self/status", encoding="ascii") as fh:
+            for line in fh:
+                if line.startswith("VmSize:"):
+                    mapped = float(line.split()[1]) * 1024.0
+    except (OSError, ValueError):
+        pass
+    return max(float(soft) - mapped, 0.0)
 
 
 def _resources(scene) -> list[Finding]:
@@ -294,8 +325,9 @@ def _resources(scene) -> list[Finding]:
         per = sample_bytes(scene)
         out.append(error("output.sample_interval",
                          f"{_g(o.sample_interval)} s over solver.duration = {_g(s.duration)} s is {_g(ratio)} samples "
-                         f"of the time series, about {need / 2**30:.3g} GiB of memory (this machine allows "
-                         f"{limit / 2**30:.3g} GiB); allowed >= {_g(s.duration * per / limit)} [s], or a shorter "
+                         f"of the time series, about {need / 2**30:.3g} GiB of memory (this process may use "
+                         f"{limit / 2**30:.3g} GiB: half the machine's memory, or what its address-space limit, "
+                         f"ulimit -v, leaves); allowed >= {_g(s.duration * per / limit)} [s], or a shorter "
                          f"solver.duration"))
     return out
 
@@ -327,6 +359,7 @@ def _plausibility(scene) -> list[Finding]:
             ("youngs_modulus", 1e9, 1.5e12, "Pa", "steel: 2.08e11 Pa", "Pa, not GPa or MPa"),
             ("density", 10.0, 25000.0, "kg/m^3", "steel: 7850", "kg/m^3, not g/cm^3")))
     out += _load_plausibility(scene)
+    out += _sub_nanometre(scene)
     ndm = max(abs(scene.speed.inner_rpm), abs(scene.speed.outer_rpm)) * b.pitch_diameter * 1e3
     if ndm > 4e6:
         out.append(warning("speed.inner_rpm" if abs(scene.speed.inner_rpm) >= abs(scene.speed.outer_rpm)
@@ -339,6 +372,27 @@ def _plausibility(scene) -> list[Finding]:
                            f"{_g(lub.temperature_degC)} degC is hotter than any bearing oil survives; the unit is "
                            f"degC, not K [degC]"))
     out += _lubricant_plausibility(scene)
+    return out
+
+
+# A length of a solid part below this is smaller than a few atoms (steel's lattice spacing is
+# 0.29 nm): no width, diameter, radius or roughness of a bearing, most likely a unit slip.
+SMALLEST_PART_LENGTH = 1e-9  # m
+
+
+def _sub_nanometre(scene) -> list[Finding]:
+    """Warnings for [bearing] and [cage] lengths (the positive ones: sizes, not clearances or
+    run-outs) below SMALLEST_PART_LENGTH."""
+    out = []
+    for section, obj in (("bearing", scene.bearing), ("cage", scene.cage)):
+        if obj is None:
+            continue
+        for f in dataclasses.fields(obj):
+            value = getattr(obj, f.name)
+            if (f.metadata.get("unit") == "m" and "gt" in f.metadata and isinstance(value, float)
+                    and 0.0 < value < SMALLEST_PART_LENGTH):
+                out.append(warning(f"{section}.{f.name}", f"{_g(value)} m is smaller than a few atoms (below "
+                                                          f"{SMALLEST_PART_LENGTH:g} m): scene lengths are in metres [m]"))
     return out
 
 

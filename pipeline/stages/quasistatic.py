@@ -65,7 +65,8 @@ def compute(ctx: StageContext) -> dict:
         # in the worker `bearingsim quasistatic` prestarted, if any (see figures.worker)
         draw("load_distribution", payload, ctx.out_dir / FIGURE_FILE, title=ctx.scene.name)
         if tolerance is not None:
-            draw("crush_probability", {"margin": tolerance.margin.tolist(), "regime": tolerance.regime.tolist(),
+            ok = tolerance.valid_mask  # the stacks that are bearings
+            draw("crush_probability", {"margin": tolerance.margin[ok].tolist(), "regime": tolerance.regime[ok].tolist(),
                                        "summary": payload["crush_probability"]},
                  ctx.out_dir / TOLERANCE_FIGURE, title=ctx.scene.name)
     return {"converged": bool(payload.get("converged")),

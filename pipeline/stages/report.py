@@ -10,7 +10,9 @@ results upstream redraws it.
 `bearingsim render RUN` (`render_run`) redraws it from a finished run directory without
 running any other stage: it takes the upstream keys from their `stage.json` manifests and
 writes the same manifest a `run` would, so a later `bearingsim run` of the same scene finds
-the report up to date instead of drawing it again.
+the report up to date instead of drawing it again. It draws only results computed from the
+directory's scene.toml (pipeline.stages.consistency) and intact, and draws the upstream
+stages' missing figures again from their data (pipeline.render.stage_figures).
 """
 
 from __future__ import annotations
@@ -51,30 +53,56 @@ STAGE = Stage(
 )
 
 
-def finished_upstream(run_dir: Path) -> dict[str, str]:
-    """name -> key of the upstream stages that finished in `run_dir` (manifest status done).
-    StageResultsDamaged when a file of one of them changed or is missing since it was written."""
-    from ..staging.artefacts import cache_state, read_manifest
+class SceneNotOfResults(ValueError):
+    """scene.toml does not describe the results of the run directory (edited, or written by a
+    later command with other inputs): `render` draws no report over them."""
 
-    keys = {}
-    for name in STAGE.depends:
-        manifest = read_manifest(Path(run_dir) / name)
-        if manifest and manifest.get("status") == "done" and manifest.get("key"):
-            state, damaged = cache_state(Path(run_dir) / name, manifest["key"])
-            if state == "damaged":
-                raise StageResultsDamaged(
-                    f"{Path(run_dir) / name}: {', '.join(damaged[:5])} changed or went missing since the "
-                    f"{name} stage wrote it; render draws only results as computed. Recompute it with "
-                    f"`bearingsim run {Path(run_dir) / 'scene.toml'} --out {run_dir}`; then "
-                    f"`bearingsim render {run_dir}` redraws the report")
-            keys[name] = manifest["key"]
-    return keys
+
+def finished_upstream(run_dir: Path, scene, progress=None) -> dict[str, str]:
+    """name -> key of the upstream stages that finished in `run_dir` (manifest status done),
+    after checking them against `scene` (pipeline.stages.consistency): SceneNotOfResults when a
+    stage was computed from other inputs, StageResultsDamaged when one of its data files changed
+    or is missing; a changed or missing figure is drawn again from the stage's data."""
+    from ..render.stage_figures import redraw_figures
+    from .consistency import check_run_directory, mismatch_message
+
+    checks = [c for c in check_run_directory(run_dir, scene, _upstream_stages()) if c.name in STAGE.depends]
+    mismatch = mismatch_message(run_dir, checks)
+    if mismatch:
+        raise SceneNotOfResults(mismatch)
+    for check in checks:
+        if check.damaged_data:
+            raise StageResultsDamaged(
+                f"{Path(run_dir) / check.name}: {', '.join(check.damaged_data[:5])} changed or went missing since the "
+                f"{check.name} stage wrote it; render draws only results as computed. Recompute it with "
+                f"`bearingsim run {Path(run_dir) / 'scene.toml'} --out {run_dir}`; then "
+                f"`bearingsim render {run_dir}` redraws the report")
+    for check in checks:
+        if check.damaged_figures:
+            if progress:
+                progress(f"redrawing {check.name} figures", 0.0)
+            drawn = redraw_figures(check.name, Path(run_dir) / check.name, scene, check.damaged_figures)
+            logging.getLogger("bearingsim").info("render: drew %s of %s again (%s were missing or changed)",
+                                                 ", ".join(drawn), check.name, ", ".join(check.damaged_figures))
+    return {c.name: c.key for c in checks if c.key}
+
+
+def _upstream_stages() -> list[Stage]:
+    """The stages the report reads, in pipeline order."""
+    from .identify import STAGE as IDENTIFY
+    from .quasistatic import STAGE as QUASISTATIC
+    from .simulate import STAGE as SIMULATE
+
+    return [IDENTIFY, QUASISTATIC, SIMULATE]
 
 
 def render_run(run_dir: Path, show: bool = False, progress=None) -> StageOutcome:
-    """Redraw `<run_dir>/report/` from the saved results (atomically, as the stage does).
+    """Redraw `<run_dir>/report/` from the saved results (atomically, as the stage does), and
+    the figures of the upstream stages that are missing. The caller holds the run directory's
+    lock.
 
-    Raises FileNotFoundError when `run_dir` holds no scene.toml or no finished stage.
+    Raises FileNotFoundError when `run_dir` holds no scene.toml or no finished stage,
+    SceneNotOfResults and StageResultsDamaged (finished_upstream).
     """
     from ..staging.runner import compute_stage, stage_key
     from ..scene.load import load_scene
@@ -85,7 +113,7 @@ def render_run(run_dir: Path, show: bool = False, progress=None) -> StageOutcome
         raise FileNotFoundError(f"{run_dir} is not a run directory: it has no scene.toml "
                                 "(written by `bearingsim run SCENE`; give the directory it printed)")
     scene = load_scene(scene_file)
-    upstream = finished_upstream(run_dir)
+    upstream = finished_upstream(run_dir, scene, progress)
     if not upstream:
         raise FileNotFoundError(f"{run_dir} holds no finished stage ({', '.join(STAGE.depends)}): "
                                 f"run `bearingsim run {scene_file}` first")

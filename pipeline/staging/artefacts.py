@@ -13,6 +13,8 @@ Files and folders follow the process umask like any other program's output.
 
 from __future__ import annotations
 
+import contextlib
+import errno
 import hashlib
 import json
 import math
@@ -26,7 +28,7 @@ from dataclasses import asdict, is_dataclass
 from pathlib import Path
 from typing import Any, Iterator
 
-from .no_follow import OutputRefused, open_no_follow, out_name  # noqa: F401 - OutputRefused is re-exported
+from .no_follow import OutputRefused, out_name, refused_special_file  # noqa: F401 - OutputRefused is re-exported
 
 MANIFEST = "stage.json"
 RUN_MARKER = ".bearingsim-run"
@@ -89,8 +91,10 @@ def atomic_write_bytes(path: Path, data: bytes) -> None:
             os.fchmod(fh.fileno(), file_mode())
             os.fsync(fh.fileno())
         os.replace(tmp, path)
-    except BaseException:
+    except BaseException as exc:
         Path(tmp).unlink(missing_ok=True)
+        if isinstance(exc, OSError) and exc.filename is None:  # a write: name the file it was for
+            raise type(exc)(exc.errno, exc.strerror, str(path)) from exc
         raise
 
 
@@ -127,16 +131,25 @@ def atomic_write_json(path: Path, obj: Any) -> None:
 
 # --- cache keys and manifests ----------------------------------------------------------
 def canonical(obj: Any) -> Any:
-    """The value a cache key hashes: numbers compare by value (430 == 430.0, -0.0 == 0.0),
-    so writing a number differently never recomputes a stage."""
+    """The value a cache key hashes: numbers compare by their exact value (430 == 430.0,
+    -0.0 == 0.0), so writing a number differently never recomputes a stage, and two different
+    numbers never share a key: an integer that no float holds exactly (2**53 + 1, a seed)
+    stays an integer."""
     obj = to_jsonable(obj)
     if isinstance(obj, dict):
         return {k: canonical(v) for k, v in obj.items()}
     if isinstance(obj, list):
         return [canonical(v) for v in obj]
-    if isinstance(obj, (int, float)) and not isinstance(obj, bool):
-        value = float(obj)
-        return 0.0 if value == 0.0 else value
+    if isinstance(obj, bool):
+        return obj
+    if isinstance(obj, int):
+        try:
+            value = float(obj)
+        except OverflowError:
+            return obj
+        return (0.0 if value == 0.0 else value) if int(value) == obj else obj
+    if isinstance(obj, float):
+        return 0.0 if obj == 0.0 else obj
     return obj
 
 
@@ -268,6 +281,11 @@ def remove_stage_dir(path: Path) -> bool:
     return False
 
 
+def is_temporary(name: str) -> bool:
+    """A file or folder name of what atomic writes and staged directories leave behind."""
+    return bool(_TEMPORARY.match(name))
+
+
 def sweep_stale_temporaries(directory: Path, max_age_s: float = STALE_TEMPORARY_AGE_S) -> list[str]:
     """Remove what a killed run left in `directory` (`.<name>.*.tmp`, `.<name>.old-<pid>`)
     when older than `max_age_s`; a live run's temporaries are younger. Returns the names."""
@@ -291,6 +309,9 @@ def sweep_stale_temporaries(directory: Path, max_age_s: float = STALE_TEMPORARY_
         except OSError:
             continue
     return removed
+
+
+SWEEP_POINT_RECORD = "point.json"  # what makes a run directory a point of a sweep
 
 
 def is_own_run_dir(run_dir: Path) -> bool:
@@ -321,10 +342,18 @@ def refused_unless_usable(out: Path, example: str = "") -> Iterator[None]:
         yield
     except OutputRefused:
         raise
-    except (OSError, ValueError) as exc:  # ValueError: a NUL byte in the path
-        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
-        raise OutputRefused(f"{out_name(out)}: cannot use this directory ({reason}); give a writable "
-                            f"directory{', e.g. ' + out_name(example) if example else ''}") from None
+    except OSError as exc:
+        if exc.errno in (errno.ENOSPC, getattr(errno, "EDQUOT", errno.ENOSPC)):
+            raise  # a full disk is no fault of the directory: the caller names it (exit 1)
+        _refuse_unusable(out, example, exc)
+    except ValueError as exc:  # a NUL byte in the path
+        _refuse_unusable(out, example, exc)
+
+
+def _refuse_unusable(out: Path, example: str, exc: Exception) -> None:
+    reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
+    raise OutputRefused(f"{out_name(out)}: cannot use this directory ({reason}); give a writable "
+                        f"directory{', e.g. ' + out_name(example) if example else ''}") from None
 
 
 def mark_directory(directory: Path, marker: str, note: str) -> None:
@@ -355,19 +384,36 @@ def claim_run_directory(run_dir: Path) -> None:
                                 f"(new or empty), e.g. {out_name('runs/my-run')}")
         if not exists:
             run_dir.mkdir(parents=True, exist_ok=True)  # exist_ok: a concurrent run made it
-        if not is_own_run_dir(run_dir):
-            if any(p.name not in (RUN_MARKER, ".lock") and not p.name.startswith(f"{RUN_MARKER}.")
-                   for p in run_dir.iterdir()):  # (a concurrent run writing the marker)
-                raise OutputRefused(
-                    f"{out_name(shown)}: the directory holds files that are not a bearingsim run "
-                    f"(no {RUN_MARKER} marker); bearingsim never writes into a folder of yours, "
-                    f"so that none of your files is overwritten. Give a new or empty directory, "
-                    f"e.g. {out_name(run_dir / 'run')}")
-        if not os.access(run_dir, os.W_OK | os.X_OK):
-            raise OutputRefused(f"{out_name(shown)}: the directory is not writable by this user; "
-                                "give a directory you may write to")
-        mark_directory(run_dir, RUN_MARKER, "bearingsim run directory: stage folders here are replaced "
-                                            "and removed by bearingsim")
+            try:
+                _claim_existing(run_dir, shown)
+            except BaseException:
+                with contextlib.suppress(OSError):
+                    run_dir.rmdir()  # made here, and empty unless a concurrent run writes it
+                raise
+        else:
+            _claim_existing(run_dir, shown)
+
+
+def _claim_existing(run_dir: Path, shown: str) -> None:
+    """The part of `claim_run_directory` after `run_dir` exists."""
+    if (run_dir / SWEEP_POINT_RECORD).is_file():
+        raise OutputRefused(
+            f"{out_name(shown)}: is a point of a sweep ({SWEEP_POINT_RECORD}); its results are a row of the "
+            f"sweep's table, which a run with other inputs would leave stale. Run the sweep again (its finished "
+            f"points are kept), or give this run its own directory, e.g. {out_name('runs/my-run')}")
+    if not is_own_run_dir(run_dir):
+        if any(p.name not in (RUN_MARKER, ".lock") and not p.name.startswith(f"{RUN_MARKER}.")
+               for p in run_dir.iterdir()):  # (a concurrent run writing the marker)
+            raise OutputRefused(
+                f"{out_name(shown)}: the directory holds files that are not a bearingsim run "
+                f"(no {RUN_MARKER} marker); bearingsim never writes into a folder of yours, "
+                f"so that none of your files is overwritten. Give a new or empty directory, "
+                f"e.g. {out_name(run_dir / 'run')}")
+    if not os.access(run_dir, os.W_OK | os.X_OK):
+        raise OutputRefused(f"{out_name(shown)}: the directory is not writable by this user; "
+                            "give a directory you may write to")
+    mark_directory(run_dir, RUN_MARKER, "bearingsim run directory: stage folders here are replaced "
+                                        "and removed by bearingsim")
 
 
 class RunDirectoryBusy(RuntimeError):
@@ -379,28 +425,22 @@ def run_directory_lock(run_dir: Path) -> Iterator[None]:
     """Hold an exclusive lock on `run_dir` (file `.lock` inside) while a pipeline writes it.
 
     Two runs writing one directory would swap their stage results over each other; the
-    second is refused at once with RunDirectoryBusy. The lock is an advisory flock, released
-    when the process ends however it ends. Where fcntl does not exist (Windows) no lock is
-    taken.
+    second is refused at once with RunDirectoryBusy. The lock (pipeline.machine.file_lock) is
+    released when the process ends however it ends; a link or a special file in its place is
+    refused with OutputRefused, and a link's target is never created.
     """
-    try:
-        import fcntl
-    except ImportError:  # pragma: no cover - not POSIX
-        yield
-        return
+    from ..machine.file_lock import LockBusy, NotALockFile, exclusive_lock
 
     run_dir.mkdir(parents=True, exist_ok=True)
-    with open_no_follow(run_dir / ".lock") as handle:
-        try:
-            fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except BlockingIOError:
-            raise RunDirectoryBusy(
-                f"another bearingsim process is writing {run_dir}/; wait for it to finish or give "
-                f"this run its own directory with {out_name()}") from None
-        try:
+    try:
+        with exclusive_lock(run_dir / ".lock", wait=False):
             yield
-        finally:
-            fcntl.flock(handle, fcntl.LOCK_UN)
+    except LockBusy:
+        raise RunDirectoryBusy(
+            f"another bearingsim process is writing {run_dir}/; wait for it to finish or give "
+            f"this run its own directory with {out_name()}") from None
+    except NotALockFile as exc:
+        raise refused_special_file(exc.path, exc.what) from None
 
 
 # Stages worth sharing between run directories by default: the FE identification (costly, and

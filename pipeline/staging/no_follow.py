@@ -35,14 +35,33 @@ def out_name(path=None) -> str:
     return f"{name} {path}" if name.startswith("-") else f"{name}={str(path)!r}"
 
 
+# set while a command of the command line runs: the API functions it calls keep naming `--out`
+_ON_COMMAND_LINE: ContextVar[bool] = ContextVar("on_command_line", default=False)
+
+
 @contextmanager
 def named_in_python(argument: str = "run_dir") -> Iterator[None]:
-    """Within this block, messages about the output directory name the Python argument."""
+    """Within this block, messages about the output directory name the Python argument (not when
+    a command of the command line called the API function: it names its option)."""
+    if _ON_COMMAND_LINE.get():
+        yield
+        return
     token = _OUT_NAME.set(argument)
     try:
         yield
     finally:
         _OUT_NAME.reset(token)
+
+
+@contextmanager
+def named_on_command_line() -> Iterator[None]:
+    """Within this block, messages name `--out`, also inside the API functions it calls."""
+    token, name = _ON_COMMAND_LINE.set(True), _OUT_NAME.set("--out")
+    try:
+        yield
+    finally:
+        _OUT_NAME.reset(name)
+        _ON_COMMAND_LINE.reset(token)
 
 
 _FLAGS = os.O_RDWR | os.O_CREAT | os.O_APPEND | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_CLOEXEC", 0)
@@ -56,11 +75,11 @@ def open_no_follow(path: Path, text: bool = True):
         fd = os.open(path, _FLAGS | getattr(os, "O_NONBLOCK", 0), 0o666)
     except OSError as exc:
         if path.is_symlink():
-            raise _refused(path, "is a symbolic link") from None
+            raise refused_special_file(path, "is a symbolic link") from None
         raise
     try:
         if not stat.S_ISREG(os.fstat(fd).st_mode):
-            raise _refused(path, "is not a regular file")
+            raise refused_special_file(path, "is not a regular file")
         os.set_blocking(fd, True)
         return os.fdopen(fd, "a+" if text else "a+b", encoding="utf-8" if text else None)
     except BaseException:
@@ -68,6 +87,7 @@ def open_no_follow(path: Path, text: bool = True):
         raise
 
 
-def _refused(path: Path, what: str) -> OutputRefused:
+def refused_special_file(path: Path, what: str) -> OutputRefused:
+    """The refusal of a link or a special file where bearingsim appends or locks."""
     return OutputRefused(f"{path} {what}; bearingsim never writes through a link or into a special "
                          f"file: remove it, or give the run its own directory with {out_name()}")

@@ -18,7 +18,7 @@ from .artefacts import SCENE_HEADER, OutputRefused, atomic_write_json, atomic_wr
 from .no_follow import out_name
 
 PACKAGES = ("bearingsim", "numpy", "scipy", "numba", "scikit-fem", "gmsh", "meshio",
-            "pyvista", "vtk", "matplotlib", "h5py", "typer", "rich", "pypardiso")
+            "pyvista", "vtk", "matplotlib", "h5py", "typer", "rich", "filelock", "pypardiso")
 # the folders installed as bearingsim.* (pyproject.toml); their sources are the model
 SOURCE_FOLDERS = ("pipeline", "dynamics", "fe_model", "meshes")
 SOURCE_SUFFIXES = (".py", ".toml")
@@ -105,12 +105,37 @@ def write_run_provenance(run_dir: Path, raw_scene: dict, origin: str) -> None:
 
 
 class _RunLogHandler(logging.FileHandler):
-    """A FileHandler that refuses a link or a special file in the log's place (OutputRefused)."""
+    """A FileHandler that refuses a link or a special file in the log's place (OutputRefused),
+    and that falls silent when the log cannot be written (a full disk): logging's default prints
+    a traceback per record, over the message that says what failed."""
+
+    failed: OSError | None = None
 
     def _open(self):
         from .no_follow import open_no_follow
 
         return open_no_follow(Path(self.baseFilename))
+
+    def handleError(self, record: logging.LogRecord) -> None:
+        import sys
+
+        exc = sys.exc_info()[1]
+        if isinstance(exc, OSError):
+            self.failed = self.failed or exc
+            return
+        super().handleError(record)
+
+    def flush(self) -> None:
+        try:
+            super().flush()
+        except OSError as exc:
+            self.failed = self.failed or exc
+
+    def close(self) -> None:
+        try:
+            super().close()
+        except OSError as exc:
+            self.failed = self.failed or exc
 
 
 def attach_run_log(run_dir: Path) -> logging.Handler:

@@ -97,6 +97,29 @@ def _number(x: Any) -> float | None:
     return float(x) if isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x) else None
 
 
+# A groove within this of the ball's radius (conformity r/D - 1/2) holds the ball over a contact
+# that is no longer small against the groove's relative curvature (Hertz's assumption), and the
+# curvature-centre distance A = (f_i + f_o - 1) D that sets the contact angle nearly vanishes.
+# Grooves are made well away from it: the reference bearing's conformities are 0.512 and 0.520
+# (docs/model.md §2, Table 1 of the reference paper), small low-torque bearings' 0.56 +- 0.03
+# (Dynaroll, "Raceway curvature").
+TIGHT_GROOVE = 0.005
+
+
+def _tight_groove(scene) -> str:
+    """A note naming the conformity when a groove is nearly as tight as the ball, the likelier
+    cause of a contact angle past the groove than the load."""
+    b = scene.bearing
+    tight = [(side, f) for side, f in (("inner", b.inner_conformity), ("outer", b.outer_conformity))
+             if f - 0.5 < TIGHT_GROOVE]
+    if not tight:
+        return ""
+    side, f = tight[0]
+    return (f"; bearing.{side}_conformity = {f:.10g} (r/D) is within {TIGHT_GROOVE} of 0.5, a groove as tight "
+            f"as the ball: the contact angle is ill-defined there, check the conformity (grooves are made with 0.51 "
+            f"and more) before the load")
+
+
 def quasistatic_findings(scene, payload: dict) -> list[Finding]:
     """The quasi-static result against the limits of the contact model (docs/model.md §6, §10)."""
     out: list[Finding] = []
@@ -130,7 +153,8 @@ def quasistatic_findings(scene, payload: dict) -> list[Finding]:
         out.append(error(key, f"{loads} pushes ball {k} out of its groove: its {side} contact angle is "
                               f"{math.degrees(angle):.1f}°, beyond 90° where the groove stops holding it; allowed: "
                               f"loads that keep every contact angle below 90° (below the lands when "
-                              f"bearing.inner_shoulder_diameter and bearing.outer_shoulder_diameter are given) [deg]"))
+                              f"bearing.inner_shoulder_diameter and bearing.outer_shoulder_diameter are given) [deg]"
+                              + _tight_groove(scene)))
     p, where = worst_p
     if where is not None and p > STATIC_CAPACITY_PRESSURE:
         k, side = where

@@ -14,11 +14,12 @@ inputs changed removes the results downstream of it that were computed from the 
 
 from __future__ import annotations
 
+import contextlib
 import logging
 import os
 import shutil
 import time
-from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
@@ -27,6 +28,7 @@ from . import result_checks
 from ..scene import validity
 from .artefacts import (atomic_write_json, cache_state, foreign_files, input_key, read_manifest,
                         remove_stage_dir, stage_files, staged_directory)
+from .stage_store import claim_store_directory
 from .provenance import code_version
 from ..scene.load import Scene
 
@@ -235,15 +237,21 @@ def _via_store(stage, scene, run_dir, key, up, progress, store: Path, force: boo
     """Link a finished stage from the content-addressed store `store/<stage>/<key>/`, or
     compute it and publish it there. One lock per key: runs on several workers that need
     the same stage (e.g. one FE identification for a whole sweep) compute it once; the
-    others wait for the lock and then link the published result."""
+    others wait for the lock and then link the published result. A store that is not
+    bearingsim's (`claim_store_directory`) is not used."""
     entry = store / stage.name / key
     try:
+        claim_store_directory(store)
         entry.parent.mkdir(parents=True, exist_ok=True)
         if not os.access(entry.parent, os.W_OK | os.X_OK):
             raise PermissionError(13, "not writable by this user")
     except OSError as exc:
         return _without_store(compute_stage(stage, scene, run_dir, key, up, progress), store, exc)
-    with _store_lock(entry.with_name(f".{key}.lock")):
+    with contextlib.ExitStack() as held:
+        try:
+            held.enter_context(_store_lock(entry.with_name(f".{key}.lock")))
+        except OSError as exc:  # a link or a special file planted in the store, or no locking there
+            return _without_store(compute_stage(stage, scene, run_dir, key, up, progress), store, exc)
         if not force and cache_state(entry, key)[0] == "fresh":
             with staged_directory(run_dir / stage.name) as tmp:
                 shutil.copytree(entry, tmp, dirs_exist_ok=True, copy_function=_link_or_copy)
@@ -264,12 +272,17 @@ def _via_store(stage, scene, run_dir, key, up, progress, store: Path, force: boo
 def _without_store(outcome: StageOutcome, store: Path, exc: OSError) -> StageOutcome:
     """`outcome` of a stage computed in the run directory only, with a warning that names the
     unusable store and what to do."""
-    reason = exc.strerror or str(exc)
+    reason = (f"{exc.filename} {exc.strerror}" if exc.filename and exc.strerror else exc.strerror or str(exc))
     message = (f"the stage store {store} cannot be used ({reason}): {outcome.name} was computed in this "
-               f"run directory only; set BEARINGSIM_STAGE_STORE to a writable directory, or pass --no-store")
+               f"run directory only; {STORE_ADVICE.get()}")
     log.warning("stage %s: %s", outcome.name, message)
     outcome.warnings.insert(0, {"level": "warning", "key": "", "message": message})
     return outcome
+
+
+# what to do about an unusable store, in the words of whoever chose it (the sweep: --store)
+STORE_ADVICE: ContextVar[str] = ContextVar(
+    "store_advice", default="set BEARINGSIM_STAGE_STORE to a writable directory, or pass --no-store")
 
 
 def _link_or_copy(src, dst) -> None:
@@ -281,18 +294,11 @@ def _link_or_copy(src, dst) -> None:
         shutil.copy2(src, dst)
 
 
-@contextmanager
+@contextlib.contextmanager
 def _store_lock(path: Path):
-    """Exclusive advisory lock on `path`, released on exit or when the process dies."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    try:
-        import fcntl
-    except ImportError:  # no flock (Windows): at worst two runs compute the same stage
+    """Exclusive lock on `path` (pipeline.machine.file_lock: never through a link), released on
+    exit or when the process dies."""
+    from ..machine.file_lock import exclusive_lock
+
+    with exclusive_lock(path):
         yield
-        return
-    with open(path, "a+b") as fh:
-        fcntl.flock(fh, fcntl.LOCK_EX)
-        try:
-            yield
-        finally:
-            fcntl.flock(fh, fcntl.LOCK_UN)

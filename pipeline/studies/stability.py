@@ -39,6 +39,11 @@ MAX_LAND_PENETRATION = 100e-6  # [m] e - C at the guide land: Lundberg gives ~5 
 MAX_BALL_DRIFT = 0.5           # [ball diameters] ball centre from its pitch circle / axial plane
 DEFAULT_WINDOW = 0.010         # [s] ~ 0.5 inner-race revolution at 3060 rev/min
 DEFAULT_WALL_BUDGET = 180.0    # [s] per case
+SAMPLE_INTERVAL = 1e-5         # [s] of the recorded history
+# the physical checks read the sampled history (energy against the start, drift of the balls):
+# a window holds at least the start and one sample after it
+MIN_SAMPLES = 2
+MIN_WINDOW = MIN_SAMPLES * SAMPLE_INTERVAL
 
 # Start "far from equilibrium": cage at rest, 80 % of the guide clearance off centre along
 # +x, inner race 5 um off its equilibrium along +x (5 kN in the 1e9 N/m hinge).
@@ -140,7 +145,7 @@ def _diagnosis(history: np.ndarray) -> str:
 
 
 def run_case(name: str, window: float = DEFAULT_WINDOW, wall_budget: float = DEFAULT_WALL_BUDGET,
-             sample_interval: float = 1e-5, scene_path: Path | None = None) -> CaseResult:
+             sample_interval: float = SAMPLE_INTERVAL, scene_path: Path | None = None) -> CaseResult:
     """Run one case; every failure becomes a 'refused' result with its message."""
     from ..scene.load import load_scene
     from ..scene.schema import SceneError

@@ -143,12 +143,15 @@ def sweep(scene, vary: Mapping[str, Any] | Iterable[str] | str, *,
     """
     from ..scene.load import override_strings
     from ..staging.no_follow import named_in_python
-    from .driver import dask_client, gather, plan_sweep, replaced_sweep, run_in_process, run_sweep, unfinished
+    from .driver import (check_scheduler_address, dask_client, gather, plan_sweep, replaced_sweep, run_in_process,
+                         run_sweep, sweep_directory_lock, unfinished)
     from .table import read_table
 
+    if scheduler is not None:
+        check_scheduler_address(scheduler)
     plan = plan_sweep(scene, override_strings(overrides), vary_strings(vary), mode=mode, name=name,
                       out=Path(out) if out is not None else None, figures=figures)
-    with named_in_python("out"):  # messages about the sweep folder name this function's argument
+    with named_in_python("out"), sweep_directory_lock(plan):  # messages name this function's argument
         replaced = replaced_sweep(plan)
         if replaced:
             warnings.warn(replaced, stacklevel=2)
@@ -162,7 +165,7 @@ def sweep(scene, vary: Mapping[str, Any] | Iterable[str] | str, *,
                 if progress and getattr(made, "dashboard_link", None):
                     print(f"Dask dashboard: {made.dashboard_link}", file=sys.stderr, flush=True)
                 records = run_sweep(plan, made, progress=report, retry_failed=retry_failed)
-    paths = gather(plan, records, stacklevel=2)  # the warning points at the user's call of sweep()
+        paths = gather(plan, records, stacklevel=2)  # the warning points at the user's call of sweep()
     return SweepResult(read_table(paths["table"]), plan.varied, paths["table"], paths.get("map"), plan.sweep_dir)
 
 

@@ -73,6 +73,7 @@ def print_results(rows: list[dict], varied: list[str], console) -> None:
     """One line per point: its values, status, class and metal-contact fraction."""
     from rich.table import Table
 
+    from ..console import styled
     from .table import short_run_warning
 
     errors = any(r.get("error") for r in rows)
@@ -86,4 +87,4 @@ def print_results(rows: list[dict], varied: list[str], console) -> None:
     console.print(table)
     warning = short_run_warning(rows)
     if warning:
-        console.print(f"[bold yellow]warning:[/] {warning}", highlight=False, soft_wrap=True)
+        console.print(styled(("warning:", "bold yellow"), f" {warning}"), highlight=False, soft_wrap=True)

@@ -37,6 +37,7 @@ from .table import result_row, short_run_warning, write_table
 
 PLAN_FILE, MAP_FILE = "sweep.json", "stability_map.png"
 SWEEP_MARKER = ".bearingsim-sweep"
+PLAN_PROGRESS_POINTS = 1000  # points between two progress lines of the planning (about 5 s)
 
 
 @dataclass(frozen=True)
@@ -73,11 +74,12 @@ class SweepStatus:
 def plan_sweep(scene, sets: list[str] | None = None, vary: list[str] | None = None, *,
                mode: str | None = None, name: str | None = None, out: Path | None = None,
                store: Path | None = None, max_points: int = MAX_POINTS,
-               figures: bool | None = None) -> SweepPlan:
+               figures: bool | None = None, progress: Callable[[str], None] | None = None) -> SweepPlan:
     """Validate the scene (a path, a built-in name or a Scene of the Python API), the sweep
     definition and every point; nothing is computed. A sweep of more than `max_points`
     points is refused before its points are built. `figures` (`--figures/--no-figures`)
-    overrides the scene's `[sweep] figures`."""
+    overrides the scene's `[sweep] figures`. `progress(text)` hears how the validation of a
+    large sweep's points goes (a few milliseconds a point)."""
     from ..scene.load import Scene
 
     if isinstance(scene, Scene):
@@ -96,7 +98,9 @@ def plan_sweep(scene, sets: list[str] | None = None, vary: list[str] | None = No
     store = Path(store).resolve() if store is not None else sweep_dir / "store"
     points = tuple(expand(section))
     requests = []
-    for p in points:
+    for n, p in enumerate(points):
+        if progress and len(points) >= PLAN_PROGRESS_POINTS and n % PLAN_PROGRESS_POINTS == 0:
+            progress(f"validating the scene of every point: {n} of {len(points)}")
         t = point_table(base, p)
         requests.append(PointRequest(p.id, p.label, p.overrides, t, scene_hash(t, section.target),
                                      str(sweep_dir / "points" / p.id), str(store), section.target,
@@ -314,6 +318,30 @@ def claim_sweep_directory(sweep_dir: Path) -> None:
                                                 "are replaced by bearingsim")
 
 
+@contextmanager
+def sweep_directory_lock(plan: SweepPlan):
+    """Claim the sweep's folder and its stage store (OutputRefused when either is not
+    bearingsim's) and hold the sweep folder's lock while the block runs: two sweeps writing one
+    folder would write their tables over each other (RunDirectoryBusy for the second)."""
+    from ..machine.file_lock import LockBusy, NotALockFile, exclusive_lock
+    from ..staging.artefacts import RunDirectoryBusy
+    from ..staging.stage_store import claim_store_directory
+    from ..staging.no_follow import refused_special_file
+
+    claim_sweep_directory(plan.sweep_dir)
+    if plan.requests and plan.requests[0].store:
+        with refused_unless_usable(Path(plan.requests[0].store)):
+            claim_store_directory(Path(plan.requests[0].store))
+    try:
+        with exclusive_lock(plan.sweep_dir / ".lock", wait=False):
+            yield
+    except LockBusy:
+        raise RunDirectoryBusy(f"another bearingsim sweep is writing {plan.sweep_dir}/; wait for it to finish, "
+                               f"or give this sweep its own directory with {out_name()}") from None
+    except NotALockFile as exc:
+        raise refused_special_file(exc.path, exc.what) from None
+
+
 def replaced_sweep(plan: SweepPlan) -> str | None:
     """What running `plan` replaces: the table and map of another plan in the same sweep
     directory (its point folders stay, and rerunning its command restores them); None when the
@@ -339,6 +367,26 @@ def _write_plan(plan: SweepPlan) -> None:
         "points": [{"id": p.id, "label": p.label, "overrides": dict(p.overrides), "run_dir": r.run_dir}
                    for p, r in zip(plan.points, plan.requests)],
     })
+
+
+def check_scheduler_address(address: str) -> None:
+    """SceneError (key `--scheduler`) unless `address` reads as a Dask scheduler address,
+    `[tcp|tls|ws|wss|ucx]://host:port` or `host:port`: checked before any point is planned,
+    instead of a ValueError from inside the client."""
+    try:
+        from distributed.comm import get_address_host_port
+    except ImportError:
+        return  # dask_client says how to install the extra
+    try:
+        host, port = get_address_host_port(address)
+    except (ValueError, TypeError) as exc:
+        reason = str(exc)
+    else:
+        if host and 0 < port < 65536:
+            return
+        reason = f"port {port} is not 1 to 65535" if host else "no host"
+    raise SceneError("--scheduler", f"{address!r} is not a Dask scheduler address ({reason}); give the address "
+                                    "the scheduler printed, e.g. tcp://host:8786")
 
 
 @contextmanager

@@ -20,9 +20,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..staging.artefacts import atomic_write_json
+from ..staging.artefacts import SWEEP_POINT_RECORD, atomic_write_json
 
-RECORD_FILE = "point.json"
+RECORD_FILE = SWEEP_POINT_RECORD  # the staging layer refuses such a folder to runs of their own
 NO_FIGURES = "output.figures=false"  # scene override of a point whose sweep skips figures
 log = logging.getLogger("bearingsim")
 
@@ -111,8 +111,14 @@ def _run_pipeline(request: PointRequest, run_dir: Path, stages) -> dict:
         from ..stages import STAGES as stages
     scene = resolve(point_run_table(request), origin=f"sweep point {request.label}")
     write_run_provenance(run_dir, scene.raw, f"sweep point {request.label}")
+    from ..staging.runner import STORE_ADVICE
+
     store = Path(request.store) if request.store else None
-    outcomes = run_stages(scene, run_dir, stages, [request.target], store=store)
+    advice = STORE_ADVICE.set("give the sweep a writable stage store with --store (store= in Python)")
+    try:
+        outcomes = run_stages(scene, run_dir, stages, [request.target], store=store)
+    finally:
+        STORE_ADVICE.reset(advice)
     summary = json.loads((run_dir / request.target / "summary.json").read_text(encoding="utf-8"))
     # the stages' validity warnings (quasistatic.json, summary.json), for the results table
     validity = [f"{o.name}: {w['key']}: {w['message']}" if w.get("key") else f"{o.name}: {w['message']}"

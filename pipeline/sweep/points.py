@@ -15,7 +15,7 @@ from typing import Any
 
 import tomli_w
 
-from ..staging.artefacts import input_key
+from ..staging.artefacts import canonical, input_key
 from ..staging.provenance import package_version
 from ..scene.load import apply_overrides, resolve
 from ..scene.schema import SceneError
@@ -66,10 +66,12 @@ def expand(section: SweepSection) -> list[SweepPoint]:
     for overrides in raw:
         if len({k for k, _ in overrides}) != len(overrides):
             raise SceneError("sweep", f"a point sets the same key twice: {overrides}")
-        point = SweepPoint(overrides)
-        if point.id not in seen:
-            seen.add(point.id)
-            points.append(point)
+        # one point per set of values: 100, 100.0 and 1e2 (or -0.0, 0.0 and 0) are one value, as in
+        # the stages' keys; the point keeps the first spelling, and its id
+        same = json.dumps(sorted((k, canonical(v)) for k, v in overrides), sort_keys=True)
+        if same not in seen:
+            seen.add(same)
+            points.append(SweepPoint(overrides))
     return points
 
 

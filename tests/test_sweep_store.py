@@ -135,3 +135,22 @@ def test_force_recomputes_and_republishes(scene, tmp_path):
     out = run_stages(scene, tmp_path / "b", stages, ["simulate"], force={"simulate"}, store=store)
     assert statuses(out)["simulate"] == "computed" and calls == ["simulate"]
     assert (store / "simulate" / read_manifest(tmp_path / "b" / "simulate")["key"] / "result.json").is_file()
+
+
+def test_a_marker_written_by_a_concurrent_run_is_not_foreign(tmp_path, monkeypatch):
+    """The race behind a sweep computing one identification twice: another worker writes the
+    store's marker after this one found it missing and before it lists the folder. The marker
+    seen in the listing is the store's own, not a file of the user's."""
+    from pathlib import Path
+
+    from bearingsim.pipeline.staging.stage_store import STORE_MARKER, claim_store_directory
+
+    store = tmp_path / "store"
+    store.mkdir()
+    (store / STORE_MARKER).write_text("bearingsim stage store\n")
+    real_is_file = Path.is_file
+    # the first look for the marker happens before the other worker's rename lands
+    monkeypatch.setattr(Path, "is_file", lambda self: False if self.name == STORE_MARKER else real_is_file(self))
+    claim_store_directory(store)  # raised OutputRefused ("holds .bearingsim-store") before the fix
+    monkeypatch.undo()
+    assert (store / STORE_MARKER).is_file()

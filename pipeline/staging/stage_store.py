@@ -39,8 +39,9 @@ def claim_store_directory(store: Path) -> None:
     if store.exists():
         if not store.is_dir():
             raise OutputRefused(f"{store}: exists and is not a folder; give the stage store a folder of its own")
-        foreign = [p.name for p in store.iterdir()  # (a concurrent run writing the marker: a temporary)
-                   if not is_temporary(p.name) and not _is_store_stage_folder(p)]
+        # a concurrent run may write the marker between the test above and this listing
+        foreign = [p.name for p in store.iterdir()
+                   if p.name != STORE_MARKER and not is_temporary(p.name) and not _is_store_stage_folder(p)]
         if foreign:
             raise OutputRefused(f"{store}: holds {', '.join(sorted(foreign)[:3])}{' and more' if len(foreign) > 3 else ''}, "
                                 "which are not a bearingsim stage store's; bearingsim never writes into a folder of "

@@ -39,7 +39,7 @@ from .layout import BALL_DOF, CAGE_BORDER, CAGE_DOF, INNER_BORDER, RACE_DOF
 from .params import (
     FP_D, FP_FX, FP_FZ, FP_JB, FP_JCX, FP_JCZ, FP_JIX, FP_JIZ, FP_MB, FP_MC, FP_MI, FP_MY,
     FP_MY_STEP, FP_OMEGA_I, FP_OMEGA_O, FP_T_LOAD_STEP, IP_CAGE, IP_GYRO, IP_HINGE, IP_JOURNAL, IP_Z,
-    FP_ALPHA_P, FP_E_EFF, FP_ETA0, FP_MIN_FILM, FILM_HD, FILM_NVM, IP_FILM,
+    FP_ALPHA_P, FP_E_EFF, FP_ETA0, FP_MIN_FILM, FILM_CONTACT, FILM_NVM, IP_FILM,
 )
 from .race_forces import (
     RC_ACTIVE, RC_ALPHA, RC_CN, RC_DN, RC_EX, RC_EY, RC_FB, RC_FILM, RC_FLAG,
@@ -219,8 +219,8 @@ def _ball_forces(q, v, model, bodies, scratch, rows, pocket_rows, g, diag, loads
             h = 0.0
             if film == FILM_NVM:
                 h = max(scratch.film_h[c], fp[FP_MIN_FILM])
-            elif film == FILM_HD:
-                h = film_of_carry(carry, res[RC_ALPHA], is_outer, fp, film)
+            elif film == FILM_CONTACT:
+                h = film_of_carry(carry, res[RC_ALPHA], is_outer, fp, ip, model.film)
             race_contact_forces(ball, bodies.outer if is_outer else bodies.inner, fp, ip, model.traction,
                                 scratch.contact[c], scratch.traction, carry, h, res, want_tangent)
             for i in range(3):

@@ -132,7 +132,7 @@ class ResidualWork(NamedTuple):
 
 class ModelArrays(NamedTuple):
     """Everything the residual kernel reads besides the state: the float and integer
-    parameter vectors (params.FP_*, IP_*), the diagonal mass, the bundles above and the
+    parameter vectors (params.FP_*, IP_*), the diagonal mass, the bundles above, the laws' and the
     residual's scratch (`ResidualWork`)."""
 
     fp: np.ndarray
@@ -140,6 +140,7 @@ class ModelArrays(NamedTuple):
     mass: np.ndarray
     races: RaceTables
     traction: TractionRule
+    film: tuple  # the film law's bundle (`lubrication.film_laws`)
     cage: CageArrays
     hinge: HingeArrays
     work: ResidualWork

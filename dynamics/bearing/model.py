@@ -189,7 +189,7 @@ class BearingModel:
         self._g = np.zeros(self.n_dof)
         self.impact_speeds = np.zeros(Z)
         self.arrays = ModelArrays(
-            fp=P.fp, ip=P.ip, mass=self.mass, races=P.races, traction=P.traction,
+            fp=P.fp, ip=P.ip, mass=self.mass, races=P.races, traction=P.traction, film=P.film,
             cage=cage_arrays(P.pocket, P.journal, P.pocket_psi, self.impact_speeds), hinge=P.hinge,
             work=residual_work(Z))
         self._blocks = (self.K.blocks(), self.C.blocks())

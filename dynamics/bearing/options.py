@@ -10,6 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from ..field_checks import check_fields
+from ..lubrication.film_laws import LAWS as FILM_LAWS
 from ..traction.laws import LAWS
 
 
@@ -20,7 +21,7 @@ class ModelOptions:
     ehd_film: bool = field(default=True, metadata={
         "doc": "compute the EHD central film of every ball-race contact (needs [lubricant])"})
     traction: str = field(default="eyring", metadata={
-        "choices": tuple(LAWS),
+        "choices": LAWS,
         "doc": "ball-race traction law (dynamics/traction/laws): " + "; ".join(
             f"'{name}' {law.doc}" + (" (needs [lubricant] and the film)" if law.film else "")
             for name, law in LAWS.items())})
@@ -38,7 +39,8 @@ class ModelOptions:
         "doc": "gyroscopic moments: of the balls in the quasi-static solve (race control), of every body in "
                "the dynamics"})
     film_formula: str = field(default="nvm", metadata={
-        "choices": ("nvm", "hamrock-dowson"), "doc": "central film: Nijenbanning-Venner-Moes or Hamrock-Dowson"})
+        "choices": FILM_LAWS, "doc": "central EHD film law (dynamics/lubrication/film_laws): " + "; ".join(
+            f"'{name}' {law.doc}" for name, law in FILM_LAWS.items())})
     min_film: float = field(default=5e-8, metadata={
         "unit": "m", "gt": 0.0, "doc": "floor of the film used by traction (mixed lubrication is not modelled)"})
     dry_friction: float = field(default=0.1, metadata={

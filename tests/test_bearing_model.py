@@ -335,7 +335,6 @@ def test_error_scales_follow_contact_stiffness_and_clearances(dry):
     K_xx with the balls held is its inner contacts' Hertz stiffness dQ/d(delta) = 1.5 Q / delta
     (Q = K delta^1.5) projected on x, plus the hinge's 1e9 N/m — computed here from the
     quasi-static solver's loads, approaches and angles, not from the dynamic model."""
-    from bearingsim.dynamics.contact.pocket import P_BALL_RADIUS, P_POCKET_RADIUS
     from bearingsim.dynamics.operating_point import OperatingPoint
     from bearingsim.dynamics.quasistatic.options import QuasiStaticOptions
     from bearingsim.dynamics.quasistatic.solver import solve_quasistatic
@@ -355,7 +354,7 @@ def test_error_scales_follow_contact_stiffness_and_clearances(dry):
     o = layout.inner_offset(Z)
     assert scales[o] == pytest.approx(q_mean / k_xx, rel=0.1)
     c = layout.cage_offset(Z, True)
-    pocket_clearance = params.pocket[P_POCKET_RADIUS] - params.pocket[P_BALL_RADIUS]
+    pocket_clearance = params.pocket.pocket_radius - params.pocket.ball_radius
     np.testing.assert_allclose(scales[c:c + 3], params.guide_clearance)  # a free cage: its guide clearance
     np.testing.assert_allclose(scales[c + 3:c + 6], pocket_clearance)    # its rotation: the pockets'
     ball0 = scales[:3]  # ball 0 sits on +x: x radial (contacts), y along the orbit (free in its pocket)

@@ -20,7 +20,6 @@ from .._speed.compile_policy import FIRST_CLASS, INTERNAL, NO_REFCOUNT, WITH_REF
 from ..contact.pocket import (
     P_OUT_APPROACH, P_OUT_DFN_DRATE, P_OUT_FRICTION_POWER, P_OUT_IN_CONTACT,
 )
-from ..journal.hybrid import J_GUIDANCE
 from ..lubrication.film import film_central_nvm_batch
 from ..multibody.crv import crv_to_matrix_into, skew
 from ..multibody.hinge import add_hinge_force, hinge_energy, hinge_forces
@@ -383,7 +382,7 @@ def _border(t, v, model, bodies, loads, ma, g, diag):
     if ip[IP_CAGE] and ip[IP_JOURNAL]:
         # first: an inner-guided cage's land reaction acts on the inner race, whose rows follow
         jres = work.journal_row
-        inner_guided = model.cage.journal[J_GUIDANCE] < 0.0
+        inner_guided = model.cage.journal.guidance < 0.0
         fixed = work.fixed_reaction  # the fixed outer race takes its reaction: nothing reads it
         fixed[:] = 0.0
         power = journal_forces(cage, inner if inner_guided else bodies.outer, model.cage.journal, jres,
@@ -446,7 +445,7 @@ def _border_tangents(v, model, bodies, Kb, Cb):
         if ip[IP_JOURNAL]:
             cage_block = slice(CAGE_BORDER, CAGE_BORDER + CAGE_DOF)
             journal_tangent(work.journal_row, Kb[cage_block, cage_block], Cb[cage_block, cage_block])
-            if model.cage.journal[J_GUIDANCE] < 0.0:
+            if model.cage.journal.guidance < 0.0:
                 journal_race_tangent(work.journal_row, Kb, Cb)
 
 

@@ -55,8 +55,8 @@ class BearingModelParams:
     races: RaceTables
     traction: TractionRule    # the traction law's bundle and, for a film law, the fast engine's rule
     film: tuple               # the EHD film law's bundle (`lubrication.film_laws`)
-    pocket: np.ndarray        # ball-pocket parameters (contact/pocket.py)
-    journal: np.ndarray       # cage-land parameters (journal/hybrid.py)
+    pocket: tuple             # ball-pocket parameters and law (contact/pocket.py `PocketParams`)
+    journal: tuple            # cage-land parameters and law (journal/short_bearing.py `JournalParams`)
     pocket_psi: np.ndarray    # pocket azimuths [rad]
     hinge: HingeArrays
     has_cage: bool
@@ -175,7 +175,10 @@ def build_model_params(
         traction = FastTraction.build(lubricant).with_law(bundle).traction_rule()
     else:
         traction = dry_traction_rule(bundle)
-    pocket, journal, psi, clearance = np.zeros(1), np.zeros(1), np.zeros(Z), float("nan")
+    from ..contact.pocket import no_pockets
+    from ..journal.short_bearing import no_journal
+
+    pocket, journal, psi, clearance = no_pockets(), no_journal(), np.zeros(Z), float("nan")
     if cage is not None:
         pocket, journal, clearance = _cage_params(bearing, cage, ball, race, cage_material, lubricant, options, fp, ip)
         from ..contact.pocket import pocket_azimuths
@@ -202,8 +205,9 @@ def build_model_params(
 
 
 def _cage_params(bearing, cage, ball, race, cage_material, lubricant, options, fp, ip):
-    from ..journal.hybrid import journal_parameters_for_cage
     from ..contact.pocket import pocket_parameters_for_cage
+    from ..journal.land_laws import LAWS as LAND_LAWS
+    from ..journal.short_bearing import journal_parameters_for_cage, no_journal
 
     if cage_material is None:
         raise ValueError("a bearing with a cage needs the cage material (materials.cage)")
@@ -213,11 +217,12 @@ def _cage_params(bearing, cage, ball, race, cage_material, lubricant, options, f
     ip[IP_CAGE] = 1
     pocket = pocket_parameters_for_cage(bearing, cage, ball, cage_material,
                                         restitution=options.pocket_restitution,
-                                        friction_coefficient=options.pocket_friction)
-    journal = np.zeros(1)
+                                        friction_coefficient=options.pocket_friction,
+                                        law=options.pocket_law)
+    journal = no_journal()
     if options.cage_race != "none" and cage.guide_ring is not None:  # a ball-guided cage runs on no land
         viscosity = lubricant.eta0 if lubricant is not None else 0.0
-        if options.cage_race in ("hybrid", "hydrodynamic") and viscosity <= 0.0:
+        if LAND_LAWS[options.cage_race].film and viscosity <= 0.0:
             raise ValueError(f"cage_race = {options.cage_race!r} needs a lubricant viscosity")
         journal = journal_parameters_for_cage(
             bearing, cage, cage_material, race, viscosity=viscosity,

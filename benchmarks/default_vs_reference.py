@@ -1,6 +1,6 @@
 """Do the shipped solver defaults give the statistics of a tight-tolerance run? (docs/validation.md)
 
-    python -m benchmarks.default_vs_reference [--cases helicopter-b helicopter-a] [--out DIR]
+    python -m benchmarks.default_vs_reference [--cases helicopter-b helicopter-a] [--out DIR] [--data DIR]
 
 For each reference case the full run (0.8 s) is integrated four times at the scene's own
 tolerance and four times at a 10x tighter one (`solver.rtol` 1e-7, the reference). Within a
@@ -11,8 +11,9 @@ tolerance. A cage that wanders on its film (case a) makes each run one sample of
 motion, and the spread shows it; one pressed onto its land (case b) barely varies.
 
 A statistic agrees when the means of the two groups differ by no more than the larger of the
-two groups' ranges. Class and risk must be equal in every run. Writes default_vs_reference.json
-and .md in DIR (default runs/default_vs_reference); `--reuse` reads a run whose summary.json
+two groups' ranges. Class and risk must be equal in every run. The runs go to --out (default
+runs/default_vs_reference), and default_vs_reference.json and .md to --data (default
+benchmarks/data, where docs/validation.md reads them); `--reuse` reads a run whose summary.json
 exists instead of running it again. Wall times are on whatever else the machine runs; the load
 average is recorded.
 """
@@ -114,13 +115,15 @@ def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--cases", nargs="+", default=["helicopter-b", "helicopter-a"])
     ap.add_argument("--out", type=Path, default=Path("runs/default_vs_reference"))
+    ap.add_argument("--data", type=Path, default=Path(__file__).resolve().parent / "data",
+                    help="where the study's JSON file and table go")
     ap.add_argument("--reuse", action="store_true", help="read runs whose summary.json exists")
     args = ap.parse_args(argv)
     study = {"cases": {c: run_case(c, args.out, args.reuse) for c in args.cases}}
     study["load_average"] = os.getloadavg()[0]
-    args.out.mkdir(parents=True, exist_ok=True)
-    (args.out / "default_vs_reference.json").write_text(json.dumps(study, indent=1, default=str))
-    (args.out / "default_vs_reference.md").write_text(markdown(study))
+    args.data.mkdir(parents=True, exist_ok=True)
+    (args.data / "default_vs_reference.json").write_text(json.dumps(study, indent=1, default=str))
+    (args.data / "default_vs_reference.md").write_text(markdown(study))
     print(markdown(study))
 
 

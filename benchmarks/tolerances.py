@@ -3,7 +3,7 @@
     python -m benchmarks.tolerances [--samples 10000] [--repeat 3]
 
 Prints the wall time of `pipeline.quasistatic.tolerances.analyse` for the validation study's tolerance set
-(docs/validation/tolerances_b.toml: dimensions, run-out and temperatures, so the excursion is
+(benchmarks/cage_verdict/data/tolerances_b.toml: dimensions, run-out and temperatures, so the excursion is
 interpolated over the internal clearance) and for the same set with the moment varied too (a
 two-variable grid), after one warm-up call that loads the quasi-static kernels.
 """
@@ -17,6 +17,7 @@ import time
 import tomllib
 from pathlib import Path
 
+TOLERANCES = Path(__file__).resolve().parent / "cage_verdict" / "data"  # the validation study's sets
 SETS = {
     "validation set (internal clearance grid, 17 solutions)": {},
     "validation set + moment sd 20 N m (7 x 7 grid, 49 solutions)": {"moment": {"sd": 20.0}},
@@ -34,7 +35,7 @@ def main(argv=None) -> None:
     ap.add_argument("--samples", type=int, default=10_000)
     ap.add_argument("--repeat", type=int, default=3)
     a = ap.parse_args(argv)
-    base = tomllib.loads(Path("docs/validation/tolerances_b.toml").read_text())["tolerances"]
+    base = tomllib.loads((TOLERANCES / "tolerances_b.toml").read_text())["tolerances"]
     scene = load_scene("helicopter-b-given-hinge")
     print(f"load average {os.getloadavg()[0]:.2f}; {a.samples} stacks; median of {a.repeat}")
     for name, extra in SETS.items():

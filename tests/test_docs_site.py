@@ -94,3 +94,13 @@ def test_docstrings_use_markdown_not_sphinx_roles():
              for path in sorted((ROOT / package).rglob("*.py"))
              for n, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1) if roles.search(line)]
     assert not found, f"Sphinx roles in docstrings: {', '.join(found)}"
+
+
+def test_the_validation_folder_holds_only_figures_a_page_shows():
+    """Study outputs (JSON, tables, tolerance sets, figures no page shows) are kept beside the
+    script that makes them, in benchmarks/<study>/data/; docs/validation/ holds the figures that a
+    documentation page embeds, and nothing else."""
+    pages = "\n".join(path.read_text(encoding="utf-8") for path in (ROOT / "docs").rglob("*.md"))
+    stray = sorted(f.name for f in (ROOT / "docs" / "validation").iterdir()
+                   if f.suffix != ".png" or f"(validation/{f.name})" not in pages)
+    assert not stray, f"docs/validation/ holds files no page shows: {', '.join(stray)}"

@@ -253,7 +253,8 @@ print(json.dumps({"steps": run.stats["steps"], "newton": run.stats["newton_itera
 def test_a_run_that_compiled_its_kernels_repeats_bit_for_bit_from_the_cache(tmp_path):
     """The first run on a machine compiles every kernel; later runs load them. Both must run the
     same code: the same steps and the same bits in every channel over 50 ms of case b (a
-    multiply-add fused differently in the two parts them after ≈ 15 ms, docs/model.md §9)."""
+    multiply-add fused differently in the two parts them after ≈ 15 ms; docs/performance.md,
+    *Compiled and cached kernels run the same bits*)."""
     import json
     import subprocess
     import sys

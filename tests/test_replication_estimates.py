@@ -1,7 +1,7 @@
 """The closed-form estimates behind docs/replication.md §4 (benchmarks/replication/estimates.py)
 against what they must give in limits and against sampling, and the page against its numbers:
 docs/replication.md is what benchmarks/replication/page.py writes from
-docs/validation/replication.json."""
+benchmarks/replication/data/replication.json."""
 
 from __future__ import annotations
 
@@ -121,7 +121,7 @@ def test_spacing_deviation_keeps_only_what_is_not_fixed_in_space():
 
 def test_the_page_is_what_the_script_writes_from_its_numbers():
     """docs/replication.md is generated: `python -m benchmarks.replication --page-only` rewrites
-    it from docs/validation/replication.json."""
+    it from benchmarks/replication/data/replication.json."""
     page = _load("page")
-    data = json.loads((ROOT / "docs" / "validation" / "replication.json").read_text(encoding="utf-8"))
+    data = json.loads((ROOT / "benchmarks" / "replication" / "data" / "replication.json").read_text(encoding="utf-8"))
     assert (ROOT / "docs" / "replication.md").read_text(encoding="utf-8") == page.render(data)

@@ -1,8 +1,11 @@
 """Figures and tables of docs/validation.md from the study's JSON files.
 
-    python -m benchmarks.cage_verdict.figures STUDY_DIR [--out docs/validation]
+    python -m benchmarks.cage_verdict.figures STUDY_DIR [--out benchmarks/cage_verdict/data]
+        [--figures docs/validation]
 
-STUDY_DIR holds the `<plan>.json` files of `runs.py` and its `runs/` directories.
+STUDY_DIR holds the `<plan>.json` files of `runs.py` and its `runs/` directories. The figures
+docs/validation.md shows go to --figures; each plan's JSON file, its table and the other figures
+go to --out, the study's data folder (where screen.py's crush screen is kept too).
 """
 
 from __future__ import annotations
@@ -10,9 +13,12 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import shutil
 from pathlib import Path
 
 import numpy as np
+
+from . import DATA
 
 METRICS = (  # (key in the settled window, label, unit)
     ("eps_mean", "mean eccentricity ratio", "-"),
@@ -24,6 +30,10 @@ METRICS = (  # (key in the settled window, label, unit)
     ("impact_p95", "impact p95", "N"),
     ("min_film_um", "min land film", "um"),
 )
+
+
+# the figures docs/validation.md embeds; the others are data
+SHOWN = ("operating_sweep.png", "pocket_m430.png", "tornado_a_whirl_ratio.png", "tornado_b_eps_mean.png")
 
 
 def _load(study: Path, plan: str) -> dict:
@@ -267,36 +277,51 @@ def markdown_table(study: Path, plan: str, names: dict[str, str] | None = None) 
     return "\n".join(rows)
 
 
+def _publish(study: Path, out: Path, plan: str) -> None:
+    """The plan's table and the JSON file behind it, into the data folder."""
+    (out / f"{plan}.md").write_text(markdown_table(study, plan) + "\n")
+    source, target = study / f"{plan}.json", out / f"{plan}.json"
+    if source.resolve() != target.resolve():
+        shutil.copyfile(source, target)
+
+
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("study", type=Path)
-    ap.add_argument("--out", type=Path, default=Path("docs/validation"))
+    ap.add_argument("--out", type=Path, default=DATA, help="the data folder: tables, JSON, figures not shown")
+    ap.add_argument("--figures", type=Path, default=Path("docs/validation"),
+                    help="the figures docs/validation.md shows")
     ap.add_argument("--screen", type=Path, help="JSON of the crush screen per moment (screen.py)")
     ap.add_argument("--operating", action="store_true",
                     help="only the operating-temperature study: operating_sweep.png and the tables of its plans")
     a = ap.parse_args(argv)
     a.out.mkdir(parents=True, exist_ok=True)
+    a.figures.mkdir(parents=True, exist_ok=True)
+
+    def folder(name: str) -> Path:
+        return a.figures if name in SHOWN else a.out
+
     screen = json.loads(a.screen.read_text()) if a.screen else None
     if a.operating:
-        print(operating_sweep_figure(a.study, a.out, screen))
+        print(operating_sweep_figure(a.study, folder("operating_sweep.png"), screen))
         for plan in ("moment_sweep", "moment_sweep_cold", "paper_land", "run_out", "confirm"):
             if _load(a.study, plan):
-                (a.out / f"{plan}.md").write_text(markdown_table(a.study, plan) + "\n")
+                _publish(a.study, a.out, plan)
         return
-    print(moment_sweep_figure(a.study, a.out, (screen or {}).get("operating", screen)))
+    print(moment_sweep_figure(a.study, folder("moment_sweep.png"), (screen or {}).get("operating", screen)))
     for case in ("a", "b"):
         for metric, label in (("eps_mean", "mean eccentricity ratio"), ("land_force_mean", "mean land force [N]"),
                               ("whirl_ratio", "whirl ratio"), ("metal_fraction", "metal-contact fraction")):
             try:
-                print(tornado_figure(a.study, a.out, case, metric, label))
+                print(tornado_figure(a.study, folder(f"tornado_{case}_{metric}.png"), case, metric, label))
             except SystemExit as exc:
                 print(exc)
-    print(orbits_figure(a.study, a.out, [("m100", "case a, 100 N m (default)"), ("static-m100", "case a, static film, 1 journal"),
-                                          ("m430", "case b, 430 N m (default)"), ("m550", "550 N m (default)")], "orbits"))
-    print(pocket_figure(a.study, a.out, "m430", _screen_curve(430.0)))
+    print(orbits_figure(a.study, folder("orbits.png"), [("m100", "case a, 100 N m (default)"), ("static-m100", "case a, static film, 1 journal"),
+                                                        ("m430", "case b, 430 N m (default)"), ("m550", "550 N m (default)")], "orbits"))
+    print(pocket_figure(a.study, folder("pocket_m430.png"), "m430", _screen_curve(430.0)))
     for plan in ("moment_sweep", "moment_sweep_static", "sensitivity_a", "sensitivity_b", "ablations", "repeat"):
         if _load(a.study, plan):
-            (a.out / f"{plan}.md").write_text(markdown_table(a.study, plan) + "\n")
+            _publish(a.study, a.out, plan)
 
 
 if __name__ == "__main__":

@@ -41,14 +41,15 @@ def run_out():
 
 
 def confirm():
-    """Dynamic confirmation of the tolerance analyses (docs/validation/tolerances_b*.json): the
-    nominal operating stack of case b and the stack at the 5th percentile of margin of each set."""
+    """Dynamic confirmation of the tolerance analyses (data/tolerances_b*.json): the nominal
+    operating stack of case b and the stack at the 5th percentile of margin of each set."""
     import json
-    from pathlib import Path
+
+    from . import DATA
 
     out = [("b-nominal", B, ["load.moment=430"])]
     for name, tag in (("tolerances_b", "b-p5"), ("tolerances_b_table1", "b-table1-p5")):
-        found = json.loads(Path(f"docs/validation/{name}.json").read_text())
+        found = json.loads((DATA / f"{name}.json").read_text())
         out.append((tag, B, ["load.moment=430"] + found["stack_at_p5_overrides"]))
     return out
 

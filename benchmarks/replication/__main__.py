@@ -5,7 +5,7 @@
 From the repository root with the package installed. The runs (`plan.py`) go to
 WORK/<name>/ (bearingsim run directories: a run whose inputs and code are unchanged is not
 repeated, so a second call only re-measures); their numbers, the crush screen's sensitivities
-and the closed-form estimates go to docs/validation/replication.json, and the page to
+and the closed-form estimates go to benchmarks/replication/data/replication.json, and the page to
 docs/replication.md. `--only` reruns the named runs and keeps the others' numbers from the
 JSON; `--page-only` rewrites the page from the JSON without running anything.
 
@@ -24,7 +24,7 @@ from pathlib import Path
 
 from . import measure, page, plan, screen
 
-DATA = Path("docs/validation/replication.json")
+DATA = Path(__file__).resolve().parent / "data" / "replication.json"
 PAGE = Path("docs/replication.md")
 
 

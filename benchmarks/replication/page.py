@@ -1,4 +1,4 @@
-"""docs/replication.md, written from the numbers of docs/validation/replication.json.
+"""docs/replication.md, written from the numbers of benchmarks/replication/data/replication.json.
 
 `render(data)` is the whole page: the prose lives here, every number comes from `data`. Only the
 standard library: a test renders the page from the committed JSON and compares it with the
@@ -177,7 +177,7 @@ for a reason given below. This page
 
 Every number on this page is written by one command, `python -m benchmarks.replication`: {g['runs']}
 runs of 0.8 s and the crush screen's sensitivities, {minutes:.0f} min on one core ([§7](#7-regenerating-this-page));
-[the numbers](validation/replication.json). A run is one sample: docs/validation.md §13 gives the
+the numbers are in `benchmarks/replication/data/replication.json`. A run is one sample: docs/validation.md §13 gives the
 run-to-run spread, and each case is repeated here with its moment changed by 1e-6 of itself.
 """
 
@@ -549,7 +549,7 @@ def _regenerate(data):
         f"{slowest:.0f} s a run (the paper's 2e-6 s step bound and the rubbing case a take longest; a quiet core is "
         f"faster, docs/performance.md), plus a first compile of the kernels on a new machine. The run directories go to "
         f"`runs/replication/`, about 100 MB each (a run whose scene and code are unchanged is not repeated); the numbers to "
-        f"[docs/validation/replication.json](validation/replication.json).", ""])
+        f"`benchmarks/replication/data/replication.json`.", ""])
 
 
 def render(data: dict) -> str:

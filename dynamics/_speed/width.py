@@ -14,7 +14,7 @@ def like(x, value):
     return type(x)(value) if isinstance(x, (np.floating, float)) else float(value)
 
 
-@overload(like)
+@overload(like, inline="always")
 def _like(x, value):
     if isinstance(x, types.Float) and x.bitwidth == 32:
         return lambda x, value: np.float32(value)

@@ -23,7 +23,7 @@ def contact_traction(tr, F_n, a, b, p_h, h, du0, dv0, w_s, out, jacobian):
     return FLAG_OK
 
 
-@overload(contact_traction, jit_options=NO_REFCOUNT)
+@overload(contact_traction, jit_options=NO_REFCOUNT, inline="always")
 def _contact_traction(tr, F_n, a, b, p_h, h, du0, dv0, w_s, out, jacobian):
     law = tr.types[tr.fields.index("law")]
     if LAWS.law_of(law.instance_class).film:

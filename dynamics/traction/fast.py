@@ -435,7 +435,7 @@ def _film_passes(law, tr, nodes, n, contact, out, jacobian):
     `_general_passes` for any other film law)."""
 
 
-@overload(_film_passes, jit_options=NO_REFCOUNT)
+@overload(_film_passes, jit_options=NO_REFCOUNT, inline="always")
 def _film_passes_of(law, tr, nodes, n, contact, out, jacobian):
     passes = _eyring_passes if law.instance_class is eyring.Eyring else _general_passes
     return lambda law, tr, nodes, n, contact, out, jacobian: passes(tr, nodes, n, contact, out, jacobian)

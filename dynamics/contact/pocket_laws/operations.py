@@ -17,7 +17,7 @@ def normal_force(law, delta, delta_dot, impact_speed):
     return module.normal_force(law, delta, delta_dot, impact_speed)
 
 
-@overload(normal_force)
+@overload(normal_force, inline="always")
 def _normal_force(law, delta, delta_dot, impact_speed):
     function = LAWS.kernel(law, "normal_force")
     return lambda law, delta, delta_dot, impact_speed: function(law, delta, delta_dot, impact_speed)

@@ -18,7 +18,7 @@ def weights(law, eps):
     return module.weights(law, eps)
 
 
-@overload(weights)
+@overload(weights, inline="always")
 def _weights(law, eps):
     function = LAWS.kernel(law, "weights")
     return lambda law, eps: function(law, eps)

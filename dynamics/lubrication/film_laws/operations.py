@@ -16,7 +16,7 @@ def central_film(law, F, Rx, Ry, E_eff, eta0, alpha_p, u_s):
     return module.central_film(law, F, Rx, Ry, E_eff, eta0, alpha_p, u_s)
 
 
-@overload(central_film)
+@overload(central_film, inline="always")
 def _central_film(law, F, Rx, Ry, E_eff, eta0, alpha_p, u_s):
     function = LAWS.kernel(law, "central_film")
     return lambda law, F, Rx, Ry, E_eff, eta0, alpha_p, u_s: function(law, F, Rx, Ry, E_eff, eta0, alpha_p, u_s)

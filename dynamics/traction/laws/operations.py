@@ -31,19 +31,19 @@ def dry_traction(law, F_n, a, b, du0, dv0, w_s, out):
     return _law_function(law, "dry_traction")(law, F_n, a, b, du0, dv0, w_s, out)
 
 
-@overload(stress_scale)
+@overload(stress_scale, inline="always")
 def _stress_scale(law, p_h):
     function = LAWS.kernel(law, "stress_scale")
     return lambda law, p_h: function(law, p_h)
 
 
-@overload(response)
+@overload(response, inline="always")
 def _response(law, k, r):
     function = LAWS.kernel(law, "response")
     return lambda law, k, r: function(law, k, r)
 
 
-@overload(dry_traction)
+@overload(dry_traction, inline="always")
 def _dry_traction(law, F_n, a, b, du0, dv0, w_s, out):
     function = LAWS.kernel(law, "dry_traction")
     return lambda law, F_n, a, b, du0, dv0, w_s, out: function(law, F_n, a, b, du0, dv0, w_s, out)

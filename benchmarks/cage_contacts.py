@@ -17,7 +17,7 @@ import numba
 import numpy as np
 
 from bearingsim.dynamics.geometry import BearingGeometry, CageGeometry, Material
-from bearingsim.dynamics.journal.hybrid import cage_race_journal, journal_parameters_for_cage
+from bearingsim.dynamics.journal.short_bearing import cage_race_journal, journal_parameters_for_cage
 from bearingsim.dynamics.contact.pocket import pocket_azimuths, pocket_contact, pocket_contacts, pocket_parameters_for_cage
 from benchmarks import best_time
 

@@ -1,6 +1,6 @@
 """First-run cost of the numba kernels (docs/performance.md).
 
-    python -m benchmarks.cold_start [SCENE] [--pairs N --without flag_values|resolved_calls|deferred_emission]
+    python -m benchmarks.cold_start [SCENE]
 
 Runs a 1 ms `simulate` of the scene twice in this process's children: once with an empty numba
 cache (a fresh machine, or the first run after the dynamics code changed) and once with the cache
@@ -12,11 +12,6 @@ pass for that run), by module and how many of them are in fast-math code (whose 
 the shape of the code, so that rewriting it changes a run's steps), and lists the kernels that
 take longest to compile (`numba:compile` events, outermost dispatchers only, nested
 compilations counted inside their caller). Run it on a quiet machine.
-
-With `--pairs N --without MODULE` it then times N more pairs of cold runs, alternated: as shipped,
-and with one of numba's own ways put back: its comparison of compile flags (`flag_values`), its
-resolution of every call anew (`resolved_calls`) or its emission of machine code for every library
-at once (`deferred_emission`), the module in dynamics/_speed/ not installed.
 """
 
 from __future__ import annotations
@@ -31,15 +26,6 @@ from pathlib import Path
 
 
 CLI = "from bearingsim.pipeline.cli.commands import main; main()"
-# the modules of dynamics/_speed/ that change how numba compiles, installed when the kernels are
-# imported (compile_policy)
-NUMBA_CHANGES = ("flag_values", "resolved_calls", "deferred_emission")
-
-
-def cli_without(module: str) -> str:
-    """The command with one of numba's own ways kept: the module's `install` is disabled before
-    the kernels' import would call it."""
-    return f"from bearingsim.dynamics._speed import {module}; {module}.install = lambda: False; " + CLI
 
 
 def timed_run(scene: str, cache: Path, out: Path, program: str = CLI) -> float:
@@ -105,9 +91,6 @@ def compile_profile(scene: str, cache: Path, top: int = 12) -> tuple[float, floa
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("scene", nargs="?", default="helicopter-b-given-hinge")
-    ap.add_argument("--pairs", type=int, default=0,
-                    help="pairs of cold runs as shipped and with --without's module not installed, alternated")
-    ap.add_argument("--without", choices=NUMBA_CHANGES, default="deferred_emission")
     args = ap.parse_args(argv)
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
@@ -127,18 +110,6 @@ def main(argv=None) -> None:
     print("longest compilations (outermost kernels):")
     for name, seconds in rows:
         print(f"  {seconds:6.1f} s  {name}")
-    if args.pairs:
-        pairs(args.scene, args.pairs, args.without)
-
-
-def pairs(scene: str, count: int, module: str) -> None:
-    for i in range(count):
-        with tempfile.TemporaryDirectory() as tmp:
-            tmp = Path(tmp)
-            shipped = timed_run(scene, tmp / "shipped", tmp / "shipped_out")
-            without = timed_run(scene, tmp / "without", tmp / "without_out", cli_without(module))
-        print(f"pair {i + 1}, cold 1 ms simulate: {shipped:.1f} s as shipped, {without:.1f} s without {module}, "
-              f"ratio {shipped / without:.2f} (load average {os.getloadavg()[0]:.2f})")
 
 
 if __name__ == "__main__":

@@ -1,6 +1,6 @@
 """Comparisons with published data for bearings other than the reference one (docs/validation.md §16).
 
-    python -m benchmarks.external_comparisons [--out docs/validation] [--reuse]
+    python -m benchmarks.external_comparisons [--out docs/validation] [--data benchmarks/data] [--reuse]
 
 1. Quasi-static deflections of a 7-ball deep-groove bearing against the ISO/TS 16281 results of
    a commercial code (MASTA), as quoted for its six examples in the test data of the public
@@ -15,8 +15,8 @@
 Skid is taken as NASA's: 1 - (measured cage speed) / (cage speed of pure rolling), the latter from
 the epicyclic formula at the contact angles of the operating point. Both references below: the
 nominal 20° and the quasi-static solution's (which carries the centrifugal and thrust changes of
-the angles). Writes external_comparisons.json next to the figures; --reuse reads a run whose
-summary.json exists.
+the angles). Writes the figures to --out and the numbers, external_comparisons.json, to --data;
+--reuse reads a run whose summary.json exists.
 """
 
 from __future__ import annotations
@@ -143,6 +143,7 @@ def figures(out: Path, masta: list[dict], nasa: list[dict]) -> None:
 def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=Path, default=Path("docs/validation"))
+    parser.add_argument("--data", type=Path, default=Path("benchmarks/data"))
     parser.add_argument("--runs", type=Path, default=Path("runs/external_comparisons"))
     parser.add_argument("--reuse", action="store_true")
     args = parser.parse_args(argv)
@@ -150,7 +151,8 @@ def main(argv=None) -> None:
     masta = masta_comparison()
     nasa = nasa_comparison(args.runs, args.reuse)
     figures(args.out, masta, nasa)
-    (args.out / "external_comparisons.json").write_text(json.dumps({"masta": masta, "nasa": nasa}, indent=1) + "\n",
+    args.data.mkdir(parents=True, exist_ok=True)
+    (args.data / "external_comparisons.json").write_text(json.dumps({"masta": masta, "nasa": nasa}, indent=1) + "\n",
                                                        encoding="utf-8")
     for r in masta:
         print(f"{r['case']:<22}{r['quantity']:<24}{r['masta']:>10.4f}{r['bearingsim']:>10.4f}{100 * r['difference']:>+9.3f} %")

@@ -1,7 +1,7 @@
 """Benchmark: the NVM film of 44 contacts, one libm call after another vs the vectorised batch.
 
 Run: python -m benchmarks.film
-Times `film.film_central_nvm_terms` called contact by contact against
+Times the law's `nvm.central_film_from_terms` called contact by contact against
 `film.film_central_nvm_batch` (what the time loop does: each of the formula's 16 exp and log
 over all contacts in one pass, `dynamics._speed.simd_math`), on 44
 contacts of the reference bearing (22 balls x inner and outer race) at random contact
@@ -19,6 +19,7 @@ import numba
 import numpy as np
 
 from bearingsim.dynamics.lubrication import film
+from bearingsim.dynamics.lubrication.film_laws import nvm
 from bearingsim.dynamics.lubrication.lubricant import load_builtin_lubricant
 
 D, DM, E_EFF, OMEGA = 0.01905, 0.158003, 208e9 / 0.91, 320.0  # benchmarks/traction.py's bearing
@@ -26,7 +27,7 @@ N_CONTACTS = 44
 
 
 def contacts(seed: int = 1) -> tuple[np.ndarray, ...]:
-    """(F [N], R_x [m], u_s [m/s], the five `nvm_geometry_terms` as rows) of N_CONTACTS contacts:
+    """(F [N], R_x [m], u_s [m/s], the five `nvm.geometry_terms` as rows) of N_CONTACTS contacts:
     contact angle 25..35 deg, load 100..6000 N, 0.5..1.5 x the nominal entrainment speed."""
     rng = np.random.default_rng(seed)
     F, Rx, u, terms = [], [], [], []
@@ -37,7 +38,7 @@ def contacts(seed: int = 1) -> tuple[np.ndarray, ...]:
         F.append(math.exp(rng.uniform(math.log(100), math.log(6000))))
         Rx.append(rx)
         u.append(DM * OMEGA / 2 * (1 - (D * c / DM) ** 2) * rng.uniform(0.5, 1.5))
-        terms.append(film.nvm_geometry_terms(rx, ry))
+        terms.append(nvm.geometry_terms(rx, ry))
     return np.array(F), np.array(Rx), np.array(u), *np.ascontiguousarray(np.array(terms).T)
 
 
@@ -45,7 +46,7 @@ def contacts(seed: int = 1) -> tuple[np.ndarray, ...]:
 def _one_by_one(repeats, F, Rx, u, ri, ei, h00, rp, ep, E, eta0, alpha_p, h):
     for _ in range(repeats):
         for i in range(F.shape[0]):
-            h[i] = film.film_central_nvm_terms(F[i], Rx[i], E, eta0, alpha_p, u[i], ri[i], ei[i], h00[i], rp[i], ep[i])
+            h[i] = nvm.central_film_from_terms(F[i], Rx[i], E, eta0, alpha_p, u[i], (ri[i], ei[i], h00[i], rp[i], ep[i]))
 
 
 @numba.njit

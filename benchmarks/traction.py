@@ -19,7 +19,7 @@ import time
 import numba
 import numpy as np
 
-from bearingsim.dynamics.lubrication import film
+from bearingsim.dynamics.lubrication.film_laws import nvm as film
 from bearingsim.dynamics.traction import quadrature as traction
 from bearingsim.dynamics.lubrication.lubricant import load_builtin_lubricant
 from bearingsim.dynamics.traction.fast import FastTraction, traction_fast, traction_fast_batch

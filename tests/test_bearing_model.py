@@ -100,7 +100,7 @@ def test_contact_forces_are_equal_and_opposite(dry):
     x_b, x_r = q[0:3].copy(), q[o:o + 3].copy()
     ball = Ball(x_b, v[0:3].copy(), v[3:6].copy())
     race = Body(x_r, R, v[o:o + 3].copy(), R @ v[o + 3:o + 6])
-    hit = race_contact(ball, race, False, params.fp, params.ip, params.races.inner, params.traction,
+    hit = race_contact(ball, race, False, params.fp, params.ip, params.races.inner, params.traction, params.film,
                        contact_scratch(1), res, True)
     assert hit
     f_b, f_r = RACE_ROW["force_ball"].view(res), RACE_ROW["force_race"].view(res)
@@ -243,13 +243,14 @@ def test_tabulated_film_equals_the_nvm_formula(lubricated, outer):
     must equal film.film_central_nvm with R_x, R_y computed from the contact angle
     (docs/model.md §6.2–§6.3) -- over the table's whole range of contact angles, between and on
     its nodes, for loads and speeds of the reference bearing."""
-    from bearingsim.dynamics.bearing.params import FILM_NVM, FP_ALPHA_P, FP_E_EFF, FP_ETA0
+    from bearingsim.dynamics.bearing.params import FILM_NVM, FP_ALPHA_P, FP_E_EFF, FP_ETA0, IP_FILM
     from bearingsim.dynamics.bearing.race_forces import (
         CA_FEL, CA_RX, CA_U, N_CARRY, film_of_carry, nvm_terms_into,
     )
     from bearingsim.dynamics.bearing.race_table import curvature_radii
     from bearingsim.dynamics.contact.hertz import table_position
-    from bearingsim.dynamics.lubrication.film import FILM_BATCH_ROWS, film_central_nvm, film_central_nvm_batch
+    from bearingsim.dynamics.lubrication.film import FILM_BATCH_ROWS, film_central_nvm_batch
+    from bearingsim.dynamics.lubrication.film_laws.nvm import film_central_nvm
 
     params = lubricated[0]
     table = params.races.outer if outer else params.races.inner
@@ -263,7 +264,10 @@ def test_tabulated_film_equals_the_nvm_formula(lubricated, outer):
         direct[i] = max(film_central_nvm(F, Rx, Ry, e_eff, eta0, alpha_p, u_s), min_film)
         carries[i, CA_FEL], carries[i, CA_U] = F, u_s
         nvm_terms_into(table, *table_position(table, alpha), carries[i])
-        assert film_of_carry(carries[i], alpha, outer, params.fp, FILM_NVM) == pytest.approx(direct[i], rel=1e-8), alpha
+        ip = params.ip.copy()
+        ip[IP_FILM] = FILM_NVM
+        assert film_of_carry(carries[i], alpha, outer, params.fp, ip, params.film) == pytest.approx(direct[i],
+                                                                                                   rel=1e-8), alpha
     n = alphas.size
     film_in = np.ascontiguousarray(carries[:, [CA_FEL, CA_RX, CA_U, *range(CA_RX + 1, CA_RX + 6)]].T)
     h = np.empty(n)
@@ -293,10 +297,10 @@ def test_tabulated_semi_axes_equal_hertz(lubricated, outer):
 def test_hamrock_dowson_film_option_uses_the_contact_curvatures(lubricated):
     """With the Hamrock–Dowson option the model's film is film_hamrock_dowson's central film
     at R_x, R_y of the contact angle (docs/model.md §6.3), not the tabulated NVM terms."""
-    from bearingsim.dynamics.bearing.params import FILM_HD
+    from bearingsim.dynamics.bearing.params import FILM_CONTACT, IP_FILM
     from bearingsim.dynamics.bearing.race_forces import CA_FEL, CA_U, N_CARRY, film_of_carry
     from bearingsim.dynamics.bearing.race_table import curvature_radii
-    from bearingsim.dynamics.lubrication.film import film_hamrock_dowson
+    from bearingsim.dynamics.lubrication.film_laws.hamrock_dowson import HamrockDowson, film_hamrock_dowson
 
     params = lubricated[0]
     D, d_m, r, e_eff, eta0, alpha_p, min_film = _film_inputs(lubricated, False)
@@ -305,7 +309,10 @@ def test_hamrock_dowson_film_option_uses_the_contact_curvatures(lubricated):
         expected = max(film_hamrock_dowson(F, Rx, Ry, e_eff, eta0, alpha_p, u_s)[0], min_film)
         carry = np.full(N_CARRY, np.nan)  # the NVM terms stay unread
         carry[CA_FEL], carry[CA_U] = F, u_s
-        assert film_of_carry(carry, alpha, False, params.fp, FILM_HD) == pytest.approx(expected, rel=1e-12)
+        ip = params.ip.copy()
+        ip[IP_FILM] = FILM_CONTACT
+        assert film_of_carry(carry, alpha, False, params.fp, ip, HamrockDowson()) == pytest.approx(expected,
+                                                                                                  rel=1e-12)
 
 
 def test_the_direct_kernel_call_is_taken_only_for_arrays_it_can_read(dry):
@@ -328,7 +335,6 @@ def test_error_scales_follow_contact_stiffness_and_clearances(dry):
     K_xx with the balls held is its inner contacts' Hertz stiffness dQ/d(delta) = 1.5 Q / delta
     (Q = K delta^1.5) projected on x, plus the hinge's 1e9 N/m — computed here from the
     quasi-static solver's loads, approaches and angles, not from the dynamic model."""
-    from bearingsim.dynamics.contact.pocket import P_BALL_RADIUS, P_POCKET_RADIUS
     from bearingsim.dynamics.operating_point import OperatingPoint
     from bearingsim.dynamics.quasistatic.options import QuasiStaticOptions
     from bearingsim.dynamics.quasistatic.solver import solve_quasistatic
@@ -348,7 +354,7 @@ def test_error_scales_follow_contact_stiffness_and_clearances(dry):
     o = layout.inner_offset(Z)
     assert scales[o] == pytest.approx(q_mean / k_xx, rel=0.1)
     c = layout.cage_offset(Z, True)
-    pocket_clearance = params.pocket[P_POCKET_RADIUS] - params.pocket[P_BALL_RADIUS]
+    pocket_clearance = params.pocket.pocket_radius - params.pocket.ball_radius
     np.testing.assert_allclose(scales[c:c + 3], params.guide_clearance)  # a free cage: its guide clearance
     np.testing.assert_allclose(scales[c + 3:c + 6], pocket_clearance)    # its rotation: the pockets'
     ball0 = scales[:3]  # ball 0 sits on +x: x radial (contacts), y along the orbit (free in its pocket)

@@ -1,4 +1,5 @@
-"""Cage–race hybrid short journal (docs/model.md §8): dynamics/journal/hybrid.py, dynamics/journal/dry.py."""
+"""Cage–race short journal (docs/model.md §8): dynamics/journal/short_bearing.py, its land laws
+(dynamics/journal/land_laws) and dynamics/journal/dry.py."""
 
 import math
 
@@ -7,8 +8,7 @@ import pytest
 from scipy import integrate
 
 from bearingsim.dynamics.geometry import BearingGeometry, CageGeometry, Material, effective_modulus
-from bearingsim.dynamics.journal.hybrid import (
-    J_CLEARANCE,
+from bearingsim.dynamics.journal.short_bearing import (
     J_OUT_CONTACT_AZIMUTH,
     J_OUT_DF_DOMEGA_CAGE,
     J_OUT_DF_DOMEGA_RACE,
@@ -23,7 +23,6 @@ from bearingsim.dynamics.journal.hybrid import (
     J_OUT_METAL_FORCE,
     J_OUT_TORQUE,
     cage_race_journal,
-    hybrid_weights,
     JournalGeometry,
     journal_parameters,
     journal_parameters_for_cage,
@@ -32,6 +31,7 @@ from bearingsim.dynamics.journal.hybrid import (
     ocvirk_torque,
     unpack_journal,
 )
+from bearingsim.dynamics.journal.land_laws.hybrid import hybrid_weights
 from bearingsim.dynamics.journal.dry import lundberg_compliance, lundberg_deflection, lundberg_load, palmgren_load
 
 STEEL = Material(208e9, 0.3, 7850.0)  # docs/model.md §2 scene values
@@ -51,7 +51,7 @@ def params(**kw):
 
 
 def journal_at(eps, p, omega_cage=OMEGA, omega_race=0.0, azimuth=0.0, velocity=(0.0, 0.0)):
-    e = eps * p[J_CLEARANCE]
+    e = eps * p.clearance
     offset = np.array([e * math.cos(azimuth), e * math.sin(azimuth)])
     return cage_race_journal(offset, np.array(velocity, dtype=float), omega_cage, omega_race, p)
 
@@ -423,8 +423,8 @@ def test_reference_cage_parameters():
     # docs/model.md §2: R = 83 mm, C = 0.29 mm, L ≈ 7.6 mm (two lands of ≈ 3.80 mm)
     bearing, cage = reference_geometry()
     p = journal_parameters_for_cage(bearing, cage, BRONZE, STEEL, viscosity=5e-3, friction_coefficient=0.1)
-    assert p[0] == pytest.approx(0.083) and p[J_CLEARANCE] == pytest.approx(0.29e-3)
-    assert p[1] == pytest.approx(7.6e-3, abs=0.05e-3)
+    assert p.radius == pytest.approx(0.083) and p.clearance == pytest.approx(0.29e-3)
+    assert p.length == pytest.approx(7.6e-3, abs=0.05e-3)
 
 
 @pytest.mark.parametrize("bad, word", [

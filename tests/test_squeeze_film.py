@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from bearingsim.dynamics.journal.hybrid import (
+from bearingsim.dynamics.journal.short_bearing import (
     JournalGeometry, cage_race_journal, journal_parameters, ocvirk_force, unpack_journal,
 )
 from bearingsim.dynamics.journal.squeeze_film import (

@@ -5,7 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from bearingsim.dynamics.traction import laws
+from bearingsim.dynamics.traction.laws.eyring import Eyring
+from bearingsim.dynamics.traction.laws.limiting_shear import LimitingShear
 from bearingsim.dynamics.traction import quadrature as traction
 from bearingsim.dynamics.lubrication.lubricant import load_builtin_lubricant
 
@@ -111,7 +112,7 @@ def test_grid_kernel_equals_py_func_on_random_inputs(o156):
         eta = np.ascontiguousarray(np.exp(rng.uniform(-5, 12, 4)))
         args = (rng.uniform(1e-4, 5e-4), rng.uniform(5e-4, 3e-3), rng.uniform(5e-8, 5e-7), rng.uniform(1e6, 1e7),
                 rng.uniform(-1, 1) * 10 ** rng.uniform(-5, 0), rng.uniform(-0.1, 0.1), rng.uniform(-500, 500))
-        for law in (laws.EYRING, laws.LIMITING_SHEAR):
+        for law in (Eyring(args[3]), LimitingShear(0.075)):
             fast = traction.traction_on_grid(*args, eta, (uw, c, s, rho), law)
             slow = traction.traction_on_grid.py_func(*args, eta, (uw, c, s, rho), law)
             assert np.allclose(fast[:3], slow[:3], rtol=1e-11, atol=0)

@@ -1,9 +1,7 @@
 """Performance helpers of the numba kernels, in one private place: compile policy
-(`compile_policy`), numba's compile flags compared without a Python call per option
-(`flag_values`), its resolved calls remembered (`resolved_calls`), machine code emitted only for
-what needs an address (`deferred_emission`; the three installed by `compile_policy`),
-cache-line-aligned scratch (`aligned`), vectorisable exp and log over arrays (`simd_math`) and the
-float32 table lookup (`table_lookup`).
+(`compile_policy`: numba's public jit options, nothing of numba replaced), cache-line-aligned
+scratch (`aligned`), vectorisable exp and log over arrays (`simd_math`) and the float32 table
+lookup (`table_lookup`).
 
 Physics modules take their compile options from `compile_policy`; the rest serves the engines
 (the fast traction, the film batch), which are the only places that know about vector widths,

@@ -14,16 +14,10 @@ dynamics/bearing/bundles.py) are plain structs of borrowed arrays: these kernels
 and build them from views, without any reference counting. tests/test_bearing_model.py
 checks that the arrays passed through the model keep their reference counts.
 
-Importing this module, as every kernel module does, also installs the faster comparison of
-numba's compile flags (`flag_values`), its resolved calls remembered (`resolved_calls`) and
-machine code on demand (`deferred_emission`) before anything compiles.
+These are numba's public `jit` options only: importing the kernels changes nothing in numba
+itself, so other numba code in the same process compiles as it would without bearingsim
+(tests/test_numba_untouched.py).
 """
-
-from . import deferred_emission, flag_values, resolved_calls
-
-flag_values.install()
-resolved_calls.install()
-deferred_emission.install()
 
 # Every kernel: cached, and without the C-callable wrapper numba otherwise compiles for each
 # function so that it can be passed around as a first-class function value (a compile cost on a

@@ -20,7 +20,6 @@ from .._speed.compile_policy import FIRST_CLASS, INTERNAL, NO_REFCOUNT, WITH_REF
 from ..contact.pocket import (
     P_OUT_APPROACH, P_OUT_DFN_DRATE, P_OUT_FRICTION_POWER, P_OUT_IN_CONTACT,
 )
-from ..journal.hybrid import J_GUIDANCE
 from ..lubrication.film import film_central_nvm_batch
 from ..multibody.crv import crv_to_matrix_into, skew
 from ..multibody.hinge import add_hinge_force, hinge_energy, hinge_forces
@@ -39,7 +38,7 @@ from .layout import BALL_DOF, CAGE_BORDER, CAGE_DOF, INNER_BORDER, RACE_DOF
 from .params import (
     FP_D, FP_FX, FP_FZ, FP_JB, FP_JCX, FP_JCZ, FP_JIX, FP_JIZ, FP_MB, FP_MC, FP_MI, FP_MY,
     FP_MY_STEP, FP_OMEGA_I, FP_OMEGA_O, FP_T_LOAD_STEP, IP_CAGE, IP_GYRO, IP_HINGE, IP_JOURNAL, IP_Z,
-    FP_ALPHA_P, FP_E_EFF, FP_ETA0, FP_MIN_FILM, FILM_HD, FILM_NVM, IP_FILM,
+    FP_ALPHA_P, FP_E_EFF, FP_ETA0, FP_MIN_FILM, FILM_CONTACT, FILM_NVM, IP_FILM,
 )
 from .race_forces import (
     RC_ACTIVE, RC_ALPHA, RC_CN, RC_DN, RC_EX, RC_EY, RC_FB, RC_FILM, RC_FLAG,
@@ -219,8 +218,8 @@ def _ball_forces(q, v, model, bodies, scratch, rows, pocket_rows, g, diag, loads
             h = 0.0
             if film == FILM_NVM:
                 h = max(scratch.film_h[c], fp[FP_MIN_FILM])
-            elif film == FILM_HD:
-                h = film_of_carry(carry, res[RC_ALPHA], is_outer, fp, film)
+            elif film == FILM_CONTACT:
+                h = film_of_carry(carry, res[RC_ALPHA], is_outer, fp, ip, model.film)
             race_contact_forces(ball, bodies.outer if is_outer else bodies.inner, fp, ip, model.traction,
                                 scratch.contact[c], scratch.traction, carry, h, res, want_tangent)
             for i in range(3):
@@ -383,7 +382,7 @@ def _border(t, v, model, bodies, loads, ma, g, diag):
     if ip[IP_CAGE] and ip[IP_JOURNAL]:
         # first: an inner-guided cage's land reaction acts on the inner race, whose rows follow
         jres = work.journal_row
-        inner_guided = model.cage.journal[J_GUIDANCE] < 0.0
+        inner_guided = model.cage.journal.guidance < 0.0
         fixed = work.fixed_reaction  # the fixed outer race takes its reaction: nothing reads it
         fixed[:] = 0.0
         power = journal_forces(cage, inner if inner_guided else bodies.outer, model.cage.journal, jres,
@@ -446,7 +445,7 @@ def _border_tangents(v, model, bodies, Kb, Cb):
         if ip[IP_JOURNAL]:
             cage_block = slice(CAGE_BORDER, CAGE_BORDER + CAGE_DOF)
             journal_tangent(work.journal_row, Kb[cage_block, cage_block], Cb[cage_block, cage_block])
-            if model.cage.journal[J_GUIDANCE] < 0.0:
+            if model.cage.journal.guidance < 0.0:
                 journal_race_tangent(work.journal_row, Kb, Cb)
 
 

@@ -65,13 +65,13 @@ class HingeArrays(NamedTuple):
 
 
 class CageArrays(NamedTuple):
-    """Ball–pocket parameters (contact/pocket.py P_*), cage–land parameters (journal/hybrid.py
-    J_*), the impact speeds v_0 [m/s] the hysteresis law remembers per pocket (state of the
+    """Ball–pocket parameters (`contact.pocket.PocketParams`), cage–land parameters
+    (`journal.short_bearing.JournalParams`), each with its law's bundle, the impact speeds v_0 [m/s] the hysteresis law remembers per pocket (state of the
     model, updated after every accepted step), and cos psi, sin psi of the pocket azimuths
     (`model.cage_arrays` computes them once)."""
 
-    pocket: np.ndarray
-    journal: np.ndarray
+    pocket: tuple
+    journal: tuple
     impact_speeds: np.ndarray
     cos_psi: np.ndarray
     sin_psi: np.ndarray
@@ -125,14 +125,14 @@ class ResidualWork(NamedTuple):
     moment_contact: np.ndarray  # contact moment sum on the inner race, material (3) [N m]
     moment_load: np.ndarray  # external moment on the inner race, material (3) [N m]
     moment_cage: np.ndarray  # contact moment sum on the cage, material (3) [N m]
-    journal_row: np.ndarray  # the cage–land result row (journal/hybrid.py, N_JOURNAL_OUT)
+    journal_row: np.ndarray  # the cage–land result row (journal/short_bearing.py, N_JOURNAL_OUT)
     journal_squeeze: np.ndarray  # the dynamic cage film's scratch (journal/squeeze_film.py, N_SQUEEZE_OUT)
     fixed_reaction: np.ndarray  # (2, 3): the land's reaction force and moment on the fixed outer race (unused)
 
 
 class ModelArrays(NamedTuple):
     """Everything the residual kernel reads besides the state: the float and integer
-    parameter vectors (params.FP_*, IP_*), the diagonal mass, the bundles above and the
+    parameter vectors (params.FP_*, IP_*), the diagonal mass, the bundles above, the laws' and the
     residual's scratch (`ResidualWork`)."""
 
     fp: np.ndarray
@@ -140,6 +140,7 @@ class ModelArrays(NamedTuple):
     mass: np.ndarray
     races: RaceTables
     traction: TractionRule
+    film: tuple  # the film law's bundle (`lubrication.film_laws`)
     cage: CageArrays
     hinge: HingeArrays
     work: ResidualWork

@@ -1,6 +1,6 @@
 """Cage contacts of the dynamic model: ball–pocket (§7) and cage–guiding-race hybrid short
 journal (§8), with their tangent contributions. Kernels from dynamics.contact.pocket and
-dynamics.journal.hybrid; this file only places their results into g, the tangents and diag."""
+dynamics.journal.short_bearing; this file only places their results into g, the tangents and diag."""
 
 from __future__ import annotations
 
@@ -8,16 +8,16 @@ import numba
 import numpy as np
 
 from .._speed.compile_policy import KERNEL, NO_REFCOUNT
-from ..journal.hybrid import (
+from ..journal.short_bearing import (
     J_OUT_CONTACT_AZIMUTH, J_OUT_DF_DOMEGA_CAGE, J_OUT_DF_DOMEGA_RACE, J_OUT_DF_DPOS, J_OUT_DF_DVEL,
     J_OUT_DT_DOMEGA_CAGE, J_OUT_DT_DOMEGA_RACE, J_OUT_DT_DPOS, J_OUT_DT_DVEL, J_OUT_EPS, J_OUT_FILM_POWER,
     J_OUT_FORCE, J_OUT_FRICTION_POWER, J_OUT_METAL_FORCE, J_OUT_MIN_FILM, J_OUT_TORQUE, cage_race_journal_into,
 )
 from ..contact.pocket import (
-    P_MU, P_OUT_APPROACH, P_OUT_DFN_DDELTA, P_OUT_DFN_DRATE, P_OUT_FN, P_OUT_FORCE_BALL,
+    P_OUT_APPROACH, P_OUT_DFN_DDELTA, P_OUT_DFN_DRATE, P_OUT_FN, P_OUT_FORCE_BALL,
     P_OUT_FORCE_CAGE, P_OUT_FRICTION_POWER, P_OUT_IN_CONTACT, P_OUT_MOMENT_BALL,
     P_OUT_MOMENT_CAGE, P_OUT_NORMAL, P_OUT_ORBITAL_POSITION, P_OUT_POINT, P_OUT_SLIDING_SPEED,
-    P_V_REG, _pocket_contact_into,
+    _pocket_contact_into,
 )
 from ..multibody.small import eye3, outer
 
@@ -68,7 +68,7 @@ def pocket_tangent(k, x_b, cage, pp, pres, K, C):
     off = np.int64(CAGE_BORDER)  # typed int64, not Literal[int]: the overload _race_term uses (cold start)
     add_pair(k, off, pres[P_OUT_DFN_DDELTA] * nn, GA0, GB, K)
     # normal damping and regularised friction act on the relative velocity at p
-    mu, v_reg = pp[P_MU], pp[P_V_REG]
+    mu, v_reg = pp.mu, pp.v_reg
     c_f = mu * pres[P_OUT_FN] / max(pres[P_OUT_SLIDING_SPEED], v_reg)
     Jv = pres[P_OUT_DFN_DRATE] * nn + c_f * (I3 - nn)
     add_pair(k, off, Jv, GA, GB, C)

@@ -15,8 +15,8 @@ import numba
 import numpy as np
 
 from .._speed.compile_policy import FIRST_CLASS, INTERNAL, KERNEL
-from ..contact.pocket import N_POCKET_OUT, P_BALL_RADIUS, P_POCKET_RADIUS
-from ..journal.hybrid import N_JOURNAL_OUT
+from ..contact.pocket import N_POCKET_OUT
+from ..journal.short_bearing import N_JOURNAL_OUT
 from ..journal.squeeze_film import N_SQUEEZE_OUT
 from ..multibody.compiled import CompiledProblem, KernelFunction
 from ..multibody.joints import prescribe_velocity_blocks
@@ -189,7 +189,7 @@ class BearingModel:
         self._g = np.zeros(self.n_dof)
         self.impact_speeds = np.zeros(Z)
         self.arrays = ModelArrays(
-            fp=P.fp, ip=P.ip, mass=self.mass, races=P.races, traction=P.traction,
+            fp=P.fp, ip=P.ip, mass=self.mass, races=P.races, traction=P.traction, film=P.film,
             cage=cage_arrays(P.pocket, P.journal, P.pocket_psi, self.impact_speeds), hinge=P.hinge,
             work=residual_work(Z))
         self._blocks = (self.K.blocks(), self.C.blocks())
@@ -234,7 +234,7 @@ class BearingModel:
         k_diag = np.concatenate([np.einsum("kii->ki", S.D).ravel(), np.diag(S.B)])
         free = np.full(n, 0.5 * P.ball_diameter)  # no cage: a ball's orbital position acts on nothing
         if P.has_cage:
-            free[:] = P.pocket[P_POCKET_RADIUS] - P.pocket[P_BALL_RADIUS]
+            free[:] = P.pocket.pocket_radius - P.pocket.ball_radius
             c = layout.cage_offset(Z, True)
             free[c:c + 3] = P.guide_clearance
         k_weighted = k_diag / np.where(w > 0.0, w * w, 1.0)  # stiffness per unit of weighted error

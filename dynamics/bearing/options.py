@@ -9,7 +9,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from ..contact.pocket_laws import LAWS as POCKET_LAWS
 from ..field_checks import check_fields
+from ..journal.land_laws import LAWS as LAND_LAWS
+from ..lubrication.film_laws import LAWS as FILM_LAWS
 from ..traction.laws import LAWS
 
 
@@ -20,7 +23,7 @@ class ModelOptions:
     ehd_film: bool = field(default=True, metadata={
         "doc": "compute the EHD central film of every ball-race contact (needs [lubricant])"})
     traction: str = field(default="eyring", metadata={
-        "choices": tuple(LAWS),
+        "choices": LAWS,
         "doc": "ball-race traction law (dynamics/traction/laws): " + "; ".join(
             f"'{name}' {law.doc}" + (" (needs [lubricant] and the film)" if law.film else "")
             for name, law in LAWS.items())})
@@ -29,8 +32,9 @@ class ModelOptions:
         "doc": "Lambda of traction = 'limiting-shear': limiting shear stress over pressure (Bair & Winer 1979: "
                "0.05-0.1), taken at the mean Hertz pressure"})
     cage_race: str = field(default="hybrid", metadata={
-        "choices": ("hybrid", "hydrodynamic", "dry", "none"),
-        "doc": "cage-land law: hybrid film/metal (paper eqs. 25-31), film only, metal only, or no contact"})
+        "choices": LAND_LAWS,
+        "doc": "cage-land law (dynamics/journal/land_laws): " + "; ".join(
+            f"'{name}' {law.doc}" + (" (needs [lubricant])" if law.film else "") for name, law in LAND_LAWS.items())})
     centrifugal: bool = field(default=True, metadata={
         "doc": "ball centrifugal force in the quasi-static solve; the dynamic model's inertia always has it, "
                "so a dynamic run refuses false"})
@@ -38,7 +42,8 @@ class ModelOptions:
         "doc": "gyroscopic moments: of the balls in the quasi-static solve (race control), of every body in "
                "the dynamics"})
     film_formula: str = field(default="nvm", metadata={
-        "choices": ("nvm", "hamrock-dowson"), "doc": "central film: Nijenbanning-Venner-Moes or Hamrock-Dowson"})
+        "choices": FILM_LAWS, "doc": "central EHD film law (dynamics/lubrication/film_laws): " + "; ".join(
+            f"'{name}' {law.doc}" for name, law in FILM_LAWS.items())})
     min_film: float = field(default=5e-8, metadata={
         "unit": "m", "gt": 0.0, "doc": "floor of the film used by traction (mixed lubrication is not modelled)"})
     dry_friction: float = field(default=0.1, metadata={
@@ -48,6 +53,10 @@ class ModelOptions:
         "doc": "ball-race normal damping, fraction of critical for a ball on its Hertz stiffness"})
     pocket_friction: float = field(default=0.1, metadata={
         "unit": "-", "ge": 0.0, "le": 1.0, "doc": "ball-pocket Coulomb coefficient (regularised)"})
+    pocket_law: str = field(default="hertz-hysteresis", metadata={
+        "choices": POCKET_LAWS,
+        "doc": "ball-pocket normal-force law (dynamics/contact/pocket_laws): " + "; ".join(
+            f"'{name}' {law.doc}" for name, law in POCKET_LAWS.items())})
     pocket_restitution: float = field(default=0.7, metadata={
         "unit": "-", "gt": 0.0, "le": 1.0,
         "doc": "coefficient of restitution of ball-pocket impacts (Hunt-Crossley damping)"})

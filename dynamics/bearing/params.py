@@ -10,8 +10,10 @@ import numpy as np
 
 from ..geometry import BearingGeometry, CageGeometry, Material, effective_modulus
 from ..operating_point import OperatingPoint
-from ..traction.fast import TractionRule, unused_traction_rule
-from ..traction.laws import EYRING, LAWS
+from ..traction.fast import TractionRule, dry_traction_rule
+from ..lubrication.film_laws import LAWS as FILM_LAWS
+from ..lubrication.film_laws.nvm import NVM
+from ..traction.laws import LAWS
 
 from . import layout
 from .bundles import HingeArrays, RaceTables
@@ -27,16 +29,18 @@ FP_OMEGA_I, FP_OMEGA_O = 14, 15           # race speeds about +z [rad/s]
 FP_FX, FP_FZ, FP_MY = 16, 17, 18          # loads on the inner race: radial (x), axial (z), moment (y)
 FP_E_EFF = 19                              # ball-race E' [Pa]
 FP_ETA0, FP_ALPHA_P = 20, 21               # lubricant at its temperature: eta0 [Pa s], alpha* [1/Pa]
-FP_MIN_FILM, FP_MU_DRY, FP_ZETA = 22, 23, 24
-FP_V_REG = 25                              # regularisation speed of Coulomb traction [m/s]
-FP_T_LOAD_STEP, FP_MY_STEP = 26, 27        # from t >= FP_T_LOAD_STEP [s] the moment is FP_MY_STEP [N m]
-FP_LOAD_EXPONENT = 28                      # |T| ~ F_n^e at fixed slip: the traction law's load exponent
-N_FP = 29
+FP_MIN_FILM, FP_ZETA = 22, 23
+FP_T_LOAD_STEP, FP_MY_STEP = 24, 25        # from t >= FP_T_LOAD_STEP [s] the moment is FP_MY_STEP [N m]
+FP_LOAD_EXPONENT = 26                      # |T| ~ F_n^e at fixed slip: the traction law's load exponent
+N_FP = 27
 
 # --- integer switches ip ------------------------------------------------------------------
 IP_Z, IP_TRACTION, IP_FILM, IP_CAGE, IP_JOURNAL, IP_HINGE, IP_GYRO = 0, 1, 2, 3, 4, 5, 6
 N_IP = 7
-FILM_NONE, FILM_NVM, FILM_HD = 0, 1, 2
+# ip[IP_TRACTION]: 1 = the traction law of `BearingModelParams.traction` acts, 0 = switched off
+# ip[IP_FILM]: no film; the NVM law for all contacts at once (`lubrication.film`); the film law of
+# `BearingModelParams.film`, contact by contact (`film_laws.operations.central_film`)
+FILM_NONE, FILM_NVM, FILM_CONTACT = 0, 1, 2
 # the parts of the model a study may switch off (`BearingModelParams.without`)
 SWITCHES = {"traction": IP_TRACTION, "film": IP_FILM, "cage": IP_CAGE, "journal": IP_JOURNAL,
             "hinge": IP_HINGE, "gyroscopic": IP_GYRO}
@@ -49,9 +53,10 @@ class BearingModelParams:
     fp: np.ndarray
     ip: np.ndarray
     races: RaceTables
-    traction: TractionRule    # Eyring fast path (dynamics.traction.fast); a placeholder without it
-    pocket: np.ndarray        # ball-pocket parameters (contact/pocket.py)
-    journal: np.ndarray       # cage-land parameters (journal/hybrid.py)
+    traction: TractionRule    # the traction law's bundle and, for a film law, the fast engine's rule
+    film: tuple               # the EHD film law's bundle (`lubrication.film_laws`)
+    pocket: tuple             # ball-pocket parameters and law (contact/pocket.py `PocketParams`)
+    journal: tuple            # cage-land parameters and law (journal/short_bearing.py `JournalParams`)
     pocket_psi: np.ndarray    # pocket azimuths [rad]
     hinge: HingeArrays
     has_cage: bool
@@ -146,31 +151,34 @@ def build_model_params(
     fp[FP_T_LOAD_STEP], fp[FP_MY_STEP] = load_step if load_step is not None else (math.inf, loads.moment)
     e_eff = effective_modulus(ball, race)
     fp[FP_E_EFF] = e_eff
-    fp[FP_MIN_FILM], fp[FP_MU_DRY] = options.min_film, options.dry_friction
-    fp[FP_ZETA], fp[FP_V_REG] = options.contact_damping_ratio, options.coulomb_regularisation
+    fp[FP_MIN_FILM], fp[FP_ZETA] = options.min_film, options.contact_damping_ratio
     ip = np.zeros(N_IP, dtype=np.int64)
     ip[IP_Z] = Z
     ip[IP_GYRO] = int(options.gyroscopic)
     law = LAWS[options.traction]
-    ip[IP_TRACTION] = law.code
-    fp[FP_LOAD_EXPONENT] = law.load_exponent
-    traction = unused_traction_rule()
+    ip[IP_TRACTION] = 1
+    film = NVM()  # the bundle's type when there is no film (ip[IP_FILM] = FILM_NONE)
+    fp[FP_LOAD_EXPONENT] = law.flags["load_exponent"]
     if lubricant is not None:
         fp[FP_ETA0], fp[FP_ALPHA_P] = lubricant.eta0, lubricant.alpha_star
         if options.ehd_film:
-            ip[IP_FILM] = FILM_HD if options.film_formula == "hamrock-dowson" else FILM_NVM
+            ip[IP_FILM] = FILM_NVM if FILM_LAWS[options.film_formula].flags["batch"] else FILM_CONTACT
+            film = FILM_LAWS.pack(options.film_formula, options, lubricant)
         elif law.film:
             raise ValueError(f"{options.traction} traction needs the EHD film (ehd_film = True)")
-        if law.film:
-            from ..traction.fast import FastTraction
-
-            fast = FastTraction.build(lubricant)
-            if law.code != EYRING:
-                fast = fast.with_law(options.traction, options.limiting_shear_coefficient)
-            traction = fast.traction_rule()
     elif law.film:
         raise ValueError(f"{options.traction} traction needs a lubricant; use traction 'coulomb' for dry contacts")
-    pocket, journal, psi, clearance = np.zeros(1), np.zeros(1), np.zeros(Z), float("nan")
+    bundle = LAWS.pack(options.traction, options, lubricant)
+    if law.film:
+        from ..traction.fast import FastTraction
+
+        traction = FastTraction.build(lubricant).with_law(bundle).traction_rule()
+    else:
+        traction = dry_traction_rule(bundle)
+    from ..contact.pocket import no_pockets
+    from ..journal.short_bearing import no_journal
+
+    pocket, journal, psi, clearance = no_pockets(), no_journal(), np.zeros(Z), float("nan")
     if cage is not None:
         pocket, journal, clearance = _cage_params(bearing, cage, ball, race, cage_material, lubricant, options, fp, ip)
         from ..contact.pocket import pocket_azimuths
@@ -187,7 +195,7 @@ def build_model_params(
         fp=fp, ip=ip,
         races=RaceTables(inner=race_contact_table(bearing, e_eff, outer=False),
                          outer=race_contact_table(bearing, e_eff, outer=True)),
-        traction=traction, pocket=pocket, journal=journal, pocket_psi=contiguous(psi),
+        traction=traction, film=film, pocket=pocket, journal=journal, pocket_psi=contiguous(psi),
         hinge=HingeArrays(H_u=contiguous(H_u), H_psi=contiguous(H_psi), G_u=contiguous(c_G * H_u),
                           G_psi=contiguous(c_G * H_psi), x_A=contiguous(static_x, dtype=float),
                           R_A=contiguous(static_R, dtype=float)),
@@ -197,8 +205,9 @@ def build_model_params(
 
 
 def _cage_params(bearing, cage, ball, race, cage_material, lubricant, options, fp, ip):
-    from ..journal.hybrid import journal_parameters_for_cage
     from ..contact.pocket import pocket_parameters_for_cage
+    from ..journal.land_laws import LAWS as LAND_LAWS
+    from ..journal.short_bearing import journal_parameters_for_cage, no_journal
 
     if cage_material is None:
         raise ValueError("a bearing with a cage needs the cage material (materials.cage)")
@@ -208,11 +217,12 @@ def _cage_params(bearing, cage, ball, race, cage_material, lubricant, options, f
     ip[IP_CAGE] = 1
     pocket = pocket_parameters_for_cage(bearing, cage, ball, cage_material,
                                         restitution=options.pocket_restitution,
-                                        friction_coefficient=options.pocket_friction)
-    journal = np.zeros(1)
+                                        friction_coefficient=options.pocket_friction,
+                                        law=options.pocket_law)
+    journal = no_journal()
     if options.cage_race != "none" and cage.guide_ring is not None:  # a ball-guided cage runs on no land
         viscosity = lubricant.eta0 if lubricant is not None else 0.0
-        if options.cage_race in ("hybrid", "hydrodynamic") and viscosity <= 0.0:
+        if LAND_LAWS[options.cage_race].film and viscosity <= 0.0:
             raise ValueError(f"cage_race = {options.cage_race!r} needs a lubricant viscosity")
         journal = journal_parameters_for_cage(
             bearing, cage, cage_material, race, viscosity=viscosity,

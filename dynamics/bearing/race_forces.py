@@ -22,16 +22,15 @@ from ..contact.race import (
     OUT_ALPHA, OUT_DELTA, OUT_EX, OUT_EY, OUT_LEVER, OUT_N, OUT_P, OUT_SLIDE, OUT_SPIN,
     OUT_SRR, OUT_U_SUM, ball_race_contact_kernel,
 )
-from ..lubrication.film import FILM_BATCH_ROWS, film_central_nvm_terms, film_hamrock_dowson
-from ..traction import laws
-from ..traction.fast import traction_fast
-from ..traction.laws.coulomb import coulomb_traction
+from ..lubrication.film import FILM_BATCH_ROWS
+from ..lubrication.film_laws import nvm, operations as film_operations
+from ..traction.contact import contact_traction
 
 from .bundles import ContactScratch
 from .channels import Channel, RowLayout
 from .params import (
     FP_ALPHA_P, FP_D, FP_DI, FP_DM, FP_DO, FP_E_EFF, FP_ETA0, FP_MB, FP_MIN_FILM,
-    FP_LOAD_EXPONENT, FP_MU_DRY, FP_RI, FP_RO, FP_V_REG, FP_ZETA, FILM_HD, FILM_NONE,
+    FP_LOAD_EXPONENT, FP_RI, FP_RO, FP_ZETA, FILM_NONE,
     FILM_NVM, IP_FILM, IP_TRACTION,
 )
 from .race_table import TAB_FILM, TAB_SEMI_AXES, curvature_radii_kernel
@@ -102,22 +101,25 @@ def contact_scratch(n: int) -> ContactScratch:
 
 
 @numba.njit(**NO_REFCOUNT)
-def film_of_carry(carry, alpha, is_outer, fp, method):
+def film_of_carry(carry, alpha, is_outer, fp, ip, film):
     """Central film thickness [m] of one contact from its carry (CA_*), floored at
-    FP_MIN_FILM: NVM from the table terms `race_contact_normal` read; Hamrock–Dowson computes
+    FP_MIN_FILM: the NVM law (FILM_NVM) from the table terms `race_contact_normal` read; any
+    other law (FILM_CONTACT) by its bundle `film` (`film_laws.operations.central_film`), with
     R_x, R_y from the contact angle alpha. (The time loop takes NVM for all contacts at once:
     `film.film_central_nvm_batch`, then the same floor.)"""
-    if method == FILM_HD:
-        Rx, Ry = curvature_radii_kernel(alpha, is_outer, fp[FP_D], fp[FP_DM], fp[FP_RO] if is_outer else fp[FP_RI])
-        h = film_hamrock_dowson(carry[CA_FEL], Rx, Ry, fp[FP_E_EFF], fp[FP_ETA0], fp[FP_ALPHA_P], carry[CA_U])[0]
+    if ip[IP_FILM] == FILM_NVM:
+        terms = (carry[CA_RI], carry[CA_EI], carry[CA_H00], carry[CA_RP], carry[CA_EP])
+        h = nvm.central_film_from_terms(carry[CA_FEL], carry[CA_RX], fp[FP_E_EFF], fp[FP_ETA0], fp[FP_ALPHA_P],
+                                        carry[CA_U], terms)
         return max(h, fp[FP_MIN_FILM])
-    h = film_central_nvm_terms(carry[CA_FEL], carry[CA_RX], fp[FP_E_EFF], fp[FP_ETA0], fp[FP_ALPHA_P], carry[CA_U],
-                               carry[CA_RI], carry[CA_EI], carry[CA_H00], carry[CA_RP], carry[CA_EP])
+    Rx, Ry = curvature_radii_kernel(alpha, is_outer, fp[FP_D], fp[FP_DM], fp[FP_RO] if is_outer else fp[FP_RI])
+    h = film_operations.central_film(film, carry[CA_FEL], Rx, Ry, fp[FP_E_EFF], fp[FP_ETA0], fp[FP_ALPHA_P],
+                                     carry[CA_U])
     return max(h, fp[FP_MIN_FILM])
 
 
 @numba.njit(**NO_REFCOUNT)
-def race_contact(ball, race, is_outer, fp, ip, table, traction, scratch, res, want_tangent):
+def race_contact(ball, race, is_outer, fp, ip, table, traction, film, scratch, res, want_tangent):
     """Forces of one ball on one race and (want_tangent) their tangent ingredients, into
     res (RACE_ROW); the tangent-only fields stay zero otherwise: the two phases below with
     this contact's film between them (the time loop takes the film of all contacts at once
@@ -126,8 +128,8 @@ def race_contact(ball, race, is_outer, fp, ip, table, traction, scratch, res, wa
     ball: `bundles.Ball` (centre [m], velocity [m/s], angular velocity [rad/s]); race:
     `bundles.Body` (centre, rotation race -> global, velocity, spatial angular velocity);
     fp, ip: the model's parameter vectors (params.FP_*, IP_*); table: the race's contact
-    table (race_table.race_contact_table); traction: the `TractionRule` of the Eyring fast
-    path; scratch: `bundles.ContactScratch` (its first contact and carry rows are used).
+    table (race_table.race_contact_table); traction: the `TractionRule` (the traction law's
+    bundle, and the film engine's table and nodes); film: the film law's bundle; scratch: `bundles.ContactScratch` (its first contact and carry rows are used).
     Returns True when in contact.
     """
     cbuf, carry = scratch.contact[0], scratch.carry[0]
@@ -135,7 +137,7 @@ def race_contact(ball, race, is_outer, fp, ip, table, traction, scratch, res, wa
         return False
     h = 0.0
     if ip[IP_FILM] != FILM_NONE:
-        h = film_of_carry(carry, res[RC_ALPHA], is_outer, fp, ip[IP_FILM])
+        h = film_of_carry(carry, res[RC_ALPHA], is_outer, fp, ip, film)
     race_contact_forces(ball, race, fp, ip, traction, cbuf, scratch.traction, carry, h, res, want_tangent)
     return True
 
@@ -208,7 +210,7 @@ def race_contact_normal(ball, race, is_outer, fp, ip, table, cbuf, carry, res, w
 
 @numba.njit(**NO_REFCOUNT)
 def nvm_terms_into(table, j, t, step, carry):
-    """R_x and the lambda-only NVM terms (`film.nvm_geometry_terms`) at the race table's
+    """R_x and the lambda-only NVM terms (`film_laws.nvm.geometry_terms`) at the race table's
     position (j, t, step) of the contact angle (`hertz.table_position`) into carry[CA_RX:CA_EP + 1]."""
     for i in range(6):
         carry[CA_RX + i] = hermite(table, j, TAB_FILM + 2 * i, t, step)[0]
@@ -225,17 +227,15 @@ def race_contact_forces(ball, race, fp, ip, traction, cbuf, tbuf, carry, h, res,
     a_x, b_y, p_max = carry[CA_AX], carry[CA_BY], carry[CA_PMAX]
     du0, dv0, w_s = carry[CA_DU0], carry[CA_DV0], carry[CA_WS]
     F_n, F_el, delta, delta_dot, k_n = carry[CA_FN], carry[CA_FEL], carry[CA_DELTA], carry[CA_DDOT], carry[CA_KN]
-    mode = ip[IP_TRACTION]
-    # traction T = tbuf[0:3] and dT/ds = tbuf[3:12] (row-major), on the ball
-    if mode == laws.COULOMB:
-        coulomb_traction(F_n, a_x, b_y, du0, dv0, w_s, fp[FP_MU_DRY], fp[FP_V_REG], tbuf)
-    elif mode == laws.NONE:
+    acting = ip[IP_TRACTION] != 0
+    # traction T = tbuf[0:3] and dT/ds = tbuf[3:12] (row-major), on the ball, by the rule's law
+    if acting:
+        res[RC_FLAG] = contact_traction(traction, F_n, a_x, b_y, p_max, h, du0, dv0, w_s, tbuf, want_tangent)
+    else:
         tbuf[:] = 0.0
-    else:  # a film law: the traction engine, whose rule carries the law
-        res[RC_FLAG] = traction_fast(a_x, b_y, p_max, h, du0, dv0, w_s, traction, tbuf, want_tangent)
     _wrenches(res, n, p, x_b, x_r, cbuf, F_n, tbuf, want_tangent)
-    if want_tangent and F_n > 0.0 and mode != laws.NONE:
-        # |T| ~ F_n^e at fixed slip (`laws.TractionLaw.load_exponent`)
+    if want_tangent and F_n > 0.0 and acting:
+        # |T| ~ F_n^e at fixed slip (the law's flag "load_exponent", `traction.laws`)
         res[RC_LOAD_SLOPE] = fp[FP_LOAD_EXPONENT] * k_n / F_n
     for i in range(3):
         res[RC_N + i] = n[i]

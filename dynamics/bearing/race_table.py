@@ -6,7 +6,7 @@ Columns, each a (value, slope per rad) pair for cubic Hermite interpolation
 (`contact.hertz.hermite` at `contact.hertz.table_position`):
 
     0 .. TABLE_COLUMNS - 1     Hertz: k_h, kappa, c_a, c_b (`contact.hertz.build_hertz_table`)
-    TAB_FILM ..                film: R_x and the lambda-only NVM terms (`film.nvm_geometry_terms`)
+    TAB_FILM ..                film: R_x and the lambda-only NVM terms (`film_laws.nvm.geometry_terms`)
     TAB_SEMI_AXES ..           semi-axes per sqrt(delta): c_a k_h^(1/3), c_b k_h^(1/3) [m^(1/2)]
 """
 
@@ -21,10 +21,10 @@ from .._speed.compile_policy import NO_REFCOUNT
 from ..contact.hertz import (
     TAB_CA, TAB_CB, TAB_DCA, TAB_DCB, TAB_DKH, TAB_KH, TABLE_COLUMNS, race_hertz_table,
 )
-from ..lubrication.film import nvm_geometry_terms
+from ..lubrication.film_laws.nvm import geometry_terms as nvm_geometry_terms
 
 TAB_FILM = TABLE_COLUMNS  # first film column
-N_FILM_TERMS = 6          # R_x and the five terms of film.nvm_geometry_terms
+N_FILM_TERMS = 6          # R_x and the five terms of film_laws.nvm.geometry_terms
 TAB_SEMI_AXES = TAB_FILM + 2 * N_FILM_TERMS  # c_a k_h^(1/3), then c_b k_h^(1/3)
 
 
@@ -39,7 +39,7 @@ curvature_radii_kernel = numba.njit(**NO_REFCOUNT)(curvature_radii)
 
 
 def film_geometry_columns(D: float, d_m: float, r: float, is_outer: bool, n_nodes: int) -> np.ndarray:
-    """R_x and the lambda-only NVM terms of `film.nvm_geometry_terms` on the table's grid, so
+    """R_x and the lambda-only NVM terms of `film_laws.nvm.geometry_terms` on the table's grid, so
     that the time loop's film needs no cosine and no lambda logarithms (a fifth of its cost per
     contact). Slopes by central differences (step 1e-6 rad; Hermite error then ~1e-9 relative)."""
     alpha = np.linspace(0.0, 0.5 * math.pi, n_nodes)

@@ -12,55 +12,56 @@ spherical pocket (a ball-guided cage's: it holds the ball radially too) is the s
 r_p about the pocket centre: rho is the distance of the ball centre from that centre, and n
 points from it to the ball centre.
 
-Normal force (Hertz with hysteresis damping, Hunt–Crossley family):
-
-    F_n = k_h delta^(3/2) (1 + c_d delta_dot / v_0),   clamped at >= 0 (no adhesion)
-
-k_h is the Hertz constant of a sphere in a concave cylinder (curvatures 2/D, 2/D against
--2/d_p, 0), computed once per scene (`pocket_hertz_constant`, exact elliptic integrals).
-c_d comes from the restitution coefficient e: by default Flores et al. (2011),
-c_d = 8(1-e)/(5e), which reproduces e over 0.3–1 better than the Hunt–Crossley
-3(1-e)/2 or Lankarani–Nikravesh 3(1-e^2)/4 factors (both offered).
-v_0 is the impact (approach) speed, which the hysteresis law needs; the kernel takes it
-as an argument. The bearing model keeps it (`dynamics.bearing.model.track_impacts`): while a
-pocket is open it stores the current approach speed, so when contact starts the speed it
-hit with is already known.
-v_0 is floored at a reference speed (scene value) so that a slow, persistent contact
-(a ball pushing the cage) is not given unbounded damping; a caller that does not track
-it passes 0 and gets the velocity-independent law with v_0 = the reference speed.
+Normal force: the pocket law (`pocket_laws`; by default Hertz with hysteresis damping,
+`pocket_laws.hertz_hysteresis`) of the penetration, its rate and the impact speed v_0 the
+bearing model remembers per pocket (`dynamics.bearing.model.track_impacts`: while a pocket is
+open it stores the current approach speed, so when contact starts the speed it hit with is
+already known). k_h, the Hertz constant of a sphere in a concave cylinder (curvatures 2/D, 2/D
+against -2/d_p, 0) or sphere, is computed once per scene (`pocket_hertz_constant`, the exact
+Hertz solution of `contact.hertz`).
 
 Friction is Coulomb's, regularised: F_f = -mu F_n tanh(|v_s|/v_reg) v_s/|v_s| with v_s
 the sliding velocity of the ball over the cage at p.
 
-Kernels are pure (floats, contiguous float64 arrays, SI units, global frame); results
+Kernels are pure (floats, contiguous float64 arrays, SI units, global frame); the parameters
+are the bundle `PocketParams` (`pocket_parameters`), with the pocket law's bundle in it; results
 come back in one array whose layout is given by the P_OUT_* indices.
 """
 
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numba
 import numpy as np
 
 from .._speed.compile_policy import KERNEL, NO_REFCOUNT
+from .hertz import hertz_exact
+from .pocket_laws import LAWS, operations
 
-# --- parameter vector layout -----------------------------------------------------------
-P_BALL_RADIUS = 0  # r_b [m]
-P_POCKET_RADIUS = 1  # r_p [m]
-P_PITCH_RADIUS = 2  # radius of the pocket-centre circle in the cage frame [m]
-P_POCKET_Z = 3  # axial position of the pocket centres in the cage frame [m]
-P_K_H = 4  # Hertz constant k_h [N/m^1.5]
-P_DAMPING = 5  # hysteresis factor c_d [-]
-P_IMPACT_SPEED_REF = 6  # floor / default of the impact speed v_0 [m/s]
-P_MU = 7  # friction coefficient [-]
-P_V_REG = 8  # friction regularisation speed [m/s]
-P_ECCENTRICITY = 9  # run-out: pocket-circle centre off the cage centre along the cage frame's +x [m]
-P_SHAPE = 10  # SHAPE_* below
-N_POCKET_PARAMS = 11
-
-SHAPE_CYLINDRICAL, SHAPE_SPHERICAL = 0.0, 1.0
+SHAPE_CYLINDRICAL, SHAPE_SPHERICAL = 0, 1
 SHAPES = {"cylindrical": SHAPE_CYLINDRICAL, "spherical": SHAPE_SPHERICAL}
+
+
+class PocketParams(NamedTuple):
+    """The pockets of one cage (SI units; `pocket_parameters` packs it)."""
+
+    ball_radius: float    # r_b [m]
+    pocket_radius: float  # r_p [m]
+    pitch_radius: float   # radius of the pocket-centre circle in the cage frame [m]
+    pocket_z: float       # axial position of the pocket centres in the cage frame [m]
+    eccentricity: float   # run-out: pocket-circle centre off the cage centre along the cage frame's +x [m]
+    shape: int            # SHAPE_CYLINDRICAL | SHAPE_SPHERICAL
+    mu: float             # friction coefficient [-]
+    v_reg: float          # friction regularisation speed [m/s]
+    law: tuple            # the pocket law's bundle (`pocket_laws`)
+
+
+def no_pockets() -> PocketParams:
+    """The bundle's type for a model without a cage (never read)."""
+    return PocketParams(1.0, 1.0, 1.0, 0.0, 0.0, SHAPE_CYLINDRICAL, 0.0, 1.0,
+                        LAWS.pack("hertz-hysteresis", 1.0, 1.0, "flores", 1.0))
 
 # --- output vector layout ----------------------------------------------------------------
 P_OUT_DELTA = 0  # penetration delta [m] (negative: gap)
@@ -81,7 +82,6 @@ P_OUT_FRICTION_POWER = 28  # |F_f| |v_s| [W]
 P_OUT_ORBITAL_POSITION = 29  # azimuth of the ball centre, atan2(y, x) [rad], in contact only (0 otherwise)
 N_POCKET_OUT = 30
 
-DAMPING_MODELS = ("flores", "hunt-crossley", "lankarani-nikravesh")
 
 
 @numba.njit(**KERNEL)
@@ -98,33 +98,13 @@ def _column_mix(rot, u, v, w):
 
 
 @numba.njit(**KERNEL)
-def pocket_normal_force(delta, delta_dot, impact_speed, k_h, c_d):
-    """Damped Hertz normal force of docs/model.md §7 and its slopes.
-
-    F_n = k_h delta^1.5 (1 + c_d delta_dot / v_0), clamped at 0; delta [m], delta_dot
-    [m/s] (+ closing), v_0 = impact_speed [m/s] > 0, k_h [N/m^1.5], c_d [-].
-    Returns (F_n [N], dF_n/d delta [N/m], dF_n/d delta_dot [N s/m]); all 0 for delta <= 0.
-    """
-    if delta <= 0.0:
-        return 0.0, 0.0, 0.0
-    root = math.sqrt(delta)
-    elastic = k_h * delta * root
-    damping = 1.0 + c_d * delta_dot / impact_speed
-    f_n = elastic * damping
-    if f_n <= 0.0:  # fast separation: the law would pull, a contact cannot
-        return 0.0, 0.0, 0.0
-    return f_n, 1.5 * k_h * root * damping, elastic * c_d / impact_speed
-
-
-@numba.njit(**KERNEL)
 def pocket_contact(x_ball, v_ball, w_ball, x_cage, rot_cage, v_cage, w_cage, psi, impact_speed, params):
     """Ball–pocket contact of one ball in pocket psi (docs/model.md §7).
 
     x_ball, v_ball, w_ball (3,): ball centre [m], velocity [m/s], angular velocity [rad/s];
     x_cage (3,), rot_cage (3, 3) (cage-to-global rotation), v_cage (3,), w_cage (3,): the
     cage; psi [rad]: pocket azimuth in the cage frame; impact_speed [m/s]: v_0 of the
-    hysteresis law (0 if not tracked; floored at params[P_IMPACT_SPEED_REF]);
-    params (N_POCKET_PARAMS,). All vectors in the global frame.
+    pocket law (0 if not tracked); params: `PocketParams`. All vectors in the global frame.
     Returns out (N_POCKET_OUT,), layout P_OUT_*.
     """
     out = np.zeros(N_POCKET_OUT)
@@ -138,15 +118,15 @@ def _pocket_contact_into(out, x_ball, v_ball, w_ball, x_cage, rot_cage, v_cage, 
     """`pocket_contact` writing into a zeroed row `out`; scalar arithmetic, no temporaries.
     c, s: cosine and sine of the pocket azimuth psi (fixed per pocket: the residual reads
     them from `CageArrays` instead of calling sin and cos for every pocket in every call)."""
-    r_b, r_p = params[P_BALL_RADIUS], params[P_POCKET_RADIUS]
+    r_b, r_p = params.ball_radius, params.pocket_radius
     # pocket centre in the cage frame: on the pocket circle, whose centre the run-out moves off
     # the cage centre (the centre of the guiding surface, docs/model.md §7)
-    lx, ly, lz = params[P_PITCH_RADIUS] * c + params[P_ECCENTRICITY], params[P_PITCH_RADIUS] * s, params[P_POCKET_Z]
+    lx, ly, lz = params.pitch_radius * c + params.eccentricity, params.pitch_radius * s, params.pocket_z
     ax, ay, az = _column_mix(rot_cage, c, s, 0.0)  # pocket axis, global
     ox, oy, oz = _column_mix(rot_cage, lx, ly, lz)  # pocket centre - cage centre, global
     dx, dy, dz = x_ball[0] - x_cage[0] - ox, x_ball[1] - x_cage[1] - oy, x_ball[2] - x_cage[2] - oz
     # a cylinder measures the distance from its axis, a sphere from its centre
-    along = dx * ax + dy * ay + dz * az if params[P_SHAPE] == SHAPE_CYLINDRICAL else 0.0
+    along = dx * ax + dy * ay + dz * az if params.shape == SHAPE_CYLINDRICAL else 0.0
     px, py, pz = dx - along * ax, dy - along * ay, dz - along * az
     rho = math.sqrt(px * px + py * py + pz * pz)
     if rho > 1e-12 * r_p:
@@ -177,11 +157,10 @@ def _pocket_contact_into(out, x_ball, v_ball, w_ball, x_cage, rot_cage, v_cage, 
     # read only while the ball touches (the impact log): one libm call per touching pocket
     # rather than per pocket in every residual
     out[P_OUT_ORBITAL_POSITION] = math.atan2(x_ball[1], x_ball[0])
-    v_0 = max(impact_speed, params[P_IMPACT_SPEED_REF])
-    f_n, dfn_dd, dfn_drate = pocket_normal_force(delta, delta_dot, v_0, params[P_K_H], params[P_DAMPING])
+    f_n, dfn_dd, dfn_drate = operations.normal_force(params.law, delta, delta_dot, impact_speed)
     ratio = 0.0  # friction = -ratio * v_s
     if speed > 0.0:
-        f_t = params[P_MU] * f_n * math.tanh(speed / params[P_V_REG])
+        f_t = params.mu * f_n * math.tanh(speed / params.v_reg)
         ratio = f_t / speed
         out[P_OUT_FRICTION_POWER] = f_t * speed
     fx, fy, fz = -ratio * sx - f_n * nx, -ratio * sy - f_n * ny, -ratio * sz - f_n * nz
@@ -225,104 +204,57 @@ def check_pocket_clearance(ball_diameter: float, pocket_diameter: float) -> floa
     return pocket_diameter - ball_diameter
 
 
-def hertz_point_contact(curvature_sum: float, curvature_difference: float, effective_modulus: float):
-    """Exact Hertz point-contact constant (docs/model.md §6.2, also used by §7).
-
-    curvature_sum = sum of the four principal curvatures [1/m] (convex +, concave -),
-    curvature_difference F(rho) in [0, 1) [-], effective_modulus E' [Pa] =
-    2 / ((1-nu_a^2)/E_a + (1-nu_b^2)/E_b). Solves F(rho) = ((k^2+1)E(m) - 2K(m)) /
-    ((k^2-1)E(m)), m = 1 - 1/k^2, for the ellipticity k = a/b, then
-    delta* = (2K/pi)(pi/(2 k^2 E))^(1/3), k_h = (2 sqrt2 / 3) E' sum^(-1/2) delta*^(-3/2).
-    Returns (kappa [-], k_h [N/m^1.5]), with F_n = k_h delta^1.5.
-    """
-    from scipy.optimize import brentq
-    from scipy.special import ellipe, ellipk
-
-    if not curvature_sum > 0.0:
-        raise ValueError(f"Hertz contact: curvature sum {curvature_sum!r} 1/m must be > 0 (bodies must touch convexly)")
-    if not 0.0 <= curvature_difference < 1.0:
-        raise ValueError(f"Hertz contact: curvature difference F(rho) = {curvature_difference!r} must be in [0, 1)")
-    kappa = 1.0
-    if curvature_difference > 1e-14:
-        def mismatch(k):
-            m = 1.0 - 1.0 / (k * k)
-            return ((k * k + 1.0) * ellipe(m) - 2.0 * ellipk(m)) / ((k * k - 1.0) * ellipe(m)) - curvature_difference
-
-        kappa = brentq(mismatch, 1.0 + 1e-9, 1e4, xtol=1e-14, rtol=1e-15)
-    m = 1.0 - 1.0 / kappa**2
-    big_k, big_e = float(ellipk(m)), float(ellipe(m))
-    delta_star = (2.0 * big_k / math.pi) * (math.pi / (2.0 * kappa**2 * big_e)) ** (1.0 / 3.0)
-    k_h = (2.0 * math.sqrt(2.0) / 3.0) * effective_modulus * curvature_sum**-0.5 * delta_star**-1.5
-    return kappa, k_h
-
-
 def pocket_hertz_constant(ball_diameter: float, pocket_diameter: float, effective_modulus: float,
                           shape: str = "cylindrical"):
-    """(kappa, k_h) of a ball of diameter D in a pocket of diameter d_p (§7).
+    """(kappa, k_h) of a ball of diameter D in a pocket of diameter d_p (§7): the exact Hertz
+    solution (`hertz.hertz_exact`, docs/model.md §6.2).
 
     Curvatures: ball 2/D, 2/D; a cylindrical pocket -2/d_p round the cylinder, 0 along its
     axis (an elliptical contact); a spherical pocket -2/d_p, -2/d_p (a circular one).
     """
     check_pocket_clearance(ball_diameter, pocket_diameter)
+    if not effective_modulus > 0.0:
+        raise ValueError(f"pocket contact: effective modulus E' = {effective_modulus!r} Pa must be > 0")
     if shape == "spherical":
-        return hertz_point_contact(4.0 / ball_diameter - 4.0 / pocket_diameter, 0.0, effective_modulus)
-    curvature_sum = 4.0 / ball_diameter - 2.0 / pocket_diameter
-    return hertz_point_contact(curvature_sum, (2.0 / pocket_diameter) / curvature_sum, effective_modulus)
-
-
-def hysteresis_factor(restitution: float, model: str = "flores") -> float:
-    """c_d in F_n = k delta^1.5 (1 + c_d delta_dot / v_0) from the restitution e.
-
-    flores: 8(1-e)/(5e) (Flores, Machado, Silva & Martins, Multibody Syst. Dyn. 25 (2011)
-    357–375); hunt-crossley: 3(1-e)/2 (Hunt & Crossley, J. Appl. Mech. 42 (1975) 440);
-    lankarani-nikravesh: 3(1-e^2)/4 (J. Mech. Des. 112 (1990) 369).
-    """
-    if not 0.0 < restitution <= 1.0:
-        raise ValueError(f"pocket contact: restitution = {restitution!r} must be in (0, 1]")
-    if model == "flores":
-        return 8.0 * (1.0 - restitution) / (5.0 * restitution)
-    if model == "hunt-crossley":
-        return 1.5 * (1.0 - restitution)
-    if model == "lankarani-nikravesh":
-        return 0.75 * (1.0 - restitution**2)
-    raise ValueError(f"pocket contact: damping model {model!r}; allowed: {', '.join(DAMPING_MODELS)}")
+        curvature_sum, difference = 4.0 / ball_diameter - 4.0 / pocket_diameter, 0.0
+    else:
+        curvature_sum = 4.0 / ball_diameter - 2.0 / pocket_diameter
+        difference = (2.0 / pocket_diameter) / curvature_sum
+    kappa, _, k_h, _, _ = hertz_exact(curvature_sum, difference, effective_modulus)
+    return float(kappa), float(k_h)
 
 
 def pocket_parameters(*, ball_diameter: float, pocket_diameter: float, pitch_radius: float,
-                      effective_modulus: float, restitution: float, friction_coefficient: float,
-                      reference_impact_speed: float = 0.1, regularisation_speed: float = 1e-3,
-                      damping_model: str = "flores", pocket_axial_offset: float = 0.0,
-                      pocket_circle_eccentricity: float = 0.0, shape: str = "cylindrical") -> np.ndarray:
+                      effective_modulus: float, friction_coefficient: float, regularisation_speed: float = 1e-3,
+                      pocket_axial_offset: float = 0.0, pocket_circle_eccentricity: float = 0.0,
+                      shape: str = "cylindrical", law: str = "hertz-hysteresis", **law_options) -> PocketParams:
     """Pack and check the pocket parameters (SI) for `pocket_contact` / `pocket_contacts`.
 
     pitch_radius [m]: radius of the pocket-centre circle (cage mean radius);
     pocket_circle_eccentricity [m]: run-out, the pocket circle's centre off the cage centre
-    towards pocket 0 (the cage frame's +x);
-    reference_impact_speed [m/s]: floor and default of v_0; regularisation_speed [m/s];
-    shape: "cylindrical" (radial axis) | "spherical".
+    towards pocket 0 (the cage frame's +x); regularisation_speed [m/s] of the friction;
+    shape: "cylindrical" (radial axis) | "spherical"; law: the normal-force law, a name of
+    `pocket_laws.LAWS`, whose `pack` takes the pocket's Hertz constant and `law_options`
+    (restitution [-], damping_model, reference_impact_speed [m/s]: the floor and default of v_0).
     """
     if shape not in SHAPES:
         raise ValueError(f"pocket contact: shape = {shape!r}; allowed: {', '.join(SHAPES)}")
     _, k_h = pocket_hertz_constant(ball_diameter, pocket_diameter, effective_modulus, shape)
-    for name, value in {"pitch_radius [m]": pitch_radius, "reference_impact_speed [m/s]": reference_impact_speed,
-                        "regularisation_speed [m/s]": regularisation_speed}.items():
+    for name, value in {"pitch_radius [m]": pitch_radius, "regularisation_speed [m/s]": regularisation_speed}.items():
         if not value > 0.0:
             raise ValueError(f"pocket contact: {name} = {value!r} must be > 0")
     if not friction_coefficient >= 0.0:
         raise ValueError(f"pocket contact: friction_coefficient = {friction_coefficient!r} must be >= 0")
-    params = np.zeros(N_POCKET_PARAMS)
-    params[P_BALL_RADIUS], params[P_POCKET_RADIUS] = 0.5 * ball_diameter, 0.5 * pocket_diameter
-    params[P_PITCH_RADIUS], params[P_POCKET_Z], params[P_K_H] = pitch_radius, pocket_axial_offset, k_h
-    params[P_DAMPING] = hysteresis_factor(restitution, damping_model)
-    params[P_IMPACT_SPEED_REF], params[P_MU], params[P_V_REG] = (
-        reference_impact_speed, friction_coefficient, regularisation_speed)
-    params[P_ECCENTRICITY] = pocket_circle_eccentricity
-    params[P_SHAPE] = SHAPES[shape]
-    return params
+    if law not in LAWS:
+        raise ValueError(f"pocket contact: law = {law!r}; allowed: {', '.join(LAWS)}")
+    return PocketParams(
+        ball_radius=0.5 * ball_diameter, pocket_radius=0.5 * pocket_diameter, pitch_radius=float(pitch_radius),
+        pocket_z=float(pocket_axial_offset), eccentricity=float(pocket_circle_eccentricity), shape=SHAPES[shape],
+        mu=float(friction_coefficient), v_reg=float(regularisation_speed), law=LAWS.pack(law, k_h, **law_options))
 
 
 def pocket_parameters_for_cage(bearing, cage, ball_material, cage_material, *, restitution: float,
-                               friction_coefficient: float, **options) -> np.ndarray:
+                               friction_coefficient: float, **options) -> PocketParams:
     """`pocket_parameters` from dynamics.geometry objects (D, d_p, d_c/2, run-out, shape, E' ball–cage:
     the cage's own material)."""
     from ..geometry import effective_modulus

@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..journal.hybrid import ocvirk_force
+from ..journal.short_bearing import EPS_CLIP, ocvirk_force
 
 
 @dataclass(frozen=True)
@@ -229,8 +229,9 @@ def crush_screen(excursion: Excursion, cage_speed: float, clearances: CageCleara
                  land_shift=None) -> CageScreen:
     """The screen of M.115–M.124 (module docstring). `cage_speed` [rad/s]; `land_shift` as in
     `non_guiding_gap`. Film force at e_req: the static short bearing with clearance
-    C (1 + eps0) (the hybrid law of docs/model.md §8) and omega the cage speed (outer race
-    fixed)."""
+    C (1 + eps0) (the hybrid law of docs/model.md §8; eps0 = 0 for a law without boundary
+    layer, whose film is then evaluated at most at the clip EPS_CLIP) and omega the cage speed
+    (outer race fixed)."""
     x = excursion
     (best, worst), pressed = required_offset(x.first_harmonic, x.peak_to_peak, clearances)
     margin, code = margin_and_regime(worst, pressed, clearances.guide)
@@ -238,7 +239,7 @@ def crush_screen(excursion: Excursion, cage_speed: float, clearances: CageCleara
     C = clearances.guide
     c_film = C * (1.0 + film.eps0)
     e_req = float(worst)
-    eps_h = min(e_req, C) / c_film
+    eps_h = min(min(e_req, C) / c_film, EPS_CLIP)
     f_n, f_t, _, _ = ocvirk_force(eps_h, film.viscosity, cage_speed, film.radius, film.length / film.lands, c_film)
     gap = None
     if clearances.non_guiding is not None:

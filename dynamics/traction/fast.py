@@ -1,9 +1,12 @@
 """Fast traction for the time loop: pole-centred quadrature, SIMD evaluation (docs/model.md §6.4).
 
 The engine: it places the nodes, reads the viscosity table, sums the nodes' stresses and knows
-about vector widths and precision; the law comes from `dynamics.traction.laws`, given by its code
-in the `TractionRule`. The Eyring law, the default, has passes of its own (below); every other
-film law runs through one float64 pass of its response (`laws.dispatch.response`) per node (`_law_response`).
+about vector widths and precision; the law comes from `dynamics.traction.laws`, as the bundle
+`TractionRule.law`, and numba compiles the engine for the law of that bundle's class. The Eyring
+law, the default, has passes of its own (below) that call the law's node functions
+(`laws.eyring.argument`, `stress_factor`, `stress_slope`) in float64 or float32; every other
+film law runs through one float64 pass of its response (`laws.operations.response`) per node
+(`_law_response`).
 
 Same physics and sign convention as `dynamics.traction.quadrature` (force and spin moment ON THE BALL,
 Jacobian d(F_x, F_y, M_z)/d(du0, dv0, w_s)); the nodes come from `dynamics.traction.nodes`
@@ -49,14 +52,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import numba
 import numpy as np
+from numba.extending import overload
 
 from ..lubrication import rheology
-from . import laws
-from .laws import dispatch
+from .laws import LAWS, eyring, operations
 from .._speed.aligned import CACHE_LINE, empty_aligned
 from .._speed.compile_policy import KERNEL, NO_REFCOUNT, VEC, VEC_UNFUSED
 from .._speed.simd_math import log_array, log_array32
@@ -71,10 +74,6 @@ FLAG_SLIP_CLAMPED = 8
 SLIP_MAX = 1.0e4  # m/s: |du0|, |dv0|, |w_s| b beyond this are clamped (their squares must not overflow)
 VALIDATED_ASPECT = (0.05, 0.25)  # a/b (a along entrainment) checked in tests
 VALIDATED_P_H = (2.0e8, 3.0e9)  # Pa, maximum Hertz pressure checked in tests
-# eta|s|/(tau0 h) is clamped here so that x^2 cannot overflow, in float32 either (3.4e38); the
-# stress is then 42 tau0, and no film the model accepts comes near it
-EYRING_ARG_MAX = 1e18
-SMALL_ARG = 1e-2  # below this the series of asinh(x)/x is used (cancellation in c otherwise)
 
 _WORK_ROWS = 9
 _WORK32_ROWS = 6  # the residual-only passes' float32 rows: f_index (then log exponents), r, k, x, z, asinh x
@@ -86,7 +85,6 @@ class TractionRule(NamedTuple):
 
     eta_table: np.ndarray  # (n, 2): eta [Pa.s] at p = i p_step, and eta_(i+1) - eta_i
     p_step: float          # [Pa]
-    tau0: float            # Eyring stress [Pa]
     rule: np.ndarray       # packed quadrature rule, `traction_nodes.pack_rule`
     work: np.ndarray       # (9, n_max) float64 scratch
     iwork: np.ndarray      # (n_max,) int64 scratch
@@ -94,19 +92,18 @@ class TractionRule(NamedTuple):
     iwork32: np.ndarray    # (n_max,) int32 scratch of the residual-only passes
     eta_flat32: np.ndarray  # eta_table in float32, flattened (the residual-only passes' table)
     float32_residual: bool  # residual-only calls through the float32 passes (module docstring)
-    law: int = laws.EYRING  # the film law's code (`traction.laws`)
-    law_parameter: float = 0.0  # what the law's `stress_scale` takes (Eyring: tau0 [Pa])
+    law: Any                # the law's parameter bundle (`traction.laws`: its module's `Params`)
 
     def with_float32_residual(self, on: bool = True) -> "TractionRule":
         """A copy whose residual-only calls take the float32 passes (`on`) or not."""
         return self._replace(float32_residual=bool(on))
 
 
-def unused_traction_rule() -> TractionRule:
-    """A placeholder of the right types for a model without Eyring traction."""
-    return TractionRule(np.zeros((2, 2)), 0.0, 0.0, np.zeros(1), np.zeros((1, 1)), np.zeros(1, dtype=np.int64),
+def dry_traction_rule(law) -> TractionRule:
+    """The rule of a law without film (`law`: its bundle): no table, no nodes, no scratch."""
+    return TractionRule(np.zeros((2, 2)), 0.0, np.zeros(1), np.zeros((1, 1)), np.zeros(1, dtype=np.int64),
                         np.zeros((_WORK32_ROWS, 1), dtype=np.float32), np.zeros(1, dtype=np.int32),
-                        np.zeros(4, dtype=np.float32), False)
+                        np.zeros(4, dtype=np.float32), False, law)
 
 
 class _Nodes(NamedTuple):
@@ -115,6 +112,18 @@ class _Nodes(NamedTuple):
     X: np.ndarray
     Y: np.ndarray
     W: np.ndarray
+
+
+class _Contact(NamedTuple):
+    """One contact as `traction_fast` takes it (units there)."""
+
+    a: float
+    b: float
+    p_h: float
+    h: float
+    du0: float
+    dv0: float
+    w_s: float
 
 
 class _Slip(NamedTuple):
@@ -185,29 +194,20 @@ def _viscosity_lookup(f_index, n, eta_table, inv_tau0_h, k):
 
 @numba.njit(**VEC)
 def _eyring_argument(k, r, n, x, z):
-    """x = k |s| (clamped at EYRING_ARG_MAX) and z = x + sqrt(1 + x^2) >= 1, so asinh x = ln z."""
+    """x = `eyring.argument(k, |s|)` and z = x + sqrt(1 + x^2) >= 1, so asinh x = ln z."""
     for m in range(n):
-        xm = min(k[m] * r[m], EYRING_ARG_MAX)
+        xm = eyring.argument(k[m], r[m])
         x[m] = xm
         z[m] = xm + math.sqrt(1.0 + xm * xm)
 
 
 @numba.njit(cache=True, inline="always")
 def _eyring_node32(km, rm):
-    """A node's Eyring argument x = min(k |s|, EYRING_ARG_MAX) and z = x + sqrt(1 + x^2)
+    """A node's Eyring argument x = `eyring.argument(k, |s|)` and z = x + sqrt(1 + x^2)
     (asinh x = ln z), in float32 (k, r float32; asinh x = ln z then to ~1e-7 absolute). Not for
     the Jacobian, whose (x/sqrt(1 + x^2) - asinh x) cancels to x^3/3 for small x."""
-    xm = min(km * rm, np.float32(EYRING_ARG_MAX))
+    xm = eyring.argument(km, rm)
     return xm, xm + math.sqrt(np.float32(1.0) + xm * xm)
-
-
-@numba.njit(cache=True, inline="always")
-def _stress_factor(km, rm, xm, ash_m, small_arg, one, sixth):
-    """g = asinh(x)/|s| (tau/tau0 = g s), k (1 - x^2/6) below small_arg, in the width of its
-    arguments; the division's operand is 1 where the series is taken, so a vectorised select
-    never divides by a zero |s|."""
-    small = xm < small_arg
-    return km * (one - xm * xm * sixth) if small else ash_m / (one if small else rm)
 
 
 @numba.njit(cache=True, inline="always")
@@ -271,12 +271,11 @@ def _lerp_eyring_argument32(picked, frac, r, n, inv_tau0_h, k, x, z):
 
 @numba.njit(**VEC)
 def _stress_factor32(k, r, x, ash, n, g):
-    """g = asinh(x)/|s| per node in float32 (tau/tau0 = g s), k (1 - x^2/6) below SMALL_ARG:
-    the float32 part of `_accumulate_force`, in a pass of its own, so that the sums' float64
-    loop carries no division, selection or conversions of four arrays."""
-    small_arg, one, sixth = np.float32(SMALL_ARG), np.float32(1.0), np.float32(1.0 / 6.0)
+    """g = `eyring.stress_factor` per node in float32 (tau/tau0 = g s): the float32 part of
+    `_accumulate_force`, in a pass of its own, so that the sums' float64 loop carries no
+    division, selection or conversions of four arrays."""
     for m in range(n):
-        g[m] = _stress_factor(k[m], r[m], x[m], ash[m], small_arg, one, sixth)
+        g[m] = eyring.stress_factor(k[m], r[m], x[m], ash[m])
 
 
 @numba.njit(**VEC)
@@ -295,25 +294,17 @@ def _accumulate_force_g(nodes, g, n, a, b, du0, dv0, w_s, out):
 
 @numba.njit(**VEC)
 def _accumulate(nodes, values, n, a, b, du0, dv0, w_s, out):
-    """Sum tau = g s over the nodes into out[0:3] and its Jacobian into out[3:12] (tau0 = 1).
-
-    g = asinh(x)/|s|, c = (x/sqrt(1+x^2) - asinh x)/|s|^3, d tau/d s = g I + c s s^T; below
-    SMALL_ARG the series g = k(1 - x^2/6), c = k^3(-1/3 + 3x^2/10) (asinh Taylor series).
-    """
+    """Sum tau = g s over the nodes into out[0:3] and its Jacobian into out[3:12] (tau0 = 1):
+    g = `eyring.stress_factor`, c = `eyring.stress_slope`, d tau/d s = g I + c s s^T."""
     X, Y, W = nodes.X, nodes.Y, nodes.W
     k, r, x, z, ash = values.k, values.r, values.x, values.z, values.ash
     Fx = Fy = Mz = 0.0
     j00 = j01 = j02 = j11 = j12 = j20 = j21 = j22 = 0.0
     for m in range(n):
         xp, yp, sx, sy = _node_slip(X, Y, m, a, b, du0, dv0, w_s)
-        km = k[m]
         xm = x[m]
-        x2 = xm * xm
-        small = xm < SMALL_ARG
-        inv_r = 1.0 / (1.0 if small else r[m])
-        root = z[m] - xm
-        g = km * (1.0 - x2 / 6.0) if small else ash[m] * inv_r
-        c = km * km * km * (-1.0 / 3.0 + 0.3 * x2) if small else (xm / root - ash[m]) * inv_r * inv_r * inv_r
+        g = eyring.stress_factor(k[m], r[m], xm, ash[m])
+        c = eyring.stress_slope(k[m], r[m], xm, z[m] - xm, ash[m])
         wgt = W[m]
         tx = g * sx
         ty = g * sy
@@ -355,11 +346,9 @@ def _accumulate_force(nodes, values, n, a, b, du0, dv0, w_s, out):
     thirds of the arithmetic per node."""
     X, Y, W = nodes.X, nodes.Y, nodes.W
     k, r, x, ash = values.k, values.r, values.x, values.ash
-    # constants in the values' own width: float32 values stay float32 until they meet W
-    small_arg, one, sixth = x.dtype.type(SMALL_ARG), x.dtype.type(1.0), x.dtype.type(1.0 / 6.0)
     Fx = Fy = Mz = 0.0
     for m in range(n):
-        g = _stress_factor(k[m], r[m], x[m], ash[m], small_arg, one, sixth)
+        g = eyring.stress_factor(k[m], r[m], x[m], ash[m])
         fx, fy, mz = _node_force(X, Y, W, m, g, a, b, du0, dv0, w_s)
         Fx -= fx
         Fy -= fy
@@ -369,9 +358,10 @@ def _accumulate_force(nodes, values, n, a, b, du0, dv0, w_s, out):
 
 @numba.njit(**VEC)
 def _law_response(law, k, r, n, g, c):
-    """(g, c) of film law `law` at every node (`laws.dispatch.response`): tau = g s, d tau/d s = g I + c s s^T."""
+    """(g, c) of film law `law` (its bundle) at every node (`laws.operations.response`):
+    tau = g s, d tau/d s = g I + c s s^T."""
     for m in range(n):
-        g[m], c[m] = dispatch.response(law, k[m], r[m])
+        g[m], c[m] = operations.response(law, k[m], r[m])
 
 
 @numba.njit(**VEC)
@@ -407,11 +397,11 @@ def _accumulate_response(nodes, g, c, n, a, b, du0, dv0, w_s, out):
 
 @numba.njit(**NO_REFCOUNT)
 def traction_fast(a, b, p_h, h, du0, dv0, w_s, tr, out, jacobian=True):
-    """Eyring traction on the ball by pole-centred quadrature (docs/model.md §6.4, M.72–M.74).
+    """Film traction on the ball by pole-centred quadrature (docs/model.md §6.4, M.72–M.74).
 
     a, b [m] Hertz semi-axes (x = entrainment), p_h [Pa], h [m] central film, du0, dv0 [m/s]
     sliding velocity ball - race at the centre, w_s [rad/s] spin (ball - race, along the
-    normal); tr: the `TractionRule` (viscosity table, Eyring stress tau0, quadrature rule,
+    normal); tr: the `TractionRule` (viscosity table, the law's bundle, quadrature rule,
     scratch). Writes out[0:3] = (F_x [N], F_y [N], M_z [N.m]) and out[3:12] =
     d(F_x, F_y, M_z)/d(du0, dv0, w_s) row-major (zeros when jacobian is False: a
     residual-only evaluation, ~20 % cheaper); returns the flag bits (FLAG_*).
@@ -420,9 +410,8 @@ def traction_fast(a, b, p_h, h, du0, dv0, w_s, tr, out, jacobian=True):
         out[m] = 0.0
     if not (a > 0.0 and b > 0.0 and p_h > 0.0 and h > 0.0):
         return FLAG_NO_CONTACT
-    eta_table, p_step, tau0, work = tr.eta_table, tr.p_step, tr.tau0, tr.work
     flag = FLAG_OK
-    if p_h > p_step * (eta_table.shape[0] - 1):
+    if p_h > tr.p_step * (tr.eta_table.shape[0] - 1):
         flag |= FLAG_PRESSURE_CLAMPED
     aspect = a / b
     if not (VALIDATED_ASPECT[0] <= aspect <= VALIDATED_ASPECT[1] and VALIDATED_P_H[0] <= p_h <= VALIDATED_P_H[1]):
@@ -434,24 +423,51 @@ def traction_fast(a, b, p_h, h, du0, dv0, w_s, tr, out, jacobian=True):
         w_s = min(max(w_s, -SLIP_MAX / b), SLIP_MAX / b)
     # scratch rows: X, Y, W; then 3..7 are place_nodes' own until it returns, and become
     # f_index (table position), r, k, x, z; 8 is asinh x
+    work = tr.work
     nodes = _Nodes(work[0], work[1], work[2])
     n = place_nodes(a, b, du0, dv0, w_s, tr.rule, nodes.X, nodes.Y, nodes.W, work[3:8])
-    if tr.law != laws.EYRING:  # any other film law: one float64 pass of its response
-        stress = dispatch.stress_scale(tr.law, tr.law_parameter, p_h)
-        f_index, r, k, g, c = work[3], work[4], work[5], work[6], work[7]
-        _slip_and_table_index(nodes.X, nodes.Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / p_step, f_index, r)
-        _viscosity_lookup(f_index, n, eta_table, 1.0 / (stress * h), k)
-        _law_response(tr.law, k, r, n, g, c)
-        _accumulate_response(nodes, g, c, n, a, b, du0, dv0, w_s, out)
-        for m in range(12):
-            out[m] = out[m] * stress if (jacobian or m < 3) else 0.0
-        return flag
+    _film_passes(tr.law, tr, nodes, n, _Contact(a, b, p_h, h, du0, dv0, w_s), out, jacobian)
+    return flag
+
+
+def _film_passes(law, tr, nodes, n, contact, out, jacobian):
+    """The node passes of the law of bundle `law` (numba: `_eyring_passes` for the Eyring law,
+    `_general_passes` for any other film law)."""
+
+
+@overload(_film_passes, jit_options=NO_REFCOUNT, inline="always")
+def _film_passes_of(law, tr, nodes, n, contact, out, jacobian):
+    passes = _eyring_passes if law.instance_class is eyring.Eyring else _general_passes
+    return lambda law, tr, nodes, n, contact, out, jacobian: passes(tr, nodes, n, contact, out, jacobian)
+
+
+@numba.njit(**NO_REFCOUNT)
+def _general_passes(tr, nodes, n, contact, out, jacobian):
+    """Any film law: one float64 pass of its response (`operations.response`) per node."""
+    a, b, p_h, h, du0, dv0, w_s = contact
+    stress = operations.stress_scale(tr.law, p_h)
+    work = tr.work
+    f_index, r, k, g, c = work[3], work[4], work[5], work[6], work[7]
+    _slip_and_table_index(nodes.X, nodes.Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / tr.p_step, f_index, r)
+    _viscosity_lookup(f_index, n, tr.eta_table, 1.0 / (stress * h), k)
+    _law_response(tr.law, k, r, n, g, c)
+    _accumulate_response(nodes, g, c, n, a, b, du0, dv0, w_s, out)
+    for m in range(12):
+        out[m] = out[m] * stress if (jacobian or m < 3) else 0.0
+
+
+@numba.njit(**NO_REFCOUNT)
+def _eyring_passes(tr, nodes, n, contact, out, jacobian):
+    """The Eyring law's passes: float32 node values for a residual-only call of a rule with
+    `float32_residual` (module docstring), float64 otherwise."""
+    a, b, p_h, h, du0, dv0, w_s = contact
+    tau0 = eyring.stress_scale(tr.law, p_h)
     if tr.float32_residual and not jacobian:  # the node values in float32 (module docstring)
         w32 = tr.work32
         values32 = _NodeValues(k=w32[2], r=w32[1], x=w32[3], z=w32[4], ash=w32[5])
         # row and fraction at once, the rows picked in a pass of their own (`_speed.table_lookup`)
         row = tr.iwork32.view(np.uint32)
-        _slip_and_table_row32(nodes, n, a, b, p_h, _Slip(du0, dv0, w_s), 1.0 / p_step,
+        _slip_and_table_row32(nodes, n, a, b, p_h, _Slip(du0, dv0, w_s), 1.0 / tr.p_step,
                               last_position32(tr.eta_flat32), row, w32[0], values32.r)
         picked = tr.iwork  # the float64 path's int64 scratch, free here
         pick_rows(row, n, tr.eta_flat32.view(np.int64), picked)
@@ -462,11 +478,12 @@ def traction_fast(a, b, p_h, h, du0, dv0, w_s, tr, out, jacobian=True):
         _accumulate_force_g(nodes, w32[0], n, a, b, du0, dv0, w_s, out)
         for m in range(3):
             out[m] *= tau0
-        return flag
+        return
+    work = tr.work
     f_index = work[3]
     values = _NodeValues(k=work[5], r=work[4], x=work[6], z=work[7], ash=work[8])
-    _slip_and_table_index(nodes.X, nodes.Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / p_step, f_index, values.r)
-    _viscosity_lookup(f_index, n, eta_table, 1.0 / (tau0 * h), values.k)
+    _slip_and_table_index(nodes.X, nodes.Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / tr.p_step, f_index, values.r)
+    _viscosity_lookup(f_index, n, tr.eta_table, 1.0 / (tau0 * h), values.k)
     _eyring_argument(values.k, values.r, n, values.x, values.z)
     log_array(values.z, n, f_index, tr.iwork, values.ash)  # f_index is spent: reuse it for the exponents
     if jacobian:
@@ -475,7 +492,6 @@ def traction_fast(a, b, p_h, h, du0, dv0, w_s, tr, out, jacobian=True):
         _accumulate_force(nodes, values, n, a, b, du0, dv0, w_s, out)
     for m in range(12):
         out[m] *= tau0
-    return flag
 
 
 @numba.njit(**KERNEL)
@@ -505,20 +521,15 @@ class FastTraction:
 
     eta_table: np.ndarray  # (n, 2): eta [Pa.s] at p = i p_step, and eta_(i+1) - eta_i (0 in the last row)
     p_step: float  # [Pa]
-    tau0: float  # Eyring stress [Pa]
     rule: np.ndarray  # packed quadrature rule, `traction_nodes.pack_rule`
-    law: int = laws.EYRING  # the film law's code (`traction.laws`); `with_law` sets it
-    law_parameter: float = float("nan")  # what its `stress_scale` takes (Eyring: tau0)
+    law: Any  # the film law's bundle (`traction.laws`); the lubricant's Eyring law unless `with_law`
 
-    def with_law(self, name: str, parameter: float | None = None) -> "FastTraction":
-        """The same table and rule for the film law `name` of `laws.LAWS`, whose stress scale takes
-        `parameter` (Eyring: the lubricant's tau0 when None; limiting shear: Lambda [-])."""
-        law = laws.LAWS.get(name)
-        if law is None or not law.film:
-            raise ValueError(f"traction law {name!r}: choose a film law of {sorted(k for k, v in laws.LAWS.items() if v.film)}")
-        if parameter is None and law.code != laws.EYRING:
-            raise ValueError(f"traction law {name!r} needs its parameter")
-        return replace(self, law=law.code, law_parameter=self.tau0 if parameter is None else float(parameter))
+    def with_law(self, law) -> "FastTraction":
+        """The same table and rule for another film law, given by its bundle (`LAWS.pack`)."""
+        entry = LAWS.law_of(type(law))
+        if not entry.film:
+            raise ValueError(f"traction law {entry.name!r} has no film: choose one of {', '.join(LAWS.film_laws())}")
+        return replace(self, law=law)
 
     @classmethod
     def build(cls, lubricant, p_max: float = 5.0e9, n_table: int = 4096, n_radial: int = 10,
@@ -555,7 +566,7 @@ class FastTraction:
                 "check lubricant.viscosity_model and its parameters (docs/model.md §6.4)")
         table = np.ascontiguousarray(np.stack([eta, np.append(np.diff(eta), 0.0)], axis=1))
         return cls(eta_table=table, p_step=float(p[1] - p[0]),
-                   tau0=float(lubricant.eyring_stress), law_parameter=float(lubricant.eyring_stress),
+                   law=eyring.Eyring(float(lubricant.eyring_stress)),
                    rule=pack_rule(n_radial, tuple(n_angle), tuple(n_cone), tuple(n_far), float(far_ratio),
                                   tuple(edge), float(centre)))
 
@@ -587,8 +598,8 @@ class FastTraction:
         ~25 % cheaper, but the force then carries rounding steps of ~1e-7 that finite
         differences amplify, so only for callers with an analytic tangent (the time loop)
         (`TractionRule.with_float32_residual`)."""
-        rule = TractionRule(self.eta_table, self.p_step, self.tau0, self.rule, *self.workspace(), *self.workspace32(),
-                            self.eta_table.astype(np.float32).ravel(), False, self.law, self.law_parameter)
+        rule = TractionRule(self.eta_table, self.p_step, self.rule, *self.workspace(), *self.workspace32(),
+                            self.eta_table.astype(np.float32).ravel(), False, self.law)
         return rule.with_float32_residual(float32_residual)
 
     def evaluate(self, a, b, p_h, h, du0, dv0, w_s) -> tuple[np.ndarray, np.ndarray, int]:

@@ -36,16 +36,15 @@ import numpy as np
 
 from .._speed.compile_policy import KERNEL
 from ..lubrication import rheology
-from . import laws
-from .laws import dispatch
+from .laws import eyring, operations
 
 @numba.njit(**KERNEL)
-def traction_on_grid(a, b, h, tau0, du0, dv0, w_s, eta_u, grid, law=laws.EYRING):
+def traction_on_grid(a, b, h, tau0, du0, dv0, w_s, eta_u, grid, law):
     """Traction force, spin moment and Jacobian on a polar quadrature grid (docs/model.md §6.4).
 
     a, b [m] semi-axes (x = entrainment), h [m] film, tau0 [Pa] the law's stress scale (the
-    Eyring stress, or tau_L: `laws.dispatch.stress_scale`), du0, dv0 [m/s] sliding velocity (ball -
-    race) at the centre, w_s [rad/s] spin, law: a film law's code (`laws`). eta_u[i] =
+    Eyring stress, or tau_L: `laws.operations.stress_scale`), du0, dv0 [m/s] sliding velocity (ball -
+    race) at the centre, w_s [rad/s] spin, law: a film law's bundle (`laws`). eta_u[i] =
     eta(p_h u_i) [Pa.s]; grid = (u_weight, cos_t, sin_t, rho_u), contiguous float64:
     u_weight[i] = w_i u_i (Gauss weight times the Jacobian u), cos_t/sin_t of the uniform
     angles, rho_u[i] = sqrt(1 - u_i^2). Returns (F_x, F_y, M_z, J) with F [N], M_z [N.m] on
@@ -67,7 +66,7 @@ def traction_on_grid(a, b, h, tau0, du0, dv0, w_s, eta_u, grid, law=laws.EYRING)
             sx = du0 - w_s * y
             sy = dv0 + w_s * x
             r = math.sqrt(sx * sx + sy * sy)
-            g, c = dispatch.response(law, k, r)
+            g, c = operations.response(law, k, r)
             tx = g * sx
             ty = g * sy
             Fx -= wi * tx
@@ -112,13 +111,12 @@ def traction_quadrature(
     """Reference traction (F_x [N], F_y [N], M_z [N.m], J[3,3]) on the ball (docs/model.md §6.4).
 
     a, b [m], p_h [Pa] maximum Hertz pressure, h [m] central film; shear: the Eyring stress
-    tau0 [Pa], or (law, parameter) for any film law of `laws` (parameter as that law's
-    `stress_scale` takes it); rheology `model`/`params` from `Lubricant.model_code` /
+    tau0 [Pa] of the Eyring law, or the bundle of any film law of `laws`; rheology `model`/`params` from `Lubricant.model_code` /
     `rheology_params()`, du0, dv0 [m/s], w_s [rad/s]. The default grid (48 x 256) is converged
     to < 1e-4 relative over the operating range of the reference scene (tests/test_traction.py).
     """
-    law, parameter = (laws.EYRING, float(shear)) if np.ndim(shear) == 0 else (int(shear[0]), float(shear[1]))
+    law = eyring.Eyring(float(shear)) if np.ndim(shear) == 0 else shear
     u, u_weight, rho_u, cos_t, sin_t = quadrature_grid(n_u, n_theta)
     eta_u = rheology.viscosity_array(p_h * u, model, params)
-    stress = dispatch.stress_scale(law, parameter, p_h)
+    stress = operations.stress_scale(law, p_h)
     return traction_on_grid(a, b, h, stress, du0, dv0, w_s, eta_u, (u_weight, cos_t, sin_t, rho_u), law)

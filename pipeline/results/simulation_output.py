@@ -10,6 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ...dynamics.journal.land_laws import LAWS as LAND_LAWS
 from ..staging.artefacts import atomic_write_text
 from .cage_metrics import DEFAULT_LAND_ROUGHNESS, CageSeries, GuideLand, PocketImpacts, cage_summary
 from .summary_keys import summary_units
@@ -47,10 +48,11 @@ def write_impacts_csv(path: Path, impacts: np.ndarray, fields: tuple) -> None:
 
 
 def land_boundary(scene) -> float:
-    """eps0 of the land film, C_film = C (1 + eps0): physics.cage_race_boundary in the hybrid
-    model, 0 in the purely hydrodynamic one (its film clearance is C)."""
+    """eps0 of the land film, C_film = C (1 + eps0): physics.cage_race_boundary for a land law
+    with a boundary layer (`land_laws`, flag "boundary": the hybrid law), 0 otherwise (the purely
+    hydrodynamic law's film clearance is C)."""
     physics = scene.physics
-    return float(physics.cage_race_boundary) if physics.cage_race == "hybrid" else 0.0
+    return float(physics.cage_race_boundary) if LAND_LAWS[physics.cage_race].flags["boundary"] else 0.0
 
 
 def land_roughness(scene) -> float:
@@ -181,7 +183,7 @@ def _summary_and_figures(out_dir: Path, scene, params, start, run, series: dict[
             cage_series(run.t, series, scene, params.guide_clearance),
             PocketImpacts(impacts[:, 3], times=impacts[:, 0], orbital_positions=impacts[:, 2]),
             GuideLand(params.guide_clearance, land_boundary(scene), land_roughness(scene),
-                      film=on_land and scene.physics.cage_race in ("hybrid", "hydrodynamic"),
+                      film=on_land and LAND_LAWS[scene.physics.cage_race].film,
                       speed=guide_land_speed(scene))))
         summary["cage_guidance"] = scene.cage.guidance
         summary.update(_non_guiding(run.t, series, scene))

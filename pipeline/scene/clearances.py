@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 
+from ...dynamics.journal.land_laws import LAWS as LAND_LAWS
 from ...dynamics.quasistatic.crush_screen import CageClearances, LandFilm
 
 
@@ -24,15 +25,18 @@ def cage_clearances(parts) -> CageClearances:
 
 def land_film(scene) -> LandFilm:
     """The guide lands of the operating cage as the screen's short journal bearing (none for
-    a ball-guided cage: a film of no length, which pushes nothing)."""
+    a ball-guided cage: a film of no length, which pushes nothing). The land law decides
+    (`land_laws`): a law without film pushes nothing (viscosity 0), and the film clearance is
+    C (1 + eps0) only for a law with a boundary layer (C otherwise)."""
     b, c = scene.operating.bearing, scene.operating.cage
-    viscosity = scene.lubricant.eta0 if scene.lubricant is not None else 0.0
+    law = LAND_LAWS[scene.physics.cage_race]
+    viscosity = scene.lubricant.eta0 if scene.lubricant is not None and law.film else 0.0
+    eps0 = scene.physics.cage_race_boundary if law.flags["boundary"] else 0.0
     if c.guide_ring is None:
-        return LandFilm(radius=0.5 * c.mean_diameter, length=0.0, lands=1, eps0=scene.physics.cage_race_boundary,
-                        viscosity=0.0)
+        return LandFilm(radius=0.5 * c.mean_diameter, length=0.0, lands=1, eps0=eps0, viscosity=0.0)
     return LandFilm(radius=0.5 * c.guide_land_diameter(b), length=c.guide_land_length(b),
                     lands=scene.physics.cage_race_lands if c.guide_land_count(b) == 2 else 1,
-                    eps0=scene.physics.cage_race_boundary, viscosity=viscosity)
+                    eps0=eps0, viscosity=viscosity)
 
 
 def _operating(scene):

@@ -20,6 +20,7 @@ from typing import Any
 
 from ...dynamics import thermal as th
 from ...dynamics.geometry import BearingGeometry, CageGeometry, Material
+from ...dynamics.journal.land_laws import LAWS as LAND_LAWS
 from ...dynamics.traction.laws import LAWS as TRACTION_LAWS
 
 from .sections import (
@@ -468,7 +469,7 @@ def resolve(table: dict, origin: str = "<table>") -> Scene:
     if film_law and not physics.ehd_film:
         raise SceneError("physics.ehd_film", f"false, but {physics.traction!r} traction needs the EHD film "
                                              "thickness; set it true or physics.traction = 'coulomb'")
-    if physics.cage_race in ("hybrid", "hydrodynamic") and cage is not None and lubricant is None:
+    if LAND_LAWS[physics.cage_race].film and cage is not None and lubricant is None:
         raise SceneError("physics.cage_race", f"{physics.cage_race!r} needs a [lubricant] table "
                                               "(film viscosity); give one or set it to 'dry'")
     materials = resolve_materials(table["materials"], need_cage=cage is not None)

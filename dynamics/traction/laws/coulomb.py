@@ -7,10 +7,33 @@ it has its own kernel rather than a response for the film engine.
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numba
 
 from ..._speed.compile_policy import NO_REFCOUNT
+
+
+class Coulomb(NamedTuple):
+    """Parameters of regularised Coulomb friction."""
+
+    mu: float     # friction coefficient [-]
+    v_reg: float  # slip speed over which the friction reaches its full value [m/s]
+
+
+Params = Coulomb
+UNITS = {"mu": "-", "v_reg": "m/s"}
+
+
+def pack(options, lubricant) -> Coulomb:
+    """`physics.dry_friction` and `physics.coulomb_regularisation`."""
+    return Coulomb(float(options.dry_friction), float(options.coulomb_regularisation))
+
+
+@numba.njit(**NO_REFCOUNT)
+def dry_traction(law, F_n, a_x, b_y, du0, dv0, w_s, out):
+    """`coulomb_traction` with the law's mu and v_reg."""
+    coulomb_traction(F_n, a_x, b_y, du0, dv0, w_s, law.mu, law.v_reg, out)
 
 
 @numba.njit(**NO_REFCOUNT)

@@ -16,6 +16,7 @@ coefficient Lambda. Lambda is `physics.limiting_shear_coefficient`.
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numba
 
@@ -23,14 +24,31 @@ import numba
 SERIES_X = 1e-4
 
 
-@numba.njit(cache=True, inline="always")
-def stress_scale(coefficient, p_h):
-    """tau_L = Lambda 2 p_h / 3 [Pa]: coefficient Lambda [-], p_h the maximum Hertz pressure [Pa]."""
-    return coefficient * (2.0 / 3.0) * p_h
 
 
-@numba.njit(cache=True, inline="always")
-def response(k, r):
+class LimitingShear(NamedTuple):
+    """Parameters of the limiting-shear law."""
+
+    coefficient: float  # Lambda: limiting shear stress over pressure [-]
+
+
+Params = LimitingShear
+UNITS = {"coefficient": "-"}
+
+
+def pack(options, lubricant) -> LimitingShear:
+    """Lambda = `physics.limiting_shear_coefficient`."""
+    return LimitingShear(float(options.limiting_shear_coefficient))
+
+
+@numba.njit(cache=True)
+def stress_scale(law, p_h):
+    """tau_L = Lambda 2 p_h / 3 [Pa]: p_h the maximum Hertz pressure [Pa]."""
+    return law.coefficient * (2.0 / 3.0) * p_h
+
+
+@numba.njit(cache=True)
+def response(law, k, r):
     """(g, c) with tau = g s and d tau/d s = g I + c s s^T, for tau_L = 1.
 
     k = eta/(tau_L h) [s/m], r = |s| [m/s], x = k r: g = (1 - e^-x)/r [s/m] and

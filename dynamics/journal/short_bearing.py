@@ -1,11 +1,12 @@
-"""Cage–guiding-race interaction: the hybrid short journal bearing of docs/model.md §8.
+"""Cage–guiding-race interaction: the short journal bearing of docs/model.md §8.
 
-The cage rim runs on the guiding race lands like a journal in a short bearing. While the
-film carries the load (eccentricity ratio eps = e/C <= 1) the force is Ocvirk's short
-bearing with Gümbel's half film (paper eqs. 25–26); once the cage touches metal
-(eps >= 1 + eps0) it is Lundberg's dry line contact with full-slip friction; in between,
-the paper's weights (eqs. 28–31) blend the two. In hybrid mode the hydrodynamic formulas
-use the clearance C + e0, e0 = eps0 C, so they stay finite through the blend.
+The cage rim runs on the guiding race lands like a journal in a short bearing. The film force
+is Ocvirk's short bearing with Gümbel's half film (paper eqs. 25–26); the metal contact is
+Lundberg's dry line contact with full-slip friction; the land law (`land_laws`: hybrid,
+hydrodynamic, dry, none, or one of the user's) weights the two by the eccentricity ratio
+eps = e/C and sets the film clearance (`land_laws.operations.weights`). The hybrid law of the
+paper (eqs. 28–31) takes the film alone up to eps = 1, metal alone from 1 + eps0, and uses the
+clearance C + e0, e0 = eps0 C, so the film formulas stay finite through the blend.
 
 Directions (docs/model.md §8): e_r along the cage centre's offset from the race axis,
 e_t = e_z x e_r. Force on the cage F = A e_r + B e_t with A = -(f_F F_n^hyd + (1-f_F) Q)
@@ -21,7 +22,7 @@ Choices the spec leaves open, made here and flagged for review:
   (1 - eps_h^2)^(-1/2) growth at eps = 1 + eps0, where eps_h = e/(C + e0) reaches 1: T is
   continuous there but its slope would be infinite from the left. So in the blend the film
   torque is evaluated at min(eps_h, eps_clip) (eps_clip = 0.999, the clip the
-  hydrodynamic-only mode uses for all film terms): the slope stays finite, and T departs
+  hydrodynamic-only law uses for all film terms): the slope stays finite, and T departs
   from eq. 31 only where f_C < 2.1 % (the last 2.1 % of the eps0 band), by less than
   f_C T^hyd there. The force needs no clip: f_F vanishes faster than any power.
 * `lands`: the journal length L may be split into n separate lands (the race groove
@@ -29,9 +30,10 @@ Choices the spec leaves open, made here and flagged for review:
   makes the film force 1/4 as large (each land is a short bearing of length L/2) and
   shares the dry load over two line contacts of length L/2.
 
-Kernels are pure (floats and contiguous float64 arrays, SI units). The parameter vector is
-packed once by `journal_parameters`; results come back as one float64 array whose layout
-is given by the J_OUT_* indices (`unpack_journal` turns it into a dict).
+Kernels are pure (floats and contiguous float64 arrays, SI units). The parameters are the
+bundle `JournalParams`, packed once by `journal_parameters`, with the land law's bundle in it;
+results come back as one float64 array whose layout is given by the J_OUT_* indices
+(`unpack_journal` turns it into a dict).
 """
 
 from __future__ import annotations
@@ -44,30 +46,37 @@ import numpy as np
 
 from .._speed.compile_policy import KERNEL
 from .dry import lundberg_load
+from .land_laws import LAWS, operations
 from .squeeze_film import N_SQUEEZE_OUT, squeeze_film_force
 
-# --- parameter vector layout -----------------------------------------------------------
-J_RADIUS = 0  # R, land radius [m]
-J_LENGTH = 1  # L, total land overlap (both sides) [m]
-J_CLEARANCE = 2  # C, radial guide clearance [m]
-J_EPS0 = 3  # eps0, boundary layer e0 = eps0 C [-]
-J_VISCOSITY = 4  # mu, lubricant dynamic viscosity at the land [Pa s]
-J_MU_DRY = 5  # mu_dry, metal-to-metal friction coefficient [-]
-J_V_REG = 6  # friction regularisation speed [m/s]
-J_E_EFF = 7  # E', effective modulus cage/race [Pa]
-J_LANDS = 8  # number of separate lands L is split into [-]
-J_MODE = 9  # MODE_* below
-J_GUIDANCE = 10  # +1 outer-race guided (cage inside the land), -1 inner-race guided
-J_EPS_CLIP = 11  # film eccentricity clip: all film terms (hydrodynamic mode), the torque (hybrid) [-]
-J_FILM = 12  # FILM_* below: the film force's form
-N_JOURNAL_PARAMS = 13
-
-MODE_HYBRID, MODE_HYDRODYNAMIC, MODE_DRY, MODE_NONE = 0.0, 1.0, 2.0, 3.0
-MODES = {"hybrid": MODE_HYBRID, "hydrodynamic": MODE_HYDRODYNAMIC, "dry": MODE_DRY, "none": MODE_NONE}
 # static: Ocvirk for a centre at rest (paper eq. 25); dynamic: with the squeeze and whirl terms
 # of the Reynolds equation (squeeze_film.py, docs/model.md M.94b-M.94e)
-FILM_STATIC, FILM_DYNAMIC = 0.0, 1.0
+FILM_STATIC, FILM_DYNAMIC = 0, 1
 FILMS = {"static": FILM_STATIC, "dynamic": FILM_DYNAMIC}
+EPS_CLIP = 0.999  # film eccentricity clip of the film formulas (module docstring)
+
+
+class JournalParams(NamedTuple):
+    """The guide lands as a short journal bearing (SI units; `journal_parameters` packs it)."""
+
+    radius: float     # R, land radius [m]
+    length: float     # L, total land overlap (both sides) [m]
+    clearance: float  # C, radial guide clearance [m]
+    viscosity: float  # mu, lubricant dynamic viscosity at the land [Pa s]
+    mu_dry: float     # metal-to-metal friction coefficient [-]
+    v_reg: float      # friction regularisation speed [m/s]
+    e_eff: float      # E', effective modulus cage/race [Pa]
+    lands: float      # number of separate lands L is split into [-]
+    guidance: float   # +1 outer-race guided (cage inside the land), -1 inner-race guided
+    eps_clip: float   # film eccentricity clip: all film terms (hydrodynamic law), the torque (hybrid) [-]
+    film: int         # FILM_STATIC | FILM_DYNAMIC: the film force's form
+    law: tuple        # the land law's bundle (`land_laws`)
+
+
+def no_journal() -> JournalParams:
+    """The bundle of a cage that runs on no land (ball-guided, or no cage): the 'none' law."""
+    return JournalParams(1.0, 1.0, 1.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0, EPS_CLIP, FILM_STATIC, LAWS.pack("none", 0.0))
+
 
 # --- output vector layout ----------------------------------------------------------------
 J_OUT_FORCE = 0  # 3: force on the cage (x, y, z) [N]; z is always 0 (no axial force)
@@ -126,56 +135,30 @@ def ocvirk_torque(eps, viscosity, omega_rel, R, L, C):
 
 
 @numba.njit(**KERNEL)
-def hybrid_weights(eps, eps0):
-    """Blending weights of docs/model.md §8 (paper eqs. 28–31) and their eps-derivatives.
-
-    chi = (eps - 1)/eps0; f_F = exp(2 chi / (chi - 1)) (force), f_C = 1 - chi (torque).
-    Both are 1 for eps <= 1 and 0 for eps >= 1 + eps0.
-    f_F is C-infinity at eps = 1 + eps0 and has slope -2/eps0 at eps = 1+.
-    Returns (f_F, df_F/deps, f_C, df_C/deps).
-    """
-    if eps <= 1.0:
-        return 1.0, 0.0, 1.0, 0.0
-    if eps >= 1.0 + eps0:
-        return 0.0, 0.0, 0.0, 0.0
-    chi = (eps - 1.0) / eps0
-    f_f = math.exp(2.0 * chi / (chi - 1.0))
-    df_f = -2.0 * f_f / ((chi - 1.0) ** 2 * eps0)
-    return f_f, df_f, 1.0 - chi, -1.0 / eps0
-
-
-@numba.njit(**KERNEL)
 def _mode_weights(eps, params):
-    """Weights (f_F, df_F/de, f_C, df_C/de), film clearance and whether metal can touch."""
-    mode = params[J_MODE]
-    c = params[J_CLEARANCE]
-    if mode == MODE_HYBRID:
-        eps0 = params[J_EPS0]
-        f_f, df_f, f_c, df_c = hybrid_weights(eps, eps0)
-        return f_f, df_f / c, f_c, df_c / c, c * (1.0 + eps0), eps > 1.0
-    if mode == MODE_HYDRODYNAMIC:
-        return 1.0, 0.0, 1.0, 0.0, c, False
-    if mode == MODE_DRY:
-        return 0.0, 0.0, 0.0, 0.0, c, eps > 1.0
-    return 0.0, 0.0, 0.0, 0.0, c, False
+    """Weights (f_F, df_F/de, f_C, df_C/de) of the land law, the film clearance, whether metal
+    can touch and whether the film terms are clipped (`land_laws.operations.weights`)."""
+    c = params.clearance
+    f_f, df_f, f_c, df_c, film_ratio, metal, clipped = operations.weights(params.law, eps)
+    return f_f, df_f / c, f_c, df_c / c, c * film_ratio, metal, clipped
 
 
 @numba.njit(**KERNEL)
-def _film_terms(e, omega_sum, omega_rel, c_film, params):
+def _film_terms(e, omega_sum, omega_rel, c_film, clip_all, params):
     """Film force/torque and derivatives for the n lands, with the over-e forms regular at e=0.
 
     Returns (F_n, F_t, T, dF_n/de, dF_t/de, dT/de, F_n/e, F_t/e, dF_n/dw_sum, dF_t/dw_sum,
     dT/dw_rel).
     """
-    n = params[J_LANDS]
-    R, L, mu = params[J_RADIUS], params[J_LENGTH], params[J_VISCOSITY]
+    n = params.lands
+    R, L, mu = params.radius, params.length, params.viscosity
     eps_h = e / c_film
-    clipped = params[J_MODE] == MODE_HYDRODYNAMIC and eps_h > params[J_EPS_CLIP]
+    clipped = clip_all and eps_h > params.eps_clip
     if clipped:
-        eps_h = params[J_EPS_CLIP]
+        eps_h = params.eps_clip
     f_n, f_t, df_n, df_t = ocvirk_force(eps_h, mu, omega_sum, R, L / n, c_film)
     # hybrid blend: the torque is clipped too (finite slope at eps = 1 + eps0, module doc)
-    eps_t = min(eps_h, params[J_EPS_CLIP])
+    eps_t = min(eps_h, params.eps_clip)
     t, dt = ocvirk_torque(eps_t, mu, omega_rel, R, L, c_film)
     if eps_t < eps_h:
         dt = 0.0
@@ -206,25 +189,25 @@ def journal_scalars(e, v_slide, omega_sum, omega_rel, params):
     (A, B, T [N, N, N m], dA/de, dB/de, dT/de, A/e, B/e (regular at e = 0),
     dB/dv_slide, dT/dv_slide, dA/domega_sum, dB/domega_sum, dT/domega_rel,
     eps, metal normal force (1-f_F) Q [N], friction power [W], film shear power [W],
-    thinnest film C_film - e [m]). With the dynamic film (params[J_FILM]) the film force is
+    thinnest film C_film - e [m]). With the dynamic film (params.film) the film force is
     left out here: `cage_race_journal` adds it, as it depends on the centre velocity.
     """
-    eps = e / params[J_CLEARANCE]
-    f_f, df_f, f_c, df_c, c_film, dry_on = _mode_weights(eps, params)
+    eps = e / params.clearance
+    f_f, df_f, f_c, df_c, c_film, dry_on, clip_all = _mode_weights(eps, params)
     fn = ft = th = dfn = dft = dth = fn_e = ft_e = dfn_dw = dft_dw = dth_dw = 0.0
     if f_f > 0.0 or f_c > 0.0:
         fn, ft, th, dfn, dft, dth, fn_e, ft_e, dfn_dw, dft_dw, dth_dw = _film_terms(
-            e, omega_sum, omega_rel, c_film, params
+            e, omega_sum, omega_rel, c_film, clip_all, params
         )
-        if params[J_FILM] == FILM_DYNAMIC:  # the force comes from squeeze_film_force (caller)
+        if params.film == FILM_DYNAMIC:  # the force comes from squeeze_film_force (caller)
             fn = ft = dfn = dft = fn_e = ft_e = dfn_dw = dft_dw = 0.0
     q_dry = dq_dry = q_e = 0.0
     if dry_on:
-        n = params[J_LANDS]
-        q_land, k_land = lundberg_load(e - params[J_CLEARANCE], params[J_LENGTH] / n, params[J_E_EFF])
+        n = params.lands
+        q_land, k_land = lundberg_load(e - params.clearance, params.length / n, params.e_eff)
         q_dry, dq_dry, q_e = n * q_land, n * k_land, n * q_land / e
-    mu_d, v_reg = params[J_MU_DRY], params[J_V_REG]
-    lever = params[J_GUIDANCE] * params[J_RADIUS]  # contact point = cage centre + lever e_r
+    mu_d, v_reg = params.mu_dry, params.v_reg
+    lever = params.guidance * params.radius  # contact point = cage centre + lever e_r
     th_v = math.tanh(v_slide / v_reg)
     f_fr = -mu_d * q_dry * th_v  # full-slip friction, regularised
     dfr_dv = -mu_d * q_dry * (1.0 - th_v * th_v) / v_reg
@@ -252,7 +235,7 @@ def cage_race_journal(offset, velocity, omega_cage, omega_race, params):
 
     offset (2,) [m]: cage centre minus guiding-race centre (x, y, global frame);
     velocity (2,) [m/s]: cage centre velocity relative to the race centre;
-    omega_cage, omega_race [rad/s]: spin about +z; params (N_JOURNAL_PARAMS,).
+    omega_cage, omega_race [rad/s]: spin about +z; params: `JournalParams`.
     Returns out (N_JOURNAL_OUT,), layout J_OUT_*: force (3) and torque about z on the
     cage, eps, metal normal force, friction power, contact azimuth, and the exact
     derivatives of (F_x, F_y, T) with respect to (x, y), (v_x, v_y), omega_cage, omega_race.
@@ -272,7 +255,7 @@ def cage_race_journal_into(ox, oy, vx, vy, omega_cage, omega_race, params, out, 
     e = math.hypot(ox, oy)
     erx, ery = (ox / e, oy / e) if e > 0.0 else (1.0, 0.0)
     etx, ety = -ery, erx
-    lever = params[J_GUIDANCE] * params[J_RADIUS]
+    lever = params.guidance * params.radius
     v_r = vx * erx + vy * ery
     v_slide = vx * etx + vy * ety + lever * (omega_cage - omega_race)
     (a, b, t, da, db, dt, a_e, b_e, db_dv, dt_dv, da_dw, db_dw, dt_dwr,
@@ -301,7 +284,7 @@ def cage_race_journal_into(ox, oy, vx, vy, omega_cage, omega_race, params, out, 
         out[J_OUT_DF_DOMEGA_RACE + i] = da_dw * er[i] + (db_dw - db_dv * lever) * et[i]
     out[J_OUT_DT_DOMEGA_CAGE] = dt_dwr + dt_dv * lever
     out[J_OUT_DT_DOMEGA_RACE] = -dt_dwr - dt_dv * lever
-    if params[J_FILM] == FILM_DYNAMIC:
+    if params.film == FILM_DYNAMIC:
         _add_squeeze_film(ox, oy, vx, vy, omega_cage + omega_race, eps, erx, ery, params, out, sq)
 
 
@@ -310,12 +293,12 @@ def _add_squeeze_film(ox, oy, vx, vy, omega_sum, eps, erx, ery, params, out, sq)
     """Add the weighted dynamic film force f_F F(e, V) (squeeze_film.py) and its exact
     tangents to out; V = v - (omega/2) e_z x e, so dV/de = -(omega/2) e_z x and
     dV/domega = -(1/2) e_z x e for either surface's speed."""
-    f_f, df_f, _, _, c_film, _ = _mode_weights(eps, params)
+    f_f, df_f, _, _, c_film, _, _ = _mode_weights(eps, params)
     if f_f <= 0.0:
         return
-    n = params[J_LANDS]
-    k_film = n * params[J_VISCOSITY] * params[J_RADIUS] * (params[J_LENGTH] / n) ** 3 / c_film**3
-    squeeze_film_force(ox, oy, vx, vy, omega_sum, c_film, k_film, params[J_EPS_CLIP], sq)
+    n = params.lands
+    k_film = n * params.viscosity * params.radius * (params.length / n) ** 3 / c_film**3
+    squeeze_film_force(ox, oy, vx, vy, omega_sum, c_film, k_film, params.eps_clip, sq)
     er = (erx, ery)
     dvw = (0.5 * oy, -0.5 * ox)  # dV/d omega = -(1/2) e_z x e
     for i in range(2):
@@ -353,15 +336,15 @@ def journal_parameters(
     eps0: float = 0.05,
     regularisation_speed: float = 1e-3,
     mode: str = "hybrid",
-    eps_clip: float = 0.999,
+    eps_clip: float = EPS_CLIP,
     film: str = "static",
-) -> np.ndarray:
+) -> JournalParams:
     """Pack and check the journal parameters (SI units) for `cage_race_journal`.
 
     geometry: the lands (`JournalGeometry`: R, L, C, lands, guidance); viscosity [Pa s] at the
     land; effective_modulus E' [Pa]; friction_coefficient mu_dry [-]; eps0 [-] boundary-layer
-    thickness e0/C; regularisation_speed [m/s] of the dry friction; mode: hybrid |
-    hydrodynamic | dry | none; eps_clip: largest film eccentricity e/C_film the film formulas
+    thickness e0/C; regularisation_speed [m/s] of the dry friction; mode: the land law, a name
+    of `land_laws.LAWS` (hybrid | hydrodynamic | dry | none | a registered one); eps_clip: largest film eccentricity e/C_film the film formulas
     are evaluated at (all of them in hydrodynamic mode, the torque in hybrid); film: static
     (paper eq. 25, a centre at rest) | dynamic (with the squeeze and whirl terms,
     squeeze_film.py).
@@ -378,8 +361,8 @@ def journal_parameters(
     for name, value in {"viscosity [Pa s]": viscosity, "friction_coefficient [-]": friction_coefficient}.items():
         if not value >= 0.0:
             raise ValueError(f"cage-race journal: {name} = {value!r} must be >= 0")
-    if mode not in MODES:
-        raise ValueError(f"cage-race journal: mode = {mode!r}; allowed: {', '.join(MODES)}")
+    if mode not in LAWS:
+        raise ValueError(f"cage-race journal: mode = {mode!r}; allowed: {', '.join(LAWS)}")
     if guidance not in ("outer", "inner"):
         raise ValueError(f"cage-race journal: guidance = {guidance!r}; allowed: 'outer', 'inner'")
     if int(lands) != lands or lands < 1:
@@ -388,19 +371,15 @@ def journal_parameters(
         raise ValueError(f"cage-race journal: film = {film!r}; allowed: {', '.join(FILMS)}")
     if not 0.0 < eps_clip < 1.0:
         raise ValueError(f"cage-race journal: eps_clip = {eps_clip!r} must be in (0, 1), e.g. 0.999")
-    params = np.zeros(N_JOURNAL_PARAMS)
-    params[J_RADIUS], params[J_LENGTH], params[J_CLEARANCE] = radius, length, clearance
-    params[J_EPS0], params[J_VISCOSITY], params[J_MU_DRY] = eps0, viscosity, friction_coefficient
-    params[J_V_REG], params[J_E_EFF], params[J_LANDS] = regularisation_speed, effective_modulus, lands
-    params[J_MODE] = MODES[mode]
-    params[J_GUIDANCE] = 1.0 if guidance == "outer" else -1.0
-    params[J_EPS_CLIP] = eps_clip
-    params[J_FILM] = FILMS[film]
-    return params
+    return JournalParams(
+        radius=float(radius), length=float(length), clearance=float(clearance), viscosity=float(viscosity),
+        mu_dry=float(friction_coefficient), v_reg=float(regularisation_speed), e_eff=float(effective_modulus),
+        lands=float(lands), guidance=1.0 if guidance == "outer" else -1.0, eps_clip=float(eps_clip),
+        film=FILMS[film], law=LAWS.pack(mode, eps0))
 
 
 def journal_parameters_for_cage(bearing, cage, cage_material, race_material, *, viscosity: float,
-                                friction_coefficient: float, lands: int = 1, **options) -> np.ndarray:
+                                friction_coefficient: float, lands: int = 1, **options) -> JournalParams:
     """`journal_parameters` from dynamics.geometry objects (R = land radius, L, C, E'), the
     land length split into `lands` separate lands.
 

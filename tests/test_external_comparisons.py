@@ -46,3 +46,40 @@ def test_the_turbine_bearing_skids_as_measured_at_25000_rpm(tmp_path):
     summary = json.loads((run.stage_dir("simulate") / "summary.json").read_text(encoding="utf-8"))
     skid = 1.0 - summary["cage_speed_mean"] / _pure_rolling_cage_speed(bearingsim.load_scene("turbine-thrust-120"))
     assert 0.5 * NASA_SKID_AT_25000_RPM < skid < 2.0 * NASA_SKID_AT_25000_RPM, skid
+
+
+# Case Western Reserve University Bearing Data Center, "Bearing information": drive-end bearing
+# 6205-2RS JEM SKF, defect frequencies as multiples of the shaft speed; fundamental train (cage)
+# frequency 0.3983
+CWRU_CAGE_FACTOR = 0.3983
+
+
+def _cage_factor(b, alpha_i, alpha_o):
+    """omega_c / omega_i of pure rolling, outer ring fixed: (1 - gamma_i) / ((1 - gamma_i) + (1 + gamma_o)),
+    gamma = D cos(alpha) / d_m (Harris & Kotzalas, Rolling Bearing Analysis, 5th ed., vol. 1, ch. 8)."""
+    import numpy as np
+
+    gi = b.ball_diameter * np.cos(alpha_i) / b.pitch_diameter
+    go = b.ball_diameter * np.cos(alpha_o) / b.pitch_diameter
+    return (1.0 - gi) / ((1.0 - gi) + (1.0 + go))
+
+
+def test_the_6205_scene_has_the_cwru_cage_factor_and_says_where_its_load_moves_it():
+    """deep-groove-6205-ball-guided against CWRU's published factor: at the zero contact angle the
+    published factor assumes, its geometry gives 0.3983 to the last digit. At the quasi-static
+    contact angles of its loaded balls (the scene's assumed 50 N axial load turns them by up to
+    22 deg) pure rolling is 0.8 % faster, 0.4015 (docs/validation.md §15.3). The scene's dynamic run
+    stops in Newton, so this checks its geometry and operating point, not its cage dynamics."""
+    import numpy as np
+
+    from bearingsim.pipeline.quasistatic.solution import solve
+
+    scene = bearingsim.load_scene("deep-groove-6205-ball-guided")
+    b = scene.operating.bearing
+    assert float(_cage_factor(b, 0.0, 0.0)) == pytest.approx(CWRU_CAGE_FACTOR, abs=5e-5)
+    qs = solve(scene)
+    loaded = np.asarray(qs.inner_load) > 0.0
+    operating = float(np.mean(_cage_factor(b, np.asarray(qs.inner_contact_angle)[loaded],
+                                           np.asarray(qs.outer_contact_angle)[loaded])))
+    assert loaded.sum() >= 3
+    assert 1.005 < operating / CWRU_CAGE_FACTOR < 1.012

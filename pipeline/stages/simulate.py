@@ -113,7 +113,8 @@ def _lubricant_cause(scene: Scene, exc: RuntimeError) -> RuntimeError:
     """A Newton failure of a run whose film follows the Barus law, told as the lubricant's
     (docs/model.md §6.4, *Barus at contact pressures*): eta0 exp(alpha p) puts 1e7-1e12 Pa.s over
     most of a contact above about 1 GPa, where the Eyring traction acts as dry friction with no slip
-    scale; the same oil as Roelands (same eta0 and alpha*) runs, the solver keys do not help."""
+    scale; the same oil as Roelands (same eta0 and alpha*) runs where the contacts slip or spin, the
+    solver keys do not help. A nearly pure-rolling contact without spin stops with any law."""
     from ...dynamics.multibody import IntegrationError
 
     lub = scene.lubricant
@@ -127,7 +128,9 @@ def _lubricant_cause(scene: Scene, exc: RuntimeError) -> RuntimeError:
         f"{lub.viscosity(1.0e9):.3g} Pa.s at 1 GPa and {lub.viscosity(1.5e9):.3g} Pa.s at 1.5 GPa, where the "
         f"Eyring film traction acts as dry friction that Newton cannot follow; the solver keys do not help. Use "
         f"lubricant.viscosity_model = 'roelands' with lubricant.roelands_z = {z:.3g} (the same eta0 and alpha*), "
-        f"or a built-in oil (lubricant.name; bearingsim lubricants)"))
+        f"or a built-in oil (lubricant.name; bearingsim lubricants). Contacts that roll with almost no "
+        f"slip and no spin (a deep-groove bearing under radial load) can stop so with any viscosity law; "
+        f"physics.traction = 'coulomb' runs them (docs/validation.md §15.3)"))
 
 
 def compute(ctx: StageContext) -> dict:

@@ -1,8 +1,8 @@
 """Registries of contact laws: one per kind of contact (ball–race traction, EHD film, ball–pocket
 impact, cage–land), each mapping a law's name to the module that states it (docs/contact_laws.md).
 
-An entry is plain Python, so that reading a scene's choices, checking a scene and packing its
-parameters import no numba: `Law` names the module, says whether the law needs a lubricant film,
+An entry is plain Python, so that a scene's choices and checks read it without importing any
+law's module and its numba functions: `Law` names the module, says whether the law needs a lubricant film,
 and carries the few facts the rest of the model asks of it (`flags`). The module, imported the
 first time a kernel needs it, holds the law itself as numba functions, its parameter bundle
 `Params` (a NamedTuple of floats and integer codes, with a `UNITS` mapping of field -> unit) and
@@ -111,8 +111,9 @@ class Registry:
         raise TypeError(f"{params_class!r} is the bundle of no {self.kind} law ({', '.join(self._laws)})")
 
     def kernel(self, numba_type, operation: str):
-        """The function `operation` of the law whose bundle numba typed as `numba_type`: what the
-        kind's overloads return (`operations.py`)."""
+        """The function `operation` of the law whose bundle numba typed as `numba_type` (or whose
+        bundle class it is): what the kind's overloads return and its Python stubs call
+        (`operations.py`)."""
         law = self.law_of(getattr(numba_type, "instance_class", numba_type))
         function = getattr(self.module(law.name), operation, None)
         if function is None:

@@ -131,13 +131,6 @@ def test_a_law_without_film_runs_its_own_kernel(name):
         np.testing.assert_allclose(out, expected, rtol=1e-13, atol=0.0)
 
 
-@numba.njit
-def _film_through_the_engine(carry, alpha, is_outer, fp, ip, film):
-    from bearingsim.dynamics.bearing.race_forces import film_of_carry
-
-    return film_of_carry(carry, alpha, is_outer, fp, ip, film)
-
-
 def _film_through_the_model(name, lubricant):
     """(film of every active contact from the force kernel, the law's own film at each) of the
     reference bearing with physics.film_formula = `name`."""
@@ -235,7 +228,7 @@ TOYS = {"traction": ("toy-newtonian", "tests.toy_laws.newtonian", True),
 def toys():
     for kind, (name, module, film) in TOYS.items():
         REGISTRIES[kind].register(Law(name, module, doc=f"a toy {kind} law of the tests", film=film,
-                                      flags={"load_exponent": 1.0, "batch": False, "boundary": False}))
+                                      flags={"load_exponent": 1.0, "boundary": False}))
     yield {kind: name for kind, (name, _, _) in TOYS.items()}
     for kind, (name, _, _) in TOYS.items():
         REGISTRIES[kind].unregister(name)

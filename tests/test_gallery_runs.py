@@ -1,7 +1,7 @@
-"""`bearingsim run` end to end on a built-in scene of each cage guidance (issue 58): the full
-pipeline exits 0, the verdict names the guiding part, and the burn zone is drawn on the land of
-the ring that guides the cage (none for a ball-guided cage, whose verdict speaks of its pockets).
-The runs are cut to 30 ms: the verdict then also says the run is too short to settle.
+"""`bearingsim run` end to end on a built-in scene of each cage guidance (docs/validation.md
+§15): the full pipeline exits 0, the verdict names the guiding part, and the burn zone is drawn
+on the land of the ring that guides the cage (none for a ball-guided cage, whose verdict speaks of
+its pockets). The runs are cut to 30 ms: the verdict then also says the run is too short to settle.
 
 The ball-guided gallery scene stops in Newton with its film traction (docs/validation.md §15.3);
 it is run as shipped (a strict xfail that turns when the traction kernels carry it) and with

@@ -52,7 +52,7 @@ def test_the_walk_finds_every_built_in_scene():
     found = {_id(p) for p in SCENES}
     assert set(builtin_scene_names()) <= found
     assert any(name.startswith("stability/") for name in found)  # the subfolder is walked too
-    # the gallery of cage guidances (issue 58)
+    # the gallery of cage guidances (docs/validation.md §15)
     assert {"acbb-7210-inner-guided", "deep-groove-6205-ball-guided", "turbine-thrust-120"} <= found
 
 

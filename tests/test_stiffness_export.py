@@ -189,19 +189,19 @@ def test_json_holds_ross_arguments_as_numbers_and_the_hinge_damping(exported):
     assert doc["ross"]["speed_range_rpm"] == [1000.0, 6000.0]
 
 
-def test_readme_ross_example_runs_against_the_json_alone(exported, tmp_path, monkeypatch):
-    """The README's ROSS block, verbatim but for the file's path (skipped without ross)."""
+def test_docs_ross_example_runs_against_the_json_alone(exported, tmp_path, monkeypatch):
+    """docs/stiffness.md's ROSS block, verbatim but for the file's path (skipped without ross)."""
     import re
     from pathlib import Path
 
     ross = pytest.importorskip("ross")
     _, run_dir, table, _ = exported
-    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
-    block = re.search(r"<!-- ross-example -->\s*```python\n(.*?)```", readme, re.S).group(1)
+    page = (Path(__file__).resolve().parents[1] / "docs" / "stiffness.md").read_text(encoding="utf-8")
+    block = re.search(r"<!-- ross-example -->\s*```python\n(.*?)```", page, re.S).group(1)
     code = block.replace("runs/helicopter-b/stiffness/stiffness.json", str(run_dir / "stiffness" / "stiffness.json"))
     assert "import bearingsim" not in code
     namespace: dict = {}
-    exec(compile(code, "README.md", "exec"), namespace)  # noqa: S102 - the documented example
+    exec(compile(code, "docs/stiffness.md", "exec"), namespace)  # noqa: S102 - the documented example
     assert isinstance(namespace["bearing"], ross.BearingElement)
     np.testing.assert_allclose(namespace["bearing"].kxx_interpolated(table.speeds_rad_s[1]),
                                table.bearing[1, 0, 0], rtol=1e-9)

@@ -162,8 +162,9 @@ def build_model_params(
     if lubricant is not None:
         fp[FP_ETA0], fp[FP_ALPHA_P] = lubricant.eta0, lubricant.alpha_star
         if options.ehd_film:
-            ip[IP_FILM] = FILM_NVM if FILM_LAWS[options.film_formula].flags["batch"] else FILM_CONTACT
             film = FILM_LAWS.pack(options.film_formula, options, lubricant)
+            # the batch and the tabulated terms are the NVM law's own: any other law, contact by contact
+            ip[IP_FILM] = FILM_NVM if isinstance(film, NVM) else FILM_CONTACT
         elif law.film:
             raise ValueError(f"{options.traction} traction needs the EHD film (ehd_film = True)")
     elif law.film:

@@ -6,8 +6,8 @@ returns (F_n, dF_n/d delta, dF_n/d delta_dot) (see `hertz_hysteresis`). The pock
 the friction and the wrenches are the contact's (`contact.pocket`), which reaches the law
 through `operations.normal_force`, by the class of its bundle.
 
-`LAWS` is the registry (`dynamics.registry`): plain Python, so that loading a scene loads no
-numba. Each module defines `Params`, `normal_force` and
+`LAWS` is the registry (`dynamics.registry`): plain Python, so that a scene's
+choices and checks read it without importing the law modules. Each module defines `Params`, `normal_force` and
 `pack(hertz_constant, restitution, damping_model, reference_impact_speed)`: the Hertz constant
 k_h of the ball in its pocket [N/m^1.5] and the scene's impact options
 (`physics.pocket_restitution`, the damping model, the floor of the impact speed [m/s]).

@@ -13,8 +13,7 @@ def normal_force(law, delta, delta_dot, impact_speed):
     """(F_n [N], dF_n/d delta [N/m], dF_n/d delta_dot [N s/m]) of the pocket law of bundle `law`
     at penetration delta [m], approach rate delta_dot [m/s] (+ closing) and remembered impact
     speed [m/s] (0: not tracked); all 0 for delta <= 0."""
-    module = LAWS.module(LAWS.law_of(type(law)).name)
-    return module.normal_force(law, delta, delta_dot, impact_speed)
+    return LAWS.kernel(type(law), "normal_force")(law, delta, delta_dot, impact_speed)
 
 
 @overload(normal_force, inline="always")

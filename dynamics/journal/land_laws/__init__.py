@@ -7,8 +7,8 @@ film terms are clipped (see `hybrid`). The short journal bearing (`journal.short
 evaluates the film and the metal contact and blends them by these weights, reaching the law
 through `operations.weights`, by the class of its bundle.
 
-`LAWS` is the registry (`dynamics.registry`): plain Python, so that loading a scene loads no
-numba. Each module defines `Params`, `pack(eps0)` (eps0: `physics.cage_race_boundary`) and
+`LAWS` is the registry (`dynamics.registry`): plain Python, so that a scene's
+choices and checks read it without importing the law modules. Each module defines `Params`, `pack(eps0)` (eps0: `physics.cage_race_boundary`) and
 `weights`. An entry's `film`: the law needs the lubricant's viscosity; its flag `boundary`: the
 film clearance is C (1 + eps0), so eps0 C is the film at first metal contact (outputs, the
 crush screen and the land-film check read it).

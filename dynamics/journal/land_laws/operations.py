@@ -14,8 +14,7 @@ def weights(law, eps):
     eccentricity ratio eps = e/C of the land law of bundle `law`: the film force is weighted by
     f_F and the metal load by 1 - f_F, the film torque by f_C and the metal friction torque by
     1 - f_C."""
-    module = LAWS.module(LAWS.law_of(type(law)).name)
-    return module.weights(law, eps)
+    return LAWS.kernel(type(law), "weights")(law, eps)
 
 
 @overload(weights, inline="always")

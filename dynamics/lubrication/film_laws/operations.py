@@ -12,8 +12,7 @@ from . import LAWS
 def central_film(law, F, Rx, Ry, E_eff, eta0, alpha_p, u_s):
     """Central film h_c [m] of a contact by the law of bundle `law`: load F [N], reduced radii
     Rx, Ry [m], E' [Pa], eta0 [Pa.s], alpha* [1/Pa], u_s [m/s] the sum of the surface speeds."""
-    module = LAWS.module(LAWS.law_of(type(law)).name)
-    return module.central_film(law, F, Rx, Ry, E_eff, eta0, alpha_p, u_s)
+    return LAWS.kernel(type(law), "central_film")(law, F, Rx, Ry, E_eff, eta0, alpha_p, u_s)
 
 
 @overload(central_film, inline="always")

@@ -1,7 +1,7 @@
 """The ball–race traction laws and their registry (docs/model.md §6.4; docs/contact_laws.md).
 
-`LAWS` is the registry (`dynamics.registry`): plain Python, so that loading a scene loads no
-numba. Each entry names the module that states the law. A film law's module defines
+`LAWS` is the registry (`dynamics.registry`): plain Python, so that a scene's
+choices and checks read it without importing the law modules. Each entry names the module that states the law. A film law's module defines
 `stress_scale(law, p_h)` and `response(law, k, r)` (see `eyring`); a law without film defines
 `dry_traction(law, F_n, a, b, du0, dv0, w_s, out)` (see `coulomb`). Every module defines its
 parameter bundle `Params` and `pack(options, lubricant)`. The reference quadrature and the fast

@@ -10,25 +10,21 @@ from numba.extending import overload
 from . import LAWS
 
 
-def _law_function(law, operation):
-    return getattr(LAWS.module(LAWS.law_of(type(law)).name), operation)
-
-
 def stress_scale(law, p_h):
     """The law's stress scale tau_s [Pa] at maximum Hertz pressure p_h [Pa] (tau = tau_s g s)."""
-    return _law_function(law, "stress_scale")(law, p_h)
+    return LAWS.kernel(type(law), "stress_scale")(law, p_h)
 
 
 def response(law, k, r):
     """(g, c) of a film law at k = eta/(tau_s h) [s/m], r = |s| [m/s]: tau = tau_s g s and
     d tau/d s = tau_s (g I + c s s^T)."""
-    return _law_function(law, "response")(law, k, r)
+    return LAWS.kernel(type(law), "response")(law, k, r)
 
 
 def dry_traction(law, F_n, a, b, du0, dv0, w_s, out):
     """A law without film: out[0:3] = (F_x, F_y, M_z) on the ball, out[3:12] their Jacobian in
     (du0, dv0, w_s), row-major (units as `traction.fast.traction_fast`)."""
-    return _law_function(law, "dry_traction")(law, F_n, a, b, du0, dv0, w_s, out)
+    return LAWS.kernel(type(law), "dry_traction")(law, F_n, a, b, du0, dv0, w_s, out)
 
 
 @overload(stress_scale, inline="always")

@@ -77,7 +77,7 @@ def test_a_damaged_cache_file_is_removed_and_recompiled(damage, suffix, own_cach
     damage(_cache_files(own_cache, suffix)[0])
     out = _run(tmp_path, own_cache)
     assert "RESULT 42.0" in out, out
-    assert f"NOTE the kernel cache {own_cache} held 1 damaged file(s)" in out and "removed" in out
+    assert f"NOTE the kernel cache {own_cache} held 1 file(s) numba cannot load here" in out and "removed" in out
     assert not (own_cache / ".compiled-abc").exists()  # compiled again under the compile lock
     assert "NOTE" not in _run(tmp_path, own_cache)  # healed: the next start finds nothing
 
@@ -146,3 +146,23 @@ def test_xdg_cache_home_naming_a_file_moves_the_cache(tmp_path):
     where, notes = done.stdout.splitlines()[:2]
     assert not where.startswith(str(afile)) and f"XDG_CACHE_HOME={afile}" in notes
     assert afile.read_text() == "mine\n"
+
+
+def test_an_index_naming_a_module_this_process_cannot_import_is_removed(tmp_path):
+    """A kernel specialised for a law registered from a module not importable now (here, as after
+    the test suite's toy laws, a class of a module `tests_gone`) makes numba's index load fail with
+    ModuleNotFoundError on every run: the check removes it, and says why; the same layout naming
+    an importable module is kept."""
+    cache = tmp_path / "cache"
+    cache.mkdir()
+    gone = cache / "gone.nbi"
+    # pickle protocol 4's STACK_GLOBAL and protocol 0's GLOBAL, the module names of both
+    gone.write_bytes(pickle.dumps(1, protocol=4) + b"\x80\x04\x95\x1d\x00\x00\x00\x00\x00\x00\x00\x8c\ntests_gone"
+                     b"\x94\x8c\x03Law\x94\x93\x94.")
+    kept = cache / "kept.nbi"
+    kept.write_bytes(pickle.dumps(1, protocol=4) + pickle.dumps(json.JSONDecoder, protocol=4))
+    old = cache / "old.nbc"
+    old.write_bytes(b"cgone_module\nThing\np0\n.")
+    notes = check_cache(cache)
+    assert not gone.exists() and not old.exists() and kept.exists()
+    assert len(notes) == 1 and "numba cannot load here" in notes[0] and "not importable" in notes[0]

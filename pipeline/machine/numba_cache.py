@@ -113,14 +113,44 @@ def cache_notes() -> list[str]:
 def whole_pickles(data: bytes) -> bool:
     """True when `data` is one or more complete pickles (numba's index holds two), read opcode by
     opcode without building any object."""
+    return _read_pickles(data) is not None
+
+
+def _read_pickles(data: bytes) -> set[str] | None:
+    """The modules the pickles of `data` name (GLOBAL, STACK_GLOBAL), read opcode by opcode
+    without building any object; None when `data` is not one or more complete pickles."""
     stream = io.BytesIO(data)
+    modules, strings = set(), []
     try:
         while stream.tell() < len(data):
-            for opcode, _, _ in pickletools.genops(stream):
-                pass
+            for opcode, arg, _ in pickletools.genops(stream):
+                if opcode.name == "GLOBAL":
+                    modules.add(str(arg).split(" ")[0])
+                elif opcode.name == "STACK_GLOBAL" and len(strings) >= 2:
+                    modules.add(strings[-2])
+                elif isinstance(arg, str):
+                    strings = (strings + [arg])[-2:]
     except Exception:  # noqa: BLE001 - any way the bytes fail to read as pickles
-        return False
-    return len(data) > 0
+        return None
+    return modules if len(data) > 0 else None
+
+
+def _importable(module: str, known: dict[str, bool]) -> bool:
+    """Whether this process can import `module` (without importing it), memoised in `known`."""
+    if module not in known:
+        try:
+            known[module] = importlib.util.find_spec(module) is not None
+        except (ImportError, ValueError):  # a parent package that is not there
+            known[module] = False
+    return known[module]
+
+
+def _loadable(data: bytes, known: dict[str, bool]) -> bool:
+    """Whole pickles whose every module this process can import: numba loads a file that names
+    one it cannot (a contact law registered from a module not on the path now, a test's toy law)
+    with ModuleNotFoundError, which stops every run that reads that kernel's index."""
+    modules = _read_pickles(data)
+    return modules is not None and all(_importable(m, known) for m in modules)
 
 
 def check_cache(cache: Path, remove: bool = True) -> list[str]:
@@ -136,13 +166,13 @@ def check_cache(cache: Path, remove: bool = True) -> list[str]:
         files = [p for p in cache.rglob("*") if p.suffix in CACHE_SUFFIXES and p.is_file() and not p.is_symlink()]
     except OSError:
         return []
-    damaged, seen = [], {}
+    damaged, seen, known = [], {}, {}
     for path in files:
         name = path.relative_to(cache).as_posix()
         try:
             info = path.stat()
             stamp = [info.st_size, info.st_mtime_ns]
-            if stamps.get(name) != stamp and not whole_pickles(path.read_bytes()):
+            if stamps.get(name) != stamp and not _loadable(path.read_bytes(), known):
                 damaged.append(path)
                 continue
         except OSError:
@@ -165,8 +195,9 @@ def check_cache(cache: Path, remove: bool = True) -> list[str]:
     names = ", ".join(p.relative_to(cache).as_posix() for p in damaged[:3]) + (
         f" and {len(damaged) - 3} more" if len(damaged) > 3 else "")
     if remove:
-        return [f"the kernel cache {cache} held {len(damaged)} damaged file(s) ({names}; a full disk or a killed "
-                f"copy leaves them): removed, the kernels they held compile again (about a minute)"]
+        return [f"the kernel cache {cache} held {len(damaged)} file(s) numba cannot load here ({names}; a full disk, "
+                f"a killed copy or a contact law from a module not importable now leaves them): removed, the kernels "
+                f"they held compile again (about a minute)"]
     return [f"the kernel cache {cache} (NUMBA_CACHE_DIR) holds {len(damaged)} damaged file(s) ({names}): numba "
             f"cannot load them; delete them (or the folder) and the kernels compile again"]
 

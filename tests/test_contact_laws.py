@@ -73,7 +73,7 @@ def test_each_law_module_offers_what_its_kind_asks(kind, name, o156):
 
 @numba.njit
 def _traction_through_the_engine(rule, F_n, a, b, p_h, h, du0, dv0, w_s, out):
-    return contact_traction(rule, F_n, a, b, p_h, h, du0, dv0, w_s, out, True)
+    return contact_traction(rule, F_n, a, b, p_h, h, du0, dv0, w_s, 0.0, out, True)
 
 
 # The force and moment tolerance of the engine against the reference quadrature: 2 % for the
@@ -94,7 +94,7 @@ def _engine_against_quadrature(name, o156, points=12, seed=13):
         out = np.zeros(12)
         _traction_through_the_engine(rule, 1000.0, a, b, p_h, h, du0, dv0, w_s, out)
         Fx, Fy, Mz, J = quadrature.traction_quadrature(a, b, p_h, h, bundle, o156.model_code, o156.rheology_params(),
-                                                       du0, dv0, w_s, *REF_GRID)
+                                                       du0, dv0, w_s, REF_GRID)
         scale = math.hypot(Fx, Fy)
         worst = np.maximum(worst, (math.hypot(out[0] - Fx, out[1] - Fy) / scale,
                                    abs(out[2] - Mz) / max(abs(Mz), scale * b),

@@ -68,8 +68,9 @@ def test_the_6205_scene_has_the_cwru_cage_factor_and_says_where_its_load_moves_i
     """deep-groove-6205-ball-guided against CWRU's published factor: at the zero contact angle the
     published factor assumes, its geometry gives 0.3983 to the last digit. At the quasi-static
     contact angles of its loaded balls (the scene's assumed 50 N axial load turns them by up to
-    22 deg) pure rolling is 0.8 % faster, 0.4015 (docs/validation.md §15.3). The scene's dynamic run
-    stops in Newton, so this checks its geometry and operating point, not its cage dynamics."""
+    22 deg) pure rolling is 0.8 % faster, 0.4015 (docs/validation.md §15.3). CWRU publishes no
+    measured cage speed, so this checks the scene's geometry and operating point, not its cage
+    dynamics."""
     import numpy as np
 
     from bearingsim.pipeline.quasistatic.solution import solve

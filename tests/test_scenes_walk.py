@@ -29,11 +29,6 @@ GIVEN_HINGE = ["hinge.source=given", "hinge.translational=[1e9, 1e9, 1e9]", "hin
 SHORT = ["solver.duration=0.002", "output.figures=false"]
 runner = CliRunner()
 
-# Newton fails within 2 ms with the Eyring film traction under every viscosity law tried (Barus,
-# Roelands, WLF iso-vg68) and runs with Coulomb traction: docs/validation.md §15.3.
-NEWTON_FAILS = {"deep-groove-6205-ball-guided": "Eyring traction near zero slide: Newton fails "
-                                                "(docs/validation.md §15.3)"}
-
 
 def _id(path: Path) -> str:
     return str(path.relative_to(SCENES_DIR).with_suffix(""))
@@ -84,12 +79,7 @@ def test_a_scene_check_marks_is_refused_by_simulate_before_any_stage(tmp_path):
     assert not (tmp_path / "run" / "quasistatic").exists()
 
 
-def _simulated(path: Path):
-    mark = NEWTON_FAILS.get(_id(path))
-    return pytest.param(path, marks=pytest.mark.xfail(reason=mark, strict=True)) if mark else path
-
-
-@pytest.mark.parametrize("path", [_simulated(p) for p in SCENES], ids=_id)
+@pytest.mark.parametrize("path", SCENES, ids=_id)
 def test_a_scene_check_passes_simulates_2_ms(path, tmp_path):
     if _check(path).exit_code != 0:
         pytest.skip("check marks this scene as refused by simulate (tested above)")

@@ -21,7 +21,7 @@ def o156():
 def _ref(lub, point, grid=REF_GRID):
     a, b, p_h, h, du0, dv0, w_s = point
     return traction.traction_quadrature(a, b, p_h, h, lub.eyring_stress, lub.model_code,
-                                        lub.rheology_params(), du0, dv0, w_s, *grid)
+                                        lub.rheology_params(), du0, dv0, w_s, grid)
 
 
 def _barus(eta0, alpha):
@@ -32,7 +32,7 @@ def test_newtonian_limit_matches_closed_form():
     # docs/model.md §6.4: Barus, no spin, tau0 -> inf: f = 3 eta0 du [e^s (s-1) + 1]/(h p_h s^2), s = alpha p_h
     a, b, p_h, h, eta0, alpha, du = 2e-4, 1.5e-3, 1.2e9, 2e-7, 0.005, 1.5e-8, 0.01
     model, par = _barus(eta0, alpha)
-    Fx, Fy, Mz, _ = traction.traction_quadrature(a, b, p_h, h, 1e15, model, par, du, 0.0, 0.0, 48, 64)
+    Fx, Fy, Mz, _ = traction.traction_quadrature(a, b, p_h, h, 1e15, model, par, du, 0.0, 0.0, (48, 64))
     W = 2.0 / 3.0 * math.pi * a * b * p_h
     s = alpha * p_h
     f_closed = 3 * eta0 * du * (math.exp(s) * (s - 1) + 1) / (h * p_h * s * s)
@@ -45,7 +45,7 @@ def test_eyring_plateau_matches_closed_form():
     # eta0 du/(tau0 h) >> 1 everywhere (here 100: asinh x - ln 2x < 1/(4x^2) = 2.5e-5)
     a, b, p_h, h, eta0, alpha, du, tau0 = 2e-4, 1.5e-3, 1.0e9, 1e-7, 1.0, 1e-8, 10.0, 1e6
     model, par = _barus(eta0, alpha)
-    Fx, _, _, _ = traction.traction_quadrature(a, b, p_h, h, tau0, model, par, du, 0.0, 0.0, 48, 64)
+    Fx, _, _, _ = traction.traction_quadrature(a, b, p_h, h, tau0, model, par, du, 0.0, 0.0, (48, 64))
     W = 2.0 / 3.0 * math.pi * a * b * p_h
     f_closed = tau0 / (2 * p_h / 3) * math.log(2 * eta0 * du / (tau0 * h)) + alpha * tau0
     assert -Fx / W == pytest.approx(f_closed, rel=1e-5)
@@ -58,7 +58,7 @@ def test_closed_forms_bound_the_eyring_traction_in_every_regime(du):
     a, b, p_h, h, eta0, alpha, tau0 = 2e-4, 1.5e-3, 1.0e9, 2e-7, 0.005, 1e-8, 5e6
     model, par = _barus(eta0, alpha)
     W = 2.0 / 3.0 * math.pi * a * b * p_h
-    f = -traction.traction_quadrature(a, b, p_h, h, tau0, model, par, du, 0.0, 0.0, 48, 64)[0] / W
+    f = -traction.traction_quadrature(a, b, p_h, h, tau0, model, par, du, 0.0, 0.0, (48, 64))[0] / W
     s = alpha * p_h
     newton = 3 * eta0 * du * (math.exp(s) * (s - 1) + 1) / (h * p_h * s * s)
     plateau = tau0 / (2 * p_h / 3) * math.log(2 * eta0 * du / (tau0 * h)) + alpha * tau0
@@ -68,13 +68,13 @@ def test_closed_forms_bound_the_eyring_traction_in_every_regime(du):
 def test_symmetries(o156):
     a, b, p_h, h = 2.5e-4, 2.4e-3, 1.6e9, 2.5e-7
     lub = (o156.eyring_stress, o156.model_code, o156.rheology_params())
-    f = traction.traction_quadrature(a, b, p_h, h, *lub, 0.3, 0.05, 40.0, 32, 128)
-    g = traction.traction_quadrature(a, b, p_h, h, *lub, -0.3, -0.05, -40.0, 32, 128)
+    f = traction.traction_quadrature(a, b, p_h, h, *lub, 0.3, 0.05, 40.0, (32, 128))
+    g = traction.traction_quadrature(a, b, p_h, h, *lub, -0.3, -0.05, -40.0, (32, 128))
     assert np.allclose(f[:3], [-v for v in g[:3]], rtol=1e-12, atol=0)  # odd in the slip state
-    spin = traction.traction_quadrature(a, b, p_h, h, *lub, 0.0, 0.0, 300.0, 32, 128)
+    spin = traction.traction_quadrature(a, b, p_h, h, *lub, 0.0, 0.0, 300.0, (32, 128))
     assert abs(spin[0]) + abs(spin[1]) < 1e-9 * abs(spin[2]) / b  # spin alone: no net force
     assert spin[2] < 0.0  # moment opposes the spin
-    slide = traction.traction_quadrature(a, b, p_h, h, *lub, 0.3, 0.0, 0.0, 32, 128)
+    slide = traction.traction_quadrature(a, b, p_h, h, *lub, 0.3, 0.0, 0.0, (32, 128))
     assert slide[0] < 0.0 and abs(slide[1]) < 1e-12 * abs(slide[0])  # opposes the slip
 
 

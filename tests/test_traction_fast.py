@@ -22,9 +22,9 @@ from bearingsim.dynamics.traction import nodes as traction_nodes
 from bearingsim.dynamics.traction import quadrature as traction
 from bearingsim.dynamics.lubrication.lubricant import load_builtin_lubricant
 from bearingsim.dynamics.traction.fast import (
-    FLAG_NO_CONTACT, FLAG_OK, FLAG_PRESSURE_CLAMPED, FLAG_SLIP_CLAMPED, FLAG_UNVALIDATED, FastTraction, _accumulate,
+    FLAG_NO_CONTACT, FLAG_OK, FLAG_PRESSURE_CLAMPED, FLAG_SLIP_CLAMPED, FLAG_UNVALIDATED, FastTraction,
     _Nodes, _NodeValues, _Slip,
-    _accumulate_force, _accumulate_force_g, _eyring_argument,
+    _accumulate_force_g, _accumulate_response, _eyring_argument, _eyring_response,
     _lerp_eyring_argument32, _slip_and_table_index, _slip_and_table_row32,
     _stress_factor32, _viscosity_lookup, traction_fast,
 )
@@ -54,7 +54,7 @@ def fast(o156):
 def _ref(lub, point, grid=REF_GRID):
     a, b, p_h, h, du0, dv0, w_s = point
     return traction.traction_quadrature(a, b, p_h, h, lub.eyring_stress, lub.model_code,
-                                        lub.rheology_params(), du0, dv0, w_s, *grid)
+                                        lub.rheology_params(), du0, dv0, w_s, grid)
 
 
 def _errors(fast_result, ref, b):
@@ -105,7 +105,7 @@ def _assert_agrees(lub, fast, points, tol_f=TOL_F, tol_m=TOL_M, tol_j=TOL_J):
         worst = np.maximum(worst, _errors(got, ref, point[1]) if any(ref[:3]) else
                            (0.0, 0.0, np.abs(got[1] - ref[3]).max() / np.abs(ref[3]).max()))
         # the time loop's common call: force and moment only, through the float32 passes
-        assert traction_fast(*(float(v) for v in point), rule32, force_only, False) == FLAG_OK
+        assert traction_fast(*(float(v) for v in point), 0.0, rule32, force_only, False) == FLAG_OK
         if any(ref[:3]):
             worst = np.maximum(worst, _errors((force_only[:3], got[1]), ref, point[1]))
         else:
@@ -235,8 +235,8 @@ def test_float32_residual_stays_within_a_millionth_of_tau0_times_the_area(o156, 
     f64, f32 = np.empty(12), np.empty(12)
     worst = np.zeros(2)
     for a, b, p_h, h, du0, dv0, w_s in points:
-        traction_fast(a, b, p_h, h, du0, dv0, w_s, rule64, f64, False)
-        traction_fast(a, b, p_h, h, du0, dv0, w_s, rule32, f32, False)
+        traction_fast(a, b, p_h, h, du0, dv0, w_s, 0.0, rule64, f64, False)
+        traction_fast(a, b, p_h, h, du0, dv0, w_s, 0.0, rule32, f32, False)
         unit = fast.law.tau0 * math.pi * a * b
         dF, dM = math.hypot(f32[0] - f64[0], f32[1] - f64[1]), abs(f32[2] - f64[2])
         worst = np.maximum(worst, (dF / unit, dM / (unit * b)))
@@ -254,7 +254,7 @@ def test_passes_equal_their_py_funcs(o156, fast):
         for twin in (False, True):
             pick = (lambda f: f.py_func) if twin else (lambda f: f)
             work, iwork = fast.workspace()
-            X, Y, W, fi, r, k, x, z, ash = work
+            X, Y, W, fi, r, k, x, z, ash = work[:9]
             n = pick(traction_nodes.place_nodes)(a, b, du0, dv0, w_s, fast.rule, X, Y, W, work[3:8])
             pick(_slip_and_table_index)(X, Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / fast.p_step, fi, r)
             pick(_viscosity_lookup)(fi, n, fast.eta_table, 1.0 / (fast.law.tau0 * h), k)
@@ -262,8 +262,10 @@ def test_passes_equal_their_py_funcs(o156, fast):
             pick(log_array)(z, n, fi, iwork, ash)
             out, force_only = np.empty(12), np.full(12, np.nan)
             nodes, values = _Nodes(X, Y, W), _NodeValues(k, r, x, z, ash)
-            pick(_accumulate)(nodes, values, n, a, b, du0, dv0, w_s, out)
-            pick(_accumulate_force)(nodes, values, n, a, b, du0, dv0, w_s, force_only)
+            g, c = np.empty(n), np.empty(n)
+            pick(_eyring_response)(values, n, True, g, c)
+            pick(_accumulate_response)(nodes, g, c, n, a, b, du0, dv0, w_s, out)
+            pick(_accumulate_force_g)(nodes, g, n, a, b, du0, dv0, w_s, force_only)
             assert np.allclose(force_only[:3], out[:3], rtol=1e-12, atol=1e-15 * np.abs(out[:3]).max())
             assert not force_only[3:].any()
             # the float32 residual passes (py_funcs: math.sqrt of a float32 is a float64 there)
@@ -290,7 +292,9 @@ def test_passes_equal_their_py_funcs(o156, fast):
             dash = np.abs(r32[:n] - r[:n]) / r[:n]
             assert np.all(np.abs(ash32[:n] - ash[:n]) <= 1e-6 * np.maximum(ash[:n], 1.0) + dash)
             force32 = np.empty(12)
-            pick(_accumulate_force)(nodes, _NodeValues(k32, r32, x32, z32, ash32), n, a, b, du0, dv0, w_s, force32)
+            g32 = np.empty(n, dtype=np.float32)
+            pick(_stress_factor32)(k32, r32, x32, ash32, n, g32)
+            pick(_accumulate_force_g)(nodes, g32, n, a, b, du0, dv0, w_s, force32)
             # force scale: the whole area at the largest stress (tau0 = 1 here); moment: times b
             gross = np.pi * a * b * ash[:n].max() * np.array([1.0, 1.0, b])
             assert np.all(np.abs(force32[:3] - out[:3]) <= 1e-6 * gross)
@@ -298,11 +302,11 @@ def test_passes_equal_their_py_funcs(o156, fast):
         # fastmath reassociates the sums in the compiled kernels: agreement to rounding only
         assert np.allclose(results[0], results[1], rtol=1e-9, atol=1e-12 * np.abs(results[1]).max())
         full, residual_only, residual32 = np.empty(12), np.full(12, np.nan), np.full(12, np.nan)
-        traction_fast(a, b, p_h, h, du0, dv0, w_s, fast.traction_rule(), full)
+        traction_fast(a, b, p_h, h, du0, dv0, w_s, 0.0, fast.traction_rule(), full)
         assert np.allclose(full, results[1], rtol=1e-9, atol=1e-12 * np.abs(results[1]).max())
-        traction_fast(a, b, p_h, h, du0, dv0, w_s, fast.traction_rule(), residual_only, False)
+        traction_fast(a, b, p_h, h, du0, dv0, w_s, 0.0, fast.traction_rule(), residual_only, False)
         assert np.allclose(residual_only[:3], full[:3], rtol=1e-12) and not residual_only[3:].any()
-        traction_fast(a, b, p_h, h, du0, dv0, w_s, fast.traction_rule(float32_residual=True), residual32, False)
+        traction_fast(a, b, p_h, h, du0, dv0, w_s, 0.0, fast.traction_rule(float32_residual=True), residual32, False)
         gross = fast.law.tau0 * np.pi * a * b * ash[:n].max() * np.array([1.0, 1.0, b])
         assert np.all(np.abs(residual32[:3] - full[:3]) <= 1e-6 * gross) and not residual32[3:].any()
         assert np.any(residual32[:3] != full[:3])  # the float32 passes did run
@@ -332,7 +336,9 @@ def test_float32_passes_give_the_exact_table_lookup_and_stress_factor(o156, fast
     assert np.array_equal(k[:n], lerp_fma_reference(position, eta_flat32, 1.0 / (fast.law.tau0 * h)))
     log_array32(z, n, fi, iw, ash)
     force, force_g, g = np.empty(12), np.empty(12), np.empty(n, dtype=np.float32)
-    _accumulate_force(_Nodes(X, Y, W), _NodeValues(k, r, x, z, ash), n, a, b, du0, dv0, w_s, force)
+    g64 = np.empty(n)  # the float64 path's g pass, fed the float32 values: g in float32, stored wide
+    _eyring_response(_NodeValues(k, r, x, z, ash), n, False, g64, g64)
+    _accumulate_force_g(_Nodes(X, Y, W), g64, n, a, b, du0, dv0, w_s, force)
     _stress_factor32(k, r, x, ash, n, g)
     _accumulate_force_g(_Nodes(X, Y, W), g, n, a, b, du0, dv0, w_s, force_g)
     assert np.array_equal(force_g, force) and force[:3].any()
@@ -371,7 +377,7 @@ def test_scratch_on_a_cache_line_and_the_same_bits_at_any_offset(o156, fast):
         for i, point in enumerate(points):
             for path, (tr, jacobian) in enumerate(((moved, False), (moved.with_float32_residual(False), True))):
                 out = np.empty(12)
-                traction_fast(*point, tr, out, jacobian)
+                traction_fast(*point, 0.0, tr, out, jacobian)
                 if offset == 0:
                     reference[path][i] = out
                 else:

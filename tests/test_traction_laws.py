@@ -51,7 +51,7 @@ def test_limiting_shear_full_sliding_gives_lambda():
     a, b, p_h, h, eta0, alpha, du = 2e-4, 1.5e-3, 1.0e9, 1e-7, 1000.0, 1e-8, 10.0
     model, par = _barus(eta0, alpha)
     Fx, Fy, Mz, _ = traction.traction_quadrature(a, b, p_h, h, LimitingShear(LAMBDA), model, par,
-                                                 du, 0.0, 0.0, 48, 64)
+                                                 du, 0.0, 0.0, (48, 64))
     W = 2.0 / 3.0 * math.pi * a * b * p_h
     assert -Fx / W == pytest.approx(LAMBDA, rel=1e-12)
     assert abs(Fy) < 1e-12 * abs(Fx) and abs(Mz) < 1e-12 * abs(Fx) * b
@@ -64,7 +64,7 @@ def test_limiting_shear_small_slip_is_newtonian():
     a, b, p_h, h, eta0, alpha, du = 2e-4, 1.5e-3, 1.2e9, 2e-7, 0.005, 1.5e-8, 1e-9
     model, par = _barus(eta0, alpha)
     Fx, _, _, _ = traction.traction_quadrature(a, b, p_h, h, LimitingShear(LAMBDA), model, par,
-                                               du, 0.0, 0.0, 48, 64)
+                                               du, 0.0, 0.0, (48, 64))
     W = 2.0 / 3.0 * math.pi * a * b * p_h
     s = alpha * p_h
     f_closed = 3 * eta0 * du * (math.exp(s) * (s - 1) + 1) / (h * p_h * s * s)
@@ -76,7 +76,7 @@ def test_limiting_shear_jacobian_matches_finite_differences(o156):
     shear, grid = LimitingShear(LAMBDA), (24, 96)
 
     def ref(p):
-        return traction.traction_quadrature(*p[:4], shear, o156.model_code, o156.rheology_params(), *p[4:], *grid)
+        return traction.traction_quadrature(*p[:4], shear, o156.model_code, o156.rheology_params(), *p[4:], grid)
 
     J = ref(point)[3]
     for col in range(3):
@@ -101,7 +101,7 @@ def test_fast_engine_agrees_with_the_quadrature_for_limiting_shear(o156):
         F_eyring = eyring.evaluate(a, b, p_h, h, du0, dv0, w_s)[0]
         apart = max(apart, math.hypot(*(F - F_eyring)[:2]) / math.hypot(*F[:2]))
         Fx, Fy, Mz, Jr = traction.traction_quadrature(a, b, p_h, h, shear, o156.model_code, o156.rheology_params(),
-                                                      du0, dv0, w_s, *REF_GRID)
+                                                      du0, dv0, w_s, REF_GRID)
         scale_F = math.hypot(Fx, Fy)
         eF = math.hypot(F[0] - Fx, F[1] - Fy) / scale_F
         eM = abs(F[2] - Mz) / max(abs(Mz), scale_F * b)

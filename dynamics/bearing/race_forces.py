@@ -230,7 +230,9 @@ def race_contact_forces(ball, race, fp, ip, traction, cbuf, tbuf, carry, h, res,
     acting = ip[IP_TRACTION] != 0
     # traction T = tbuf[0:3] and dT/ds = tbuf[3:12] (row-major), on the ball, by the rule's law
     if acting:
-        res[RC_FLAG] = contact_traction(traction, F_n, a_x, b_y, p_max, h, du0, dv0, w_s, tbuf, want_tangent)
+        # the film's transit speed is the mean surface speed, half the sum speed (`traction.inlet`)
+        res[RC_FLAG] = contact_traction(traction, F_n, a_x, b_y, p_max, h, du0, dv0, w_s, 0.5 * carry[CA_U], tbuf,
+                                        want_tangent)
     else:
         tbuf[:] = 0.0
     _wrenches(res, n, p, x_b, x_r, cbuf, F_n, tbuf, want_tangent)

@@ -38,6 +38,11 @@ class Lubricant:
         metadata={"unit": "degC", "gt": -KELVIN_OFFSET, "doc": "operating (bulk oil) temperature"}
     )
     eyring_stress: float = field(metadata={"unit": "Pa", "gt": 0.0, "doc": "Eyring stress tau0"})
+    elastic_shear_modulus: float = field(
+        default=1.0e9, metadata={"unit": "Pa", "gt": 0.0,
+                                 "doc": "G: the film's limiting elastic shear modulus, which bounds its low-slip "
+                                        "stiffness (docs/model.md §6.4, Film elasticity); 1e30: in effect a purely viscous film"}
+    )
     density: float = field(
         default=900.0, metadata={"unit": "kg/m^3", "gt": 0.0, "doc": "at density_temperature_degC"}
     )

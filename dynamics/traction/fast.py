@@ -59,10 +59,11 @@ import numpy as np
 from numba.extending import overload
 
 from ..lubrication import rheology
+from . import inlet
 from .laws import LAWS, eyring, operations
 from .._speed.aligned import CACHE_LINE, empty_aligned
 from .._speed.compile_policy import KERNEL, NO_REFCOUNT, VEC, VEC_UNFUSED
-from .._speed.simd_math import log_array, log_array32
+from .._speed.simd_math import exp_array, log_array, log_array32
 from .._speed.table_lookup import last_position32, lerp_picked32, pick_rows, split_position32
 from .nodes import max_nodes, pack_rule, place_nodes
 
@@ -75,7 +76,7 @@ SLIP_MAX = 1.0e4  # m/s: |du0|, |dv0|, |w_s| b beyond this are clamped (their sq
 VALIDATED_ASPECT = (0.05, 0.25)  # a/b (a along entrainment) checked in tests
 VALIDATED_P_H = (2.0e8, 3.0e9)  # Pa, maximum Hertz pressure checked in tests
 
-_WORK_ROWS = 9
+_WORK_ROWS = 10
 _WORK32_ROWS = 6  # the residual-only passes' float32 rows: f_index (then log exponents), r, k, x, z, asinh x
 
 
@@ -93,6 +94,7 @@ class TractionRule(NamedTuple):
     eta_flat32: np.ndarray  # eta_table in float32, flattened (the residual-only passes' table)
     float32_residual: bool  # residual-only calls through the float32 passes (module docstring)
     law: Any                # the law's parameter bundle (`traction.laws`: its module's `Params`)
+    shear_modulus: float    # the film's elastic shear modulus G [Pa] (`inlet_elasticity`); inf: viscous
 
     def with_float32_residual(self, on: bool = True) -> "TractionRule":
         """A copy whose residual-only calls take the float32 passes (`on`) or not."""
@@ -103,7 +105,7 @@ def dry_traction_rule(law) -> TractionRule:
     """The rule of a law without film (`law`: its bundle): no table, no nodes, no scratch."""
     return TractionRule(np.zeros((2, 2)), 0.0, np.zeros(1), np.zeros((1, 1)), np.zeros(1, dtype=np.int64),
                         np.zeros((_WORK32_ROWS, 1), dtype=np.float32), np.zeros(1, dtype=np.int32),
-                        np.zeros(4, dtype=np.float32), False, law)
+                        np.zeros(4, dtype=np.float32), False, law, math.inf)
 
 
 class _Nodes(NamedTuple):
@@ -124,6 +126,7 @@ class _Contact(NamedTuple):
     du0: float
     dv0: float
     w_s: float
+    u: float  # mean surface speed along the entrainment [m/s] (0: not known, the film taken as viscous)
 
 
 class _Slip(NamedTuple):
@@ -272,7 +275,7 @@ def _lerp_eyring_argument32(picked, frac, r, n, inv_tau0_h, k, x, z):
 @numba.njit(**VEC)
 def _stress_factor32(k, r, x, ash, n, g):
     """g = `eyring.stress_factor` per node in float32 (tau/tau0 = g s): the float32 part of
-    `_accumulate_force`, in a pass of its own, so that the sums' float64 loop carries no
+    the float64 path's `_eyring_response`, in a pass of its own, so that the sums' float64 loop carries no
     division, selection or conversions of four arrays."""
     for m in range(n):
         g[m] = eyring.stress_factor(k[m], r[m], x[m], ash[m])
@@ -280,8 +283,9 @@ def _stress_factor32(k, r, x, ash, n, g):
 
 @numba.njit(**VEC)
 def _accumulate_force_g(nodes, g, n, a, b, du0, dv0, w_s, out):
-    """`_accumulate_force` from g per node (`_stress_factor32`): out[0:3] = (F_x, F_y, M_z)
-    (tau0 = 1), out[3:12] = 0; the same sums in the same order."""
+    """The force from g per node (`_eyring_response`, `_stress_factor32`): out[0:3] = (F_x, F_y,
+    M_z) (tau0 = 1), out[3:12] = 0 (a residual-only call needs no d tau/d s); the sums of
+    `_accumulate_response` in the same order."""
     X, Y, W = nodes.X, nodes.Y, nodes.W
     Fx = Fy = Mz = 0.0
     for m in range(n):
@@ -293,67 +297,16 @@ def _accumulate_force_g(nodes, g, n, a, b, du0, dv0, w_s, out):
 
 
 @numba.njit(**VEC)
-def _accumulate(nodes, values, n, a, b, du0, dv0, w_s, out):
-    """Sum tau = g s over the nodes into out[0:3] and its Jacobian into out[3:12] (tau0 = 1):
-    g = `eyring.stress_factor`, c = `eyring.stress_slope`, d tau/d s = g I + c s s^T."""
-    X, Y, W = nodes.X, nodes.Y, nodes.W
+def _eyring_response(values, n, jacobian, g, c):
+    """(g, c) of the Eyring law at every node from its values (`_NodeValues`): g =
+    `eyring.stress_factor`, and c = `eyring.stress_slope` when jacobian (tau0 = 1; tau = g s,
+    d tau/d s = g I + c s s^T)."""
     k, r, x, z, ash = values.k, values.r, values.x, values.z, values.ash
-    Fx = Fy = Mz = 0.0
-    j00 = j01 = j02 = j11 = j12 = j20 = j21 = j22 = 0.0
     for m in range(n):
-        xp, yp, sx, sy = _node_slip(X, Y, m, a, b, du0, dv0, w_s)
-        xm = x[m]
-        g = eyring.stress_factor(k[m], r[m], xm, ash[m])
-        c = eyring.stress_slope(k[m], r[m], xm, z[m] - xm, ash[m])
-        wgt = W[m]
-        tx = g * sx
-        ty = g * sy
-        axx = g + c * sx * sx
-        axy = c * sx * sy
-        ayy = g + c * sy * sy
-        dtx_dw = -axx * yp + axy * xp
-        dty_dw = -axy * yp + ayy * xp
-        Fx -= wgt * tx
-        Fy -= wgt * ty
-        Mz -= wgt * (xp * ty - yp * tx)
-        j00 -= wgt * axx
-        j01 -= wgt * axy
-        j02 -= wgt * dtx_dw
-        j11 -= wgt * ayy
-        j12 -= wgt * dty_dw
-        j20 -= wgt * (xp * axy - yp * axx)
-        j21 -= wgt * (xp * ayy - yp * axy)
-        j22 -= wgt * (xp * dty_dw - yp * dtx_dw)
-    out[0] = Fx
-    out[1] = Fy
-    out[2] = Mz
-    out[3] = j00
-    out[4] = j01
-    out[5] = j02
-    out[6] = j01  # d F_y / d du0 = d F_x / d dv0: d tau/d s is symmetric
-    out[7] = j11
-    out[8] = j12
-    out[9] = j20
-    out[10] = j21
-    out[11] = j22
-
-
-@numba.njit(**VEC)
-def _accumulate_force(nodes, values, n, a, b, du0, dv0, w_s, out):
-    """`_accumulate` without the Jacobian: out[0:3] = (F_x, F_y, M_z) (tau0 = 1), out[3:12] = 0.
-
-    A residual-only evaluation needs no d tau/d s: skipping it saves one division and two
-    thirds of the arithmetic per node."""
-    X, Y, W = nodes.X, nodes.Y, nodes.W
-    k, r, x, ash = values.k, values.r, values.x, values.ash
-    Fx = Fy = Mz = 0.0
-    for m in range(n):
-        g = eyring.stress_factor(k[m], r[m], x[m], ash[m])
-        fx, fy, mz = _node_force(X, Y, W, m, g, a, b, du0, dv0, w_s)
-        Fx -= fx
-        Fy -= fy
-        Mz -= mz
-    _store_force(out, Fx, Fy, Mz)
+        g[m] = eyring.stress_factor(k[m], r[m], x[m], ash[m])
+    if jacobian:
+        for m in range(n):
+            c[m] = eyring.stress_slope(k[m], r[m], x[m], z[m] - x[m], ash[m])
 
 
 @numba.njit(**VEC)
@@ -367,7 +320,7 @@ def _law_response(law, k, r, n, g, c):
 @numba.njit(**VEC)
 def _accumulate_response(nodes, g, c, n, a, b, du0, dv0, w_s, out):
     """Sum tau = g s over the nodes into out[0:3] and its Jacobian, from d tau/d s = g I + c s s^T,
-    into out[3:12] (stress scale 1): the sums of `_accumulate` for any film law."""
+    into out[3:12] (stress scale 1), for any film law."""
     X, Y, W = nodes.X, nodes.Y, nodes.W
     Fx = Fy = Mz = 0.0
     j00 = j01 = j02 = j11 = j12 = j20 = j21 = j22 = 0.0
@@ -396,13 +349,27 @@ def _accumulate_response(nodes, g, c, n, a, b, du0, dv0, w_s, out):
 
 
 @numba.njit(**NO_REFCOUNT)
-def traction_fast(a, b, p_h, h, du0, dv0, w_s, tr, out, jacobian=True):
+def _inlet_elasticity(tr, nodes, n, contact, stress, jacobian, g, c, rows):
+    """The film's inlet elasticity on the nodes' (g, c) in place (`traction.inlet`), when it acts
+    (a finite shear modulus and a mean speed u > 0); stress: the law's stress scale [Pa]; rows:
+    three free float64 scratch rows (-y, e^-y, exp's mantissa); tr.iwork must be free."""
+    scale = inlet.inlet_scale(tr.shear_modulus, contact.a, contact.u, stress, contact.h)
+    if scale < math.inf:
+        minus_y, e, mantissa = rows
+        inlet.exponents(nodes.X, nodes.Y, g, n, scale, minus_y)
+        exp_array(minus_y, n, mantissa, tr.iwork, e)
+        inlet.apply(minus_y, e, n, jacobian, g, c)
+
+
+@numba.njit(**NO_REFCOUNT)
+def traction_fast(a, b, p_h, h, du0, dv0, w_s, u, tr, out, jacobian=True):
     """Film traction on the ball by pole-centred quadrature (docs/model.md §6.4, M.72–M.74).
 
     a, b [m] Hertz semi-axes (x = entrainment), p_h [Pa], h [m] central film, du0, dv0 [m/s]
     sliding velocity ball - race at the centre, w_s [rad/s] spin (ball - race, along the
-    normal); tr: the `TractionRule` (viscosity table, the law's bundle, quadrature rule,
-    scratch). Writes out[0:3] = (F_x [N], F_y [N], M_z [N.m]) and out[3:12] =
+    normal), u [m/s] the mean surface speed along the entrainment (the film's transit, for its
+    inlet elasticity, `traction.inlet`; 0: the viscous law alone); tr: the `TractionRule`
+    (viscosity table, the law's bundle, the film's shear modulus, quadrature rule, scratch). Writes out[0:3] = (F_x [N], F_y [N], M_z [N.m]) and out[3:12] =
     d(F_x, F_y, M_z)/d(du0, dv0, w_s) row-major (zeros when jacobian is False: a
     residual-only evaluation, ~20 % cheaper); returns the flag bits (FLAG_*).
     """
@@ -426,7 +393,7 @@ def traction_fast(a, b, p_h, h, du0, dv0, w_s, tr, out, jacobian=True):
     work = tr.work
     nodes = _Nodes(work[0], work[1], work[2])
     n = place_nodes(a, b, du0, dv0, w_s, tr.rule, nodes.X, nodes.Y, nodes.W, work[3:8])
-    _film_passes(tr.law, tr, nodes, n, _Contact(a, b, p_h, h, du0, dv0, w_s), out, jacobian)
+    _film_passes(tr.law, tr, nodes, n, _Contact(a, b, p_h, h, du0, dv0, w_s, u), out, jacobian)
     return flag
 
 
@@ -444,13 +411,14 @@ def _film_passes_of(law, tr, nodes, n, contact, out, jacobian):
 @numba.njit(**NO_REFCOUNT)
 def _general_passes(tr, nodes, n, contact, out, jacobian):
     """Any film law: one float64 pass of its response (`operations.response`) per node."""
-    a, b, p_h, h, du0, dv0, w_s = contact
+    a, b, p_h, h, du0, dv0, w_s, u = contact
     stress = operations.stress_scale(tr.law, p_h)
     work = tr.work
     f_index, r, k, g, c = work[3], work[4], work[5], work[6], work[7]
     _slip_and_table_index(nodes.X, nodes.Y, n, a, b, p_h, du0, dv0, w_s, 1.0 / tr.p_step, f_index, r)
     _viscosity_lookup(f_index, n, tr.eta_table, 1.0 / (stress * h), k)
     _law_response(tr.law, k, r, n, g, c)
+    _inlet_elasticity(tr, nodes, n, contact, stress, True, g, c, (work[3], work[4], work[5]))
     _accumulate_response(nodes, g, c, n, a, b, du0, dv0, w_s, out)
     for m in range(12):
         out[m] = out[m] * stress if (jacobian or m < 3) else 0.0
@@ -460,7 +428,7 @@ def _general_passes(tr, nodes, n, contact, out, jacobian):
 def _eyring_passes(tr, nodes, n, contact, out, jacobian):
     """The Eyring law's passes: float32 node values for a residual-only call of a rule with
     `float32_residual` (module docstring), float64 otherwise."""
-    a, b, p_h, h, du0, dv0, w_s = contact
+    a, b, p_h, h, du0, dv0, w_s, u = contact
     tau0 = eyring.stress_scale(tr.law, p_h)
     if tr.float32_residual and not jacobian:  # the node values in float32 (module docstring)
         w32 = tr.work32
@@ -475,6 +443,8 @@ def _eyring_passes(tr, nodes, n, contact, out, jacobian):
                                 values32.z)
         log_array32(values32.z, n, w32[0], tr.iwork32, values32.ash)  # row 0 is spent: the exponents
         _stress_factor32(values32.k, values32.r, values32.x, values32.ash, n, w32[0])  # and now g
+        work = tr.work  # its rows past the nodes are free here
+        _inlet_elasticity(tr, nodes, n, contact, tau0, False, w32[0], w32[0], (work[3], work[4], work[5]))
         _accumulate_force_g(nodes, w32[0], n, a, b, du0, dv0, w_s, out)
         for m in range(3):
             out[m] *= tau0
@@ -486,16 +456,19 @@ def _eyring_passes(tr, nodes, n, contact, out, jacobian):
     _viscosity_lookup(f_index, n, tr.eta_table, 1.0 / (tau0 * h), values.k)
     _eyring_argument(values.k, values.r, n, values.x, values.z)
     log_array(values.z, n, f_index, tr.iwork, values.ash)  # f_index is spent: reuse it for the exponents
+    g, c = work[3], work[9]  # f_index spent again: g
+    _eyring_response(values, n, jacobian, g, c)
+    _inlet_elasticity(tr, nodes, n, contact, tau0, jacobian, g, c, (work[4], work[5], work[6]))  # r, k, x spent
     if jacobian:
-        _accumulate(nodes, values, n, a, b, du0, dv0, w_s, out)
+        _accumulate_response(nodes, g, c, n, a, b, du0, dv0, w_s, out)
     else:
-        _accumulate_force(nodes, values, n, a, b, du0, dv0, w_s, out)
+        _accumulate_force_g(nodes, g, n, a, b, du0, dv0, w_s, out)
     for m in range(12):
         out[m] *= tau0
 
 
 @numba.njit(**KERNEL)
-def traction_fast_batch(a, b, p_h, h, du0, dv0, w_s, tr, F, J, flags):
+def traction_fast_batch(a, b, p_h, h, du0, dv0, w_s, u, tr, F, J, flags):
     """traction_fast over n contacts: inputs (n,) arrays (units as traction_fast), one rule.
 
     Writes F[i] = (F_x, F_y, M_z) [N, N, N.m], J[i] = d(F_x, F_y, M_z)/d(du0, dv0, w_s)
@@ -503,7 +476,7 @@ def traction_fast_batch(a, b, p_h, h, du0, dv0, w_s, tr, F, J, flags):
     """
     out = np.empty(12)
     for i in range(a.shape[0]):
-        flags[i] = traction_fast(a[i], b[i], p_h[i], h[i], du0[i], dv0[i], w_s[i], tr, out)
+        flags[i] = traction_fast(a[i], b[i], p_h[i], h[i], du0[i], dv0[i], w_s[i], u[i], tr, out)
         for c in range(3):
             F[i, c] = out[c]
             for d in range(3):
@@ -523,6 +496,7 @@ class FastTraction:
     p_step: float  # [Pa]
     rule: np.ndarray  # packed quadrature rule, `traction_nodes.pack_rule`
     law: Any  # the film law's bundle (`traction.laws`); the lubricant's Eyring law unless `with_law`
+    shear_modulus: float = math.inf  # the film's elastic shear modulus G [Pa] (`traction.inlet`)
 
     def with_law(self, law) -> "FastTraction":
         """The same table and rule for another film law, given by its bundle (`LAWS.pack`)."""
@@ -567,6 +541,7 @@ class FastTraction:
         table = np.ascontiguousarray(np.stack([eta, np.append(np.diff(eta), 0.0)], axis=1))
         return cls(eta_table=table, p_step=float(p[1] - p[0]),
                    law=eyring.Eyring(float(lubricant.eyring_stress)),
+                   shear_modulus=float(lubricant.elastic_shear_modulus),
                    rule=pack_rule(n_radial, tuple(n_angle), tuple(n_cone), tuple(n_far), float(far_ratio),
                                   tuple(edge), float(centre)))
 
@@ -599,19 +574,22 @@ class FastTraction:
         differences amplify, so only for callers with an analytic tangent (the time loop)
         (`TractionRule.with_float32_residual`)."""
         rule = TractionRule(self.eta_table, self.p_step, self.rule, *self.workspace(), *self.workspace32(),
-                            self.eta_table.astype(np.float32).ravel(), False, self.law)
+                            self.eta_table.astype(np.float32).ravel(), False, self.law, self.shear_modulus)
         return rule.with_float32_residual(float32_residual)
 
-    def evaluate(self, a, b, p_h, h, du0, dv0, w_s) -> tuple[np.ndarray, np.ndarray, int]:
-        """(F = [F_x, F_y, M_z], J[3, 3], flag) on the ball; units as traction_fast."""
+    def evaluate(self, a, b, p_h, h, du0, dv0, w_s, u=0.0) -> tuple[np.ndarray, np.ndarray, int]:
+        """(F = [F_x, F_y, M_z], J[3, 3], flag) on the ball; units as traction_fast (u = 0: the
+        viscous law alone, without the film's inlet elasticity)."""
         out = np.empty(12)
         flag = traction_fast(float(a), float(b), float(p_h), float(h), float(du0), float(dv0), float(w_s),
-                             self.traction_rule(), out)
+                             float(u), self.traction_rule(), out)
         return out[:3].copy(), out[3:].reshape(3, 3).copy(), int(flag)
 
-    def evaluate_batch(self, a, b, p_h, h, du0, dv0, w_s) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """(F (n, 3), J (n, 3, 3), flags (n,)) for arrays of n contacts; units as traction_fast."""
-        cols = [np.ascontiguousarray(np.atleast_1d(v), dtype=np.float64) for v in (a, b, p_h, h, du0, dv0, w_s)]
+    def evaluate_batch(self, a, b, p_h, h, du0, dv0, w_s, u=0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(F (n, 3), J (n, 3, 3), flags (n,)) for arrays of n contacts; units as traction_fast
+        (u: one speed for all, or one per contact)."""
+        u = np.broadcast_to(np.asarray(u, dtype=np.float64), np.shape(np.atleast_1d(a)))
+        cols = [np.ascontiguousarray(np.atleast_1d(v), dtype=np.float64) for v in (a, b, p_h, h, du0, dv0, w_s, u)]
         n = cols[0].shape[0]
         if any(c.shape != (n,) for c in cols):
             raise ValueError(f"evaluate_batch: all inputs must be 1-D of one length; got shapes {[c.shape for c in cols]}.")

@@ -36,10 +36,11 @@ import numpy as np
 
 from .._speed.compile_policy import KERNEL
 from ..lubrication import rheology
+from . import inlet
 from .laws import eyring, operations
 
 @numba.njit(**KERNEL)
-def traction_on_grid(a, b, h, tau0, du0, dv0, w_s, eta_u, grid, law):
+def traction_on_grid(a, b, h, tau0, du0, dv0, w_s, eta_u, grid, law, inlet_scale=math.inf):
     """Traction force, spin moment and Jacobian on a polar quadrature grid (docs/model.md §6.4).
 
     a, b [m] semi-axes (x = entrainment), h [m] film, tau0 [Pa] the law's stress scale (the
@@ -47,8 +48,9 @@ def traction_on_grid(a, b, h, tau0, du0, dv0, w_s, eta_u, grid, law):
     race) at the centre, w_s [rad/s] spin, law: a film law's bundle (`laws`). eta_u[i] =
     eta(p_h u_i) [Pa.s]; grid = (u_weight, cos_t, sin_t, rho_u), contiguous float64:
     u_weight[i] = w_i u_i (Gauss weight times the Jacobian u), cos_t/sin_t of the uniform
-    angles, rho_u[i] = sqrt(1 - u_i^2). Returns (F_x, F_y, M_z, J) with F [N], M_z [N.m] on
-    the ball and J[3, 3] = d(F_x, F_y, M_z)/d(du0, dv0, w_s).
+    angles, rho_u[i] = sqrt(1 - u_i^2); inlet_scale [s/m]: the film's inlet elasticity
+    (`traction.inlet.inlet_scale`; inf: the viscous law alone). Returns (F_x, F_y, M_z, J) with
+    F [N], M_z [N.m] on the ball and J[3, 3] = d(F_x, F_y, M_z)/d(du0, dv0, w_s).
     """
     u_weight, cos_t, sin_t, rho_u = grid
     n_t = cos_t.shape[0]
@@ -67,6 +69,10 @@ def traction_on_grid(a, b, h, tau0, du0, dv0, w_s, eta_u, grid, law):
             sy = dv0 + w_s * x
             r = math.sqrt(sx * sx + sy * sy)
             g, c = operations.response(law, k, r)
+            if inlet_scale < math.inf:
+                exponent = inlet_scale * inlet.travel(rho_u[i] * cos_t[j], rho_u[i] * sin_t[j]) / max(g, inlet.G_FLOOR)
+                fg, fc = inlet.factors(exponent, math.exp(-exponent))
+                g, c = g * fg, c * fc
             tx = g * sx
             ty = g * sy
             Fx -= wi * tx
@@ -106,17 +112,21 @@ def quadrature_grid(n_u: int, n_theta: int) -> tuple[np.ndarray, np.ndarray, np.
 
 def traction_quadrature(
     a: float, b: float, p_h: float, h: float, shear, model: int, params: np.ndarray,
-    du0: float, dv0: float, w_s: float, n_u: int = 48, n_theta: int = 256,
+    du0: float, dv0: float, w_s: float, grid: tuple[int, int] = (48, 256),
+    elastic: tuple[float, float] = (math.inf, 0.0),
 ) -> tuple[float, float, float, np.ndarray]:
     """Reference traction (F_x [N], F_y [N], M_z [N.m], J[3,3]) on the ball (docs/model.md §6.4).
 
     a, b [m], p_h [Pa] maximum Hertz pressure, h [m] central film; shear: the Eyring stress
     tau0 [Pa] of the Eyring law, or the bundle of any film law of `laws`; rheology `model`/`params` from `Lubricant.model_code` /
-    `rheology_params()`, du0, dv0 [m/s], w_s [rad/s]. The default grid (48 x 256) is converged
+    `rheology_params()`, du0, dv0 [m/s], w_s [rad/s]; grid = (n_u, n_theta); elastic = (G [Pa],
+    u [m/s]): the film's shear modulus and mean surface speed for its inlet elasticity
+    (`traction.inlet`; the default, the viscous law alone). The default grid (48 x 256) is converged
     to < 1e-4 relative over the operating range of the reference scene (tests/test_traction.py).
     """
     law = eyring.Eyring(float(shear)) if np.ndim(shear) == 0 else shear
-    u, u_weight, rho_u, cos_t, sin_t = quadrature_grid(n_u, n_theta)
+    u, u_weight, rho_u, cos_t, sin_t = quadrature_grid(*grid)
     eta_u = rheology.viscosity_array(p_h * u, model, params)
     stress = operations.stress_scale(law, p_h)
-    return traction_on_grid(a, b, h, stress, du0, dv0, w_s, eta_u, (u_weight, cos_t, sin_t, rho_u), law)
+    scale = inlet.inlet_scale(float(elastic[0]), a, float(elastic[1]), stress, h)
+    return traction_on_grid(a, b, h, stress, du0, dv0, w_s, eta_u, (u_weight, cos_t, sin_t, rho_u), law, scale)

@@ -413,7 +413,8 @@ def _lubricant_plausibility(scene) -> list[Finding]:
         ("eyring_stress", 1e5, 1e8, "Pa", "esters: 2e6 .. 1e7 Pa", "Pa, not MPa"),
         ("density", 500.0, 2000.0, "kg/m^3", "oils: 800 .. 1100 kg/m^3", "kg/m^3, not g/cm^3"),
         ("ambient_viscosity", 1e-4, 10.0, "Pa s", "oils at 40 degC: 0.005 .. 0.5 Pa s", "Pa s, not mPa s or cP"),
-        ("pressure_viscosity_coefficient", 1e-10, 1e-7, "1/Pa", "oils: 1e-8 .. 3e-8 1/Pa", "1/Pa, not 1/GPa")))
+        ("pressure_viscosity_coefficient", 1e-10, 1e-7, "1/Pa", "oils: 1e-8 .. 3e-8 1/Pa", "1/Pa, not 1/GPa"),
+        ("elastic_shear_modulus", 1e7, 1e11, "Pa", "oils at 1-2 GPa: measured 0.1 .. 1 GPa", "Pa, not GPa")))
 
 
 def _unit_slips(section: str, values, checks) -> list[Finding]:

@@ -109,28 +109,31 @@ def compile_dynamic_kernels(scene: Scene, params, start) -> None:
     load_kernels(params, start, scene.solver)
 
 
+# Pa: ten times the largest elastic shear modulus measured for an oil film (docs/model.md §6.4)
+STIFF_FILM = 1.0e10
+
+
 def _lubricant_cause(scene: Scene, exc: RuntimeError) -> RuntimeError:
-    """A Newton failure of a run whose film follows the Barus law, told as the lubricant's
-    (docs/model.md §6.4, *Barus at contact pressures*): eta0 exp(alpha p) puts 1e7-1e12 Pa.s over
-    most of a contact above about 1 GPa, where the Eyring traction acts as dry friction with no slip
-    scale; the same oil as Roelands (same eta0 and alpha*) runs where the contacts slip or spin, the
-    solver keys do not help. A nearly pure-rolling contact without spin stops with any law."""
+    """A Newton failure of a run whose film is stiffer than any measured one
+    (`lubricant.elastic_shear_modulus` above STIFF_FILM), told as the lubricant's (docs/model.md
+    §6.4, *Film elasticity*): a film of 1e7-1e12
+    Pa.s (Barus or any law above about 1.5 GPa) then resists slip as dry friction with no slip
+    scale, which Newton cannot follow, and the solver keys do not help; the film's elasticity
+    bounds that stiffness."""
     from ...dynamics.multibody import IntegrationError
 
     lub = scene.lubricant
-    if not isinstance(exc, IntegrationError) or lub is None or lub.viscosity_model != "barus" \
+    if not isinstance(exc, IntegrationError) or lub is None or lub.elastic_shear_modulus <= STIFF_FILM \
             or not exc.reason.startswith("Newton"):
         return exc
-    z = lub.as_roelands().roelands_z
     # a reason of its own, so that `console.explain` keeps this hint instead of the solver's
-    return IntegrationError(exc.t, exc.h, f"with a Barus lubricant, {exc.reason[:1].lower()}{exc.reason[1:]}", (
-        f"the lubricant first: lubricant.viscosity_model = 'barus' gives eta0 exp(alpha p) = "
-        f"{lub.viscosity(1.0e9):.3g} Pa.s at 1 GPa and {lub.viscosity(1.5e9):.3g} Pa.s at 1.5 GPa, where the "
-        f"Eyring film traction acts as dry friction that Newton cannot follow; the solver keys do not help. Use "
-        f"lubricant.viscosity_model = 'roelands' with lubricant.roelands_z = {z:.3g} (the same eta0 and alpha*), "
-        f"or a built-in oil (lubricant.name; bearingsim lubricants). Contacts that roll with almost no "
-        f"slip and no spin (a deep-groove bearing under radial load) can stop so with any viscosity law; "
-        f"physics.traction = 'coulomb' runs them (docs/validation.md §15.3)"))
+    return IntegrationError(exc.t, exc.h, f"with a film that stiff, {exc.reason[:1].lower()}{exc.reason[1:]}", (
+        f"the lubricant first: lubricant.elastic_shear_modulus = {lub.elastic_shear_modulus:.3g} Pa leaves the "
+        f"film's low-slip stiffness as its viscosity makes it ({lub.viscosity(1.5e9):.3g} Pa.s at 1.5 GPa), "
+        f"and near-pure rolling then acts as dry "
+        f"friction that Newton cannot follow; the solver keys do not help. Give "
+        f"lubricant.elastic_shear_modulus a finite value (measured 1e8 .. 1e9 Pa; the default is 1e9), or "
+        f"physics.traction = 'coulomb' (docs/model.md §6.4)"))
 
 
 def compute(ctx: StageContext) -> dict:

@@ -161,8 +161,13 @@ def test_an_index_naming_a_module_this_process_cannot_import_is_removed(tmp_path
                      b"\x94\x8c\x03Law\x94\x93\x94.")
     kept = cache / "kept.nbi"
     kept.write_bytes(pickle.dumps(1, protocol=4) + pickle.dumps(json.JSONDecoder, protocol=4))
+    import numba  # a numba type's pickle at every protocol names importable modules only
+    for protocol in range(pickle.HIGHEST_PROTOCOL + 1):
+        (cache / f"numba-{protocol}.nbc").write_bytes(pickle.dumps((numba.float64, {"k": json.JSONDecoder}),
+                                                                   protocol=protocol))
     old = cache / "old.nbc"
     old.write_bytes(b"cgone_module\nThing\np0\n.")
     notes = check_cache(cache)
     assert not gone.exists() and not old.exists() and kept.exists()
+    assert len(list(cache.glob("numba-*.nbc"))) == pickle.HIGHEST_PROTOCOL + 1
     assert len(notes) == 1 and "numba cannot load here" in notes[0] and "not importable" in notes[0]

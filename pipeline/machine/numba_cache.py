@@ -116,20 +116,37 @@ def whole_pickles(data: bytes) -> bool:
     return _read_pickles(data) is not None
 
 
+_STRING_OPS = {"SHORT_BINUNICODE", "BINUNICODE", "BINUNICODE8", "UNICODE", "SHORT_BINSTRING", "BINSTRING", "STRING"}
+_MEMO_PUT_OPS = {"PUT", "BINPUT", "LONG_BINPUT", "MEMOIZE"}
+_MEMO_GET_OPS = {"GET", "BINGET", "LONG_BINGET"}
+_PYTHON2_NAMES = {"__builtin__": "builtins", "copy_reg": "copyreg"}
+
+
 def _read_pickles(data: bytes) -> set[str] | None:
-    """The modules the pickles of `data` name (GLOBAL, STACK_GLOBAL), read opcode by opcode
-    without building any object; None when `data` is not one or more complete pickles."""
+    """The modules the pickles of `data` name (GLOBAL, and STACK_GLOBAL's module string, pushed
+    as a literal or fetched from the memo), read opcode by opcode without building any object;
+    None when `data` is not one or more complete pickles."""
     stream = io.BytesIO(data)
-    modules, strings = set(), []
+    modules: set[str] = set()
     try:
         while stream.tell() < len(data):
+            memo: dict[int, object] = {}
+            pushed: list[object] = [None, None]  # the last two values pushed (a string, or None)
             for opcode, arg, _ in pickletools.genops(stream):
-                if opcode.name == "GLOBAL":
+                name = opcode.name
+                if name == "GLOBAL":
                     modules.add(str(arg).split(" ")[0])
-                elif opcode.name == "STACK_GLOBAL" and len(strings) >= 2:
-                    modules.add(strings[-2])
-                elif isinstance(arg, str):
-                    strings = (strings + [arg])[-2:]
+                    pushed = [pushed[-1], None]
+                elif name == "STACK_GLOBAL":
+                    if isinstance(pushed[-2], str):
+                        modules.add(pushed[-2])
+                    pushed = [None, None]
+                elif name in _MEMO_PUT_OPS:
+                    memo[len(memo) if name == "MEMOIZE" else arg] = pushed[-1]
+                elif name in _MEMO_GET_OPS:
+                    pushed = [pushed[-1], memo.get(arg)]
+                elif name not in ("FRAME", "PROTO"):
+                    pushed = [pushed[-1], arg if name in _STRING_OPS else None]
     except Exception:  # noqa: BLE001 - any way the bytes fail to read as pickles
         return None
     return modules if len(data) > 0 else None
@@ -139,7 +156,8 @@ def _importable(module: str, known: dict[str, bool]) -> bool:
     """Whether this process can import `module` (without importing it), memoised in `known`."""
     if module not in known:
         try:
-            known[module] = importlib.util.find_spec(module) is not None
+            # protocols 0-2 name Python 2's modules, which the unpickler maps to these
+            known[module] = importlib.util.find_spec(_PYTHON2_NAMES.get(module, module)) is not None
         except (ImportError, ValueError):  # a parent package that is not there
             known[module] = False
     return known[module]

@@ -62,8 +62,13 @@ def orbit_figure(scene, simulate_dir: Path, summary: dict | None = None):
     if verdict:
         title += f"\n{verdict_label(summary)}"
     return cage_orbit_figure(series["cage/position"].data, clearance, title, t=t, settled_from=start,
-                             film_factor=1.0 + land_boundary(scene) if clearance else None,
+                             film_factor=1.0 + land_boundary(scene) if clearance and not _ball_guided(scene) else None,
                              sector_deg=verdict.get("sector_deg"), thinnest=thinnest)
+
+
+def _ball_guided(scene) -> bool:
+    """A cage carried by its pockets alone: no land, so no land film to draw."""
+    return scene.cage is not None and scene.cage.guidance == "ball"
 
 
 def verdict_label(summary: dict | None) -> str:

@@ -6,7 +6,9 @@ about vector widths and precision; the law comes from `dynamics.traction.laws`, 
 law, the default, has passes of its own (below) that call the law's node functions
 (`laws.eyring.argument`, `stress_factor`, `stress_slope`) in float64 or float32; every other
 film law runs through one float64 pass of its response (`laws.operations.response`) per node
-(`_law_response`).
+(`_law_response`). Every law's node values then pass through the film's inlet elasticity
+(`traction.inlet`, `_inlet_elasticity`) when the rule has a finite shear modulus and the contact a
+mean speed u > 0.
 
 Same physics and sign convention as `dynamics.traction.quadrature` (force and spin moment ON THE BALL,
 Jacobian d(F_x, F_y, M_z)/d(du0, dv0, w_s)); the nodes come from `dynamics.traction.nodes`

@@ -15,7 +15,7 @@ import textwrap
 
 import pytest
 
-from bearingsim.pipeline.machine.numba_cache import CHECKED_FILE, check_cache, whole_pickles
+from bearingsim.pipeline.machine.numba_cache import CHECKED_FILE, check_cache, pickled_modules
 
 KERNEL = textwrap.dedent("""
     import numba
@@ -104,10 +104,12 @@ def test_a_users_own_numba_cache_dir_is_not_touched(tmp_path):
     assert f"{cache} (NUMBA_CACHE_DIR)" in notes[0] and data.name in notes[0] and "delete" in notes[0]
 
 
-def test_whole_pickles_reads_numba_s_index_layout():
+def test_pickled_modules_reads_numba_s_index_layout():
+    """Whole pickles give their modules (a set), anything else None."""
     index = pickle.dumps("0.68") + pickle.dumps(("stamp", {"key": "name"}))  # numba: version, then data
-    assert whole_pickles(index) and whole_pickles(pickle.dumps(list(range(1000))))
-    assert not whole_pickles(index[:-3]) and not whole_pickles(b"") and not whole_pickles(b"\x37garbage")
+    assert pickled_modules(index) is not None and pickled_modules(pickle.dumps(list(range(1000)))) is not None
+    assert pickled_modules(index[:-3]) is None and pickled_modules(b"") is None
+    assert pickled_modules(b"\x37garbage") is None
 
 
 def test_the_cli_names_the_cache_when_numba_fails_on_it(monkeypatch, tmp_path):

@@ -413,7 +413,7 @@ def _film_passes_of(law, tr, nodes, n, contact, out, jacobian):
 @numba.njit(**NO_REFCOUNT)
 def _general_passes(tr, nodes, n, contact, out, jacobian):
     """Any film law: one float64 pass of its response (`operations.response`) per node."""
-    a, b, p_h, h, du0, dv0, w_s, u = contact
+    a, b, p_h, h, du0, dv0, w_s, _ = contact  # u: read by `_inlet_elasticity`
     stress = operations.stress_scale(tr.law, p_h)
     work = tr.work
     f_index, r, k, g, c = work[3], work[4], work[5], work[6], work[7]
@@ -430,7 +430,7 @@ def _general_passes(tr, nodes, n, contact, out, jacobian):
 def _eyring_passes(tr, nodes, n, contact, out, jacobian):
     """The Eyring law's passes: float32 node values for a residual-only call of a rule with
     `float32_residual` (module docstring), float64 otherwise."""
-    a, b, p_h, h, du0, dv0, w_s, u = contact
+    a, b, p_h, h, du0, dv0, w_s, _ = contact  # u: read by `_inlet_elasticity`
     tau0 = eyring.stress_scale(tr.law, p_h)
     if tr.float32_residual and not jacobian:  # the node values in float32 (module docstring)
         w32 = tr.work32

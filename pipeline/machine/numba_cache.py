@@ -110,22 +110,16 @@ def cache_notes() -> list[str]:
     return out
 
 
-def whole_pickles(data: bytes) -> bool:
-    """True when `data` is one or more complete pickles (numba's index holds two), read opcode by
-    opcode without building any object."""
-    return _read_pickles(data) is not None
-
-
 _STRING_OPS = {"SHORT_BINUNICODE", "BINUNICODE", "BINUNICODE8", "UNICODE", "SHORT_BINSTRING", "BINSTRING", "STRING"}
 _MEMO_PUT_OPS = {"PUT", "BINPUT", "LONG_BINPUT", "MEMOIZE"}
 _MEMO_GET_OPS = {"GET", "BINGET", "LONG_BINGET"}
 _PYTHON2_NAMES = {"__builtin__": "builtins", "copy_reg": "copyreg"}
 
 
-def _read_pickles(data: bytes) -> set[str] | None:
+def pickled_modules(data: bytes) -> set[str] | None:
     """The modules the pickles of `data` name (GLOBAL, and STACK_GLOBAL's module string, pushed
     as a literal or fetched from the memo), read opcode by opcode without building any object;
-    None when `data` is not one or more complete pickles."""
+    None when `data` is not one or more complete pickles (numba's index holds two)."""
     stream = io.BytesIO(data)
     modules: set[str] = set()
     try:
@@ -167,7 +161,7 @@ def _loadable(data: bytes, known: dict[str, bool]) -> bool:
     """Whole pickles whose every module this process can import: numba loads a file that names
     one it cannot (a contact law registered from a module not on the path now, a test's toy law)
     with ModuleNotFoundError, which stops every run that reads that kernel's index."""
-    modules = _read_pickles(data)
+    modules = pickled_modules(data)
     return modules is not None and all(_importable(m, known) for m in modules)
 
 

@@ -116,10 +116,9 @@ STIFF_FILM = 1.0e10
 def _lubricant_cause(scene: Scene, exc: RuntimeError) -> RuntimeError:
     """A Newton failure of a run whose film is stiffer than any measured one
     (`lubricant.elastic_shear_modulus` above STIFF_FILM), told as the lubricant's (docs/model.md
-    §6.4, *Film elasticity*): a film of 1e7-1e12
-    Pa.s (Barus or any law above about 1.5 GPa) then resists slip as dry friction with no slip
-    scale, which Newton cannot follow, and the solver keys do not help; the film's elasticity
-    bounds that stiffness."""
+    §6.4, *Film elasticity*): a film of 1e7-1e12 Pa.s (Barus or any law above about 1.5 GPa) then
+    resists slip as dry friction with no slip scale, which Newton cannot follow, and the solver
+    keys do not help; a measured elastic modulus bounds that stiffness."""
     from ...dynamics.multibody import IntegrationError
 
     lub = scene.lubricant
@@ -130,9 +129,8 @@ def _lubricant_cause(scene: Scene, exc: RuntimeError) -> RuntimeError:
     return IntegrationError(exc.t, exc.h, f"with a film that stiff, {exc.reason[:1].lower()}{exc.reason[1:]}", (
         f"the lubricant first: lubricant.elastic_shear_modulus = {lub.elastic_shear_modulus:.3g} Pa leaves the "
         f"film's low-slip stiffness as its viscosity makes it ({lub.viscosity(1.5e9):.3g} Pa.s at 1.5 GPa), "
-        f"and near-pure rolling then acts as dry "
-        f"friction that Newton cannot follow; the solver keys do not help. Give "
-        f"lubricant.elastic_shear_modulus a finite value (measured 1e8 .. 1e9 Pa; the default is 1e9), or "
+        f"and near-pure rolling then acts as dry friction that Newton cannot follow; the solver keys do not "
+        f"help. Give lubricant.elastic_shear_modulus a measured value (1e8 .. 1e9 Pa; the default is 1e9), or "
         f"physics.traction = 'coulomb' (docs/model.md §6.4)"))
 
 
